@@ -1,0 +1,169 @@
+//! Output colours: how lit 8-bit colours become the target's pixel colour.
+//!
+//! Lighting produces 8-bit channels (0..=255, as 8.8 fixed point). Per **vertex** they are
+//! scaled to the target's channel range with rounding — `c·31/255` for the 5-bit channels of
+//! RGB565, `c·63/255` for its 6-bit green, not a shift — and kept as 8.8 fixed point, so per
+//! **pixel** only an add and a shift remain: `(c + bias) >> frac`, where `bias` is one half
+//! (round to nearest) or, with dithering, a 4×4 ordered (Bayer) threshold.
+
+use embedded_graphics_core::pixelcolor::{
+    Bgr555, Bgr565, Bgr666, Bgr888, BinaryColor, Gray2, Gray4, Gray8, PixelColor,
+    Rgb555, Rgb565, Rgb666, Rgb888, RgbColor,
+};
+
+/// A pixel colour the renderer can write.
+///
+/// Implemented for the embedded-graphics RGB, BGR, grey and binary colours. For another colour
+/// type that converts from [`Rgb888`], an empty `impl TargetColor for MyColor {}` works: the
+/// defaults quantize to 8 bits per channel and convert through `Rgb888`.
+pub trait TargetColor: PixelColor + From<Rgb888> {
+    /// The largest value of each channel (R, G, B) in this colour's own units.
+    const CHANNEL_MAX: [u8; 3] = [255, 255, 255];
+
+    /// Builds a pixel from channels already in this colour's units (≤ [`Self::CHANNEL_MAX`]).
+    #[must_use]
+    fn from_channels(c: [u8; 3]) -> Self {
+        Rgb888::new(c[0], c[1], c[2]).into()
+    }
+
+    /// Converts lit 8-bit channels (8.8 fixed point, 0..=65280) to this colour's channel units,
+    /// also 8.8 fixed point, rounding to nearest. Called once per vertex (or per flat face).
+    #[must_use]
+    fn vertex_channels(rgb: [u16; 3]) -> [u16; 3] {
+        scale_channels(rgb, Self::CHANNEL_MAX)
+    }
+
+    /// Whether 4×4 ordered dithering can change this colour's output (fewer than 8 bits in a
+    /// channel).
+    #[must_use]
+    fn can_dither() -> bool {
+        Self::CHANNEL_MAX.iter().any(|&m| m != 0 && m < 255)
+    }
+}
+
+/// `c · max / 255`, rounded to nearest, for each channel (all 8.8 fixed point).
+#[must_use]
+pub fn scale_channels(rgb: [u16; 3], max: [u8; 3]) -> [u16; 3] {
+    let mut out = [0u16; 3];
+    for k in 0..3 {
+        out[k] = ((rgb[k] as u32 * max[k] as u32 + 127) / 255) as u16;
+    }
+    out
+}
+
+/// ITU-R BT.601 luma of 8.8 channels, with the weights embedded-graphics uses (77, 150, 29)/256.
+#[must_use]
+pub fn luma(rgb: [u16; 3]) -> u16 {
+    ((rgb[0] as u32 * 77 + rgb[1] as u32 * 150 + rgb[2] as u32 * 29 + 128) >> 8) as u16
+}
+
+macro_rules! rgb_target {
+    ($($t:ident),*) => {$(
+        impl TargetColor for $t {
+            const CHANNEL_MAX: [u8; 3] = [$t::MAX_R, $t::MAX_G, $t::MAX_B];
+            #[inline(always)]
+            fn from_channels(c: [u8; 3]) -> Self {
+                $t::new(c[0], c[1], c[2])
+            }
+        }
+    )*};
+}
+rgb_target!(Rgb555, Bgr555, Rgb565, Bgr565, Rgb666, Bgr666, Rgb888, Bgr888);
+
+macro_rules! gray_target {
+    ($($t:ident = $max:expr),*) => {$(
+        impl TargetColor for $t {
+            const CHANNEL_MAX: [u8; 3] = [$max, 0, 0];
+            #[inline(always)]
+            fn from_channels(c: [u8; 3]) -> Self {
+                $t::new(c[0])
+            }
+            fn vertex_channels(rgb: [u16; 3]) -> [u16; 3] {
+                scale_channels([luma(rgb), 0, 0], Self::CHANNEL_MAX)
+            }
+        }
+    )*};
+}
+gray_target!(Gray8 = 255, Gray4 = 15, Gray2 = 3);
+
+impl TargetColor for BinaryColor {
+    const CHANNEL_MAX: [u8; 3] = [1, 0, 0];
+    #[inline(always)]
+    fn from_channels(c: [u8; 3]) -> Self {
+        if c[0] != 0 {
+            BinaryColor::On
+        } else {
+            BinaryColor::Off
+        }
+    }
+    fn vertex_channels(rgb: [u16; 3]) -> [u16; 3] {
+        scale_channels([luma(rgb), 0, 0], Self::CHANNEL_MAX)
+    }
+}
+
+/// Converts a colour to what the target will show (through the same quantization as
+/// rendering, rounding to nearest).
+#[must_use]
+pub fn quantize<C: TargetColor>(rgb8: [u8; 3]) -> C {
+    let q = C::vertex_channels([
+        (rgb8[0] as u16) << 8,
+        (rgb8[1] as u16) << 8,
+        (rgb8[2] as u16) << 8,
+    ]);
+    C::from_channels([
+        ((q[0] + 128) >> 8) as u8,
+        ((q[1] + 128) >> 8) as u8,
+        ((q[2] + 128) >> 8) as u8,
+    ])
+}
+
+/// The 4×4 Bayer matrix, `BAYER[y & 3][x & 3]` in 0..16.
+pub const BAYER: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics_core::pixelcolor::GrayColor;
+
+    #[test]
+    fn rgb565_rounds_not_shifts() {
+        // 255·31/255 = 31; 132·31/255 = 16.05 → 16 while 132 >> 3 = 16; 140·31/255 = 17.02
+        // → 17 while 140 >> 3 = 17; 4·31/255 = 0.49 → 0; 5·31/255 = 0.61 → 1 (shift gives 0).
+        let c: Rgb565 = quantize([5, 255, 0]);
+        assert_eq!((c.r(), c.g(), c.b()), (1, 63, 0));
+        let c: Rgb565 = quantize([4, 2, 255]);
+        assert_eq!((c.r(), c.g(), c.b()), (0, 0, 31));
+        for v in 0..=255u8 {
+            let c: Rgb565 = quantize([v, v, v]);
+            let want = (v as u32 * 31 + 127) / 255;
+            assert_eq!(c.r() as u32, want, "{v}");
+        }
+    }
+
+    #[test]
+    fn gray_uses_bt601_luma() {
+        let c: Gray8 = quantize([255, 0, 0]);
+        assert_eq!(c.luma(), Gray8::from(Rgb888::RED).luma());
+        let c: Gray8 = quantize([10, 200, 30]);
+        assert_eq!(c.luma(), Gray8::from(Rgb888::new(10, 200, 30)).luma());
+    }
+
+    #[test]
+    fn rgb888_is_exact() {
+        let c: Rgb888 = quantize([1, 128, 254]);
+        assert_eq!(c, Rgb888::new(1, 128, 254));
+        assert!(!Rgb888::can_dither());
+        assert!(Rgb565::can_dither());
+    }
+
+    #[test]
+    fn bayer_is_a_permutation() {
+        let mut seen = [false; 16];
+        for row in BAYER {
+            for v in row {
+                seen[v as usize] = true;
+            }
+        }
+        assert!(seen.iter().all(|&s| s));
+    }
+}

@@ -1,0 +1,209 @@
+//! Triangle meshes borrowed from slices (so a mesh can live in flash as `static` arrays).
+//!
+//! Triangles are counter-clockwise when seen from their front. Vertex normals are optional;
+//! [`vertex_normals`] computes them as the seeds do: the normalized, unweighted average of the
+//! unit normals of the faces that share the vertex.
+
+use crate::math::{add, cross, normalize, sub, Vec3};
+use crate::scalar::Scalar;
+
+/// A mesh: positions, triangles as `u16` indices, and optional unit vertex normals.
+#[derive(Copy, Clone, Debug)]
+pub struct Mesh<'a, S> {
+    positions: &'a [Vec3<S>],
+    indices: &'a [[u16; 3]],
+    normals: Option<&'a [Vec3<S>]>,
+}
+
+/// Why a mesh could not be built.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum MeshError {
+    /// More than 65 536 positions: `u16` indices cannot address them.
+    TooManyVertices {
+        /// The number of positions given.
+        count: usize,
+    },
+    /// The normals slice is not as long as the positions slice.
+    NormalCount {
+        /// Number of positions.
+        positions: usize,
+        /// Number of normals.
+        normals: usize,
+    },
+    /// A triangle refers to a vertex that does not exist.
+    IndexOutOfRange {
+        /// The triangle.
+        triangle: usize,
+        /// The bad index.
+        index: u16,
+    },
+    /// An output buffer is shorter than needed.
+    BufferTooSmall {
+        /// The length needed.
+        needed: usize,
+    },
+}
+
+impl<'a, S: Scalar> Mesh<'a, S> {
+    /// A mesh without normals (enough for flat shading; Gouraud needs [`Mesh::with_normals`]).
+    ///
+    /// Indices are checked when rendering: a triangle with an index out of range is skipped and
+    /// counted in [`crate::Stats::invalid`].
+    pub fn new(positions: &'a [Vec3<S>], indices: &'a [[u16; 3]]) -> Result<Self, MeshError> {
+        if positions.len() > 1 << 16 {
+            return Err(MeshError::TooManyVertices {
+                count: positions.len(),
+            });
+        }
+        Ok(Mesh {
+            positions,
+            indices,
+            normals: None,
+        })
+    }
+
+    pub(crate) fn from_parts(
+        positions: &'a [Vec3<S>],
+        indices: &'a [[u16; 3]],
+        normals: Option<&'a [Vec3<S>]>,
+    ) -> Self {
+        Mesh {
+            positions,
+            indices,
+            normals,
+        }
+    }
+
+    /// Adds unit vertex normals, one per position.
+    pub fn with_normals(mut self, normals: &'a [Vec3<S>]) -> Result<Self, MeshError> {
+        if normals.len() != self.positions.len() {
+            return Err(MeshError::NormalCount {
+                positions: self.positions.len(),
+                normals: normals.len(),
+            });
+        }
+        self.normals = Some(normals);
+        Ok(self)
+    }
+
+    /// The positions.
+    #[must_use]
+    pub fn positions(&self) -> &'a [Vec3<S>] {
+        self.positions
+    }
+
+    /// The triangles.
+    #[must_use]
+    pub fn indices(&self) -> &'a [[u16; 3]] {
+        self.indices
+    }
+
+    /// The vertex normals, if any.
+    #[must_use]
+    pub fn normals(&self) -> Option<&'a [Vec3<S>]> {
+        self.normals
+    }
+
+    /// Checks every index against the number of positions.
+    pub fn validate(&self) -> Result<(), MeshError> {
+        for (t, tri) in self.indices.iter().enumerate() {
+            for &i in tri {
+                if i as usize >= self.positions.len() {
+                    return Err(MeshError::IndexOutOfRange { triangle: t, index: i });
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The unit normal of the counter-clockwise triangle `a, b, c` (zero for a degenerate one).
+///
+/// The edges are normalized before the cross product so that small triangles keep their
+/// precision in fixed point.
+#[must_use]
+pub fn face_normal<S: Scalar>(a: Vec3<S>, b: Vec3<S>, c: Vec3<S>) -> Vec3<S> {
+    normalize(cross(normalize(sub(b, a)), normalize(sub(c, a))))
+}
+
+/// Computes vertex normals into `out` (at least as long as `positions`): for each vertex, the
+/// normalized sum of the unit normals of the faces using it. Vertices used by no face (or only
+/// by degenerate ones) get the zero vector, which lights as ambient only.
+pub fn vertex_normals<S: Scalar>(
+    positions: &[Vec3<S>],
+    indices: &[[u16; 3]],
+    out: &mut [Vec3<S>],
+) -> Result<(), MeshError> {
+    if out.len() < positions.len() {
+        return Err(MeshError::BufferTooSmall {
+            needed: positions.len(),
+        });
+    }
+    Mesh::new(positions, indices)?.validate()?;
+    for n in out.iter_mut() {
+        *n = [S::ZERO; 3];
+    }
+    for tri in indices {
+        let [a, b, c] = tri.map(|i| positions[i as usize]);
+        let n = face_normal(a, b, c);
+        for &i in tri {
+            out[i as usize] = add(out[i as usize], n);
+        }
+    }
+    for n in out.iter_mut().take(positions.len()) {
+        *n = normalize(*n);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::Fx;
+    use fixed::types::I16F16;
+
+    #[test]
+    fn face_normal_follows_counter_clockwise_order() {
+        let n = face_normal::<f32>([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        assert_eq!(n, [0.0, 0.0, 1.0]);
+        type Q = Fx<I16F16>;
+        let p = |x: f64, y: f64| [Q::lit(x * 0.001), Q::lit(y * 0.001), Q::ZERO];
+        let n = face_normal(p(0.0, 0.0), p(1.0, 0.0), p(0.0, 1.0));
+        assert!((n[2].to_f64() - 1.0).abs() < 1e-3, "{n:?}");
+    }
+
+    #[test]
+    fn vertex_normal_is_unweighted_average_of_face_normals() {
+        // Vertex 1 is shared by one face with normal +Z and two (of different areas) with
+        // normal +Y: the unweighted average is (0, 2, 1)/√5, not area-weighted.
+        let pos = [
+            [0.0f64, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [5.0, 0.0, 5.0],
+        ];
+        let idx = [[0u16, 1, 2], [0, 3, 1], [3, 4, 1]];
+        let mut out = [[0.0; 3]; 5];
+        vertex_normals(&pos, &idx, &mut out).unwrap();
+        let k = 1.0 / libm::sqrt(1.0 + 4.0);
+        assert!((out[1][1] - 2.0 * k).abs() < 1e-12 && (out[1][2] - k).abs() < 1e-12);
+        assert_eq!(out[0], normalize([0.0, 1.0, 1.0]));
+    }
+
+    #[test]
+    fn bad_meshes_are_errors() {
+        let pos = [[0.0f32; 3]; 3];
+        let idx = [[0u16, 1, 3]];
+        let m = Mesh::new(&pos, &idx).unwrap();
+        assert_eq!(
+            m.validate(),
+            Err(MeshError::IndexOutOfRange { triangle: 0, index: 3 })
+        );
+        let n = [[0.0f32; 3]; 2];
+        assert!(matches!(m.with_normals(&n), Err(MeshError::NormalCount { .. })));
+        let mut out = [[0.0f32; 3]; 3];
+        assert!(vertex_normals(&pos, &idx, &mut out).is_err());
+    }
+}

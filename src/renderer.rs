@@ -1,0 +1,615 @@
+//! The renderer: geometry for every object, then one strip pass over the screen.
+
+use core::marker::PhantomData;
+
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Point, Size};
+use embedded_graphics_core::primitives::Rectangle;
+use heapless::Vec;
+
+use crate::clip::{clip_triangle, outcode, ClipVertex, NEEDS_CLIP};
+use crate::color::TargetColor;
+use crate::math::{normalize, sub, Mat4, Vec3};
+use crate::mesh::face_normal;
+use crate::project::{signed_area2, ScreenVertex, Viewport, MAX_SCREEN};
+use crate::raster::{first_pixel, ActiveTri, DepthTest, TriRecord};
+use crate::scalar::Scalar;
+use crate::scene::{Object, Scene};
+use crate::shade::{lit_color, PreparedLight, Shading};
+
+const INVALID: u16 = 1 << 7;
+const PROJECTED: u16 = 1 << 8;
+const LIT: u16 = 1 << 9;
+const NONE: u16 = u16::MAX;
+
+/// Which compile-time capacity a scene exceeded.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Capacity {
+    /// `VERTS`: mesh vertices of all objects plus vertices made by clipping.
+    Vertices,
+    /// `TRIS`: triangles that survive culling and clipping (a clipped triangle may become up
+    /// to seven).
+    Triangles,
+    /// `ACTIVE`: triangles crossing one pixel row.
+    ActiveTriangles,
+}
+
+/// Why a frame was not (completely) drawn.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Error<E> {
+    /// The draw target returned an error; the frame is drawn up to the failing strip.
+    Target(E),
+    /// The scene needs more room than the renderer was given. Nothing was drawn.
+    Capacity {
+        /// The capacity.
+        what: Capacity,
+        /// Its compile-time value.
+        capacity: usize,
+        /// What this frame needed (for triangles: at least this many).
+        needed: usize,
+    },
+    /// Object `object` asks for Gouraud shading but its mesh has no vertex normals. Nothing
+    /// was drawn.
+    MissingNormals {
+        /// Index of the object in the scene.
+        object: usize,
+    },
+}
+
+/// What happened to the triangles and pixels of a frame.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Triangles in the scene's meshes.
+    pub triangles_in: u32,
+    /// Skipped: an index out of range, or a vertex that is NaN, infinite or overflowed.
+    pub invalid: u32,
+    /// Rejected: entirely outside the view volume or the screen, or clipped away.
+    pub outside: u32,
+    /// Back faces culled (negative snapped area).
+    pub culled: u32,
+    /// Zero snapped area (including slivers that collapse when snapped).
+    pub degenerate: u32,
+    /// Triangles that went through the near/far/guard-band clipper.
+    pub clipped: u32,
+    /// Triangles (after clipping) that cover no pixel centre.
+    pub empty: u32,
+    /// Triangles (after clipping) handed to the rasterizer.
+    pub drawn: u32,
+    /// Vertices stored (mesh vertices plus clipper output).
+    pub vertices: u32,
+    /// Pixels tested against the depth buffer.
+    pub fragments: u32,
+    /// Pixels that passed the depth test and were written to the strip.
+    pub pixels_written: u32,
+    /// The largest number of triangles active on one row.
+    pub max_active: u32,
+}
+
+/// A scanline Z-buffer renderer with a strip of `LINES` lines of `W` pixels.
+///
+/// * `S` — the number type of the geometry pipeline ([`crate::Fx`]`<I16F16>`, `f32`, `f64`).
+/// * `C` — the target's pixel colour.
+/// * `W`, `H` — the screen size in pixels (1..=2048), drawn at the target's origin.
+/// * `VERTS` — vertex store: all mesh vertices of a frame plus those made by clipping.
+/// * `TRIS` — triangles a frame can keep after culling (≤ 65 535).
+/// * `ACTIVE` — triangles that may cross one row at once.
+/// * `LINES` — rows per strip (default 1).
+///
+/// # RAM
+///
+/// `size_of::<Renderer>()` ≈ `LINES·W·(size_of::<C>() + 2)` (colour and depth lines)
+/// `+ 20·VERTS + 12·TRIS + 168·ACTIVE` (vertex store, triangle list, active list)
+/// `+ 4·H` (row buckets and the active-count sweep) plus a few words; [`Renderer::RAM_BYTES`]
+/// is the exact figure for a given instantiation. No framebuffer, no full-screen depth buffer.
+#[derive(Debug)]
+pub struct Renderer<
+    S,
+    C,
+    const W: usize,
+    const H: usize,
+    const VERTS: usize,
+    const TRIS: usize,
+    const ACTIVE: usize,
+    const LINES: usize = 1,
+> {
+    verts: Vec<ScreenVertex, VERTS>,
+    tris: Vec<TriRecord, TRIS>,
+    active: Vec<ActiveTri, ACTIVE>,
+    heads: [u16; H],
+    starts: [i16; H],
+    color: [[C; W]; LINES],
+    depth: [[u16; W]; LINES],
+    depth_test: DepthTest,
+    dither: bool,
+    _s: PhantomData<S>,
+}
+
+/// Per-object state of the geometry stage.
+struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
+    obj: &'o Object<'a, S>,
+    mvp: Mat4<S>,
+    normal_matrix: Mat4<S>,
+    similar: bool,
+    lights: &'o [PreparedLight<S>; L],
+    eye: Vec3<S>,
+    base: usize,
+}
+
+impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
+    fn to_eye(&self, p: Vec3<S>) -> Vec3<S> {
+        if self.obj.material.specular > S::ZERO {
+            let w = self.obj.transform.transform_point(p);
+            normalize(sub(self.eye, [w[0], w[1], w[2]]))
+        } else {
+            [S::ZERO; 3]
+        }
+    }
+
+    fn world_normal(&self, n: Vec3<S>, force: bool) -> Vec3<S> {
+        let n = self.normal_matrix.transform_dir(n);
+        if self.similar && !force {
+            n
+        } else {
+            normalize(n)
+        }
+    }
+
+    /// Lit colour of mesh vertex `i`, in the target's channel units (8.8).
+    fn vertex_color<C: TargetColor>(&self, i: usize) -> [u16; 3] {
+        let mesh = &self.obj.mesh;
+        let p = mesh.positions()[i];
+        let n = mesh.normals().map_or([S::ZERO; 3], |ns| ns[i]);
+        let lit = lit_color(
+            &self.obj.material,
+            self.lights,
+            self.world_normal(n, false),
+            self.to_eye(p),
+        );
+        C::vertex_channels(lit)
+    }
+
+    /// Lit colour of a face, in the target's channel units (8.8).
+    fn face_color<C: TargetColor>(&self, tri: [u16; 3]) -> [u16; 3] {
+        let [a, b, c] = tri.map(|i| self.obj.mesh.positions()[i as usize]);
+        let n = self.world_normal(face_normal(a, b, c), true);
+        let k = S::from_f64(1.0 / 3.0);
+        let centroid = [0, 1, 2].map(|j| (a[j] + b[j] + c[j]) * k);
+        let lit = lit_color(&self.obj.material, self.lights, n, self.to_eye(centroid));
+        C::vertex_channels(lit)
+    }
+}
+
+impl<
+        S: Scalar,
+        C: TargetColor,
+        const W: usize,
+        const H: usize,
+        const VERTS: usize,
+        const TRIS: usize,
+        const ACTIVE: usize,
+        const LINES: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES>
+{
+    /// Exact RAM of this renderer in bytes.
+    pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
+
+    const CHECK: () = {
+        assert!(W >= 1 && W <= MAX_SCREEN, "W must be 1..=2048");
+        assert!(H >= 1 && H <= MAX_SCREEN, "H must be 1..=2048");
+        assert!(LINES >= 1, "LINES must be at least 1");
+        assert!(TRIS < u16::MAX as usize, "TRIS must be below 65535");
+        assert!(VERTS <= u16::MAX as usize, "VERTS must be at most 65535");
+    };
+
+    /// A renderer with the default options (depth test [`DepthTest::Less`], no dithering).
+    #[must_use]
+    pub fn new() -> Self {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::CHECK;
+        let black = C::from_channels([0; 3]);
+        Renderer {
+            verts: Vec::new(),
+            tris: Vec::new(),
+            active: Vec::new(),
+            heads: [NONE; H],
+            starts: [0; H],
+            color: [[black; W]; LINES],
+            depth: [[u16::MAX; W]; LINES],
+            depth_test: DepthTest::Less,
+            dither: false,
+            _s: PhantomData,
+        }
+    }
+
+    /// Enables or disables 4×4 ordered dithering of Gouraud gradients (for targets with fewer
+    /// than 8 bits per channel, such as RGB565).
+    #[must_use]
+    pub fn with_dither(mut self, on: bool) -> Self {
+        self.dither = on;
+        self
+    }
+
+    /// Sets the depth test.
+    #[must_use]
+    pub fn with_depth_test(mut self, test: DepthTest) -> Self {
+        self.depth_test = test;
+        self
+    }
+
+    /// Sets the depth test in place.
+    pub fn set_depth_test(&mut self, test: DepthTest) {
+        self.depth_test = test;
+    }
+
+    /// Enables or disables dithering in place.
+    pub fn set_dither(&mut self, on: bool) {
+        self.dither = on;
+    }
+
+    /// Draws one frame of `scene` into `target`, at the target's origin, `W × H` pixels.
+    ///
+    /// Capacity errors and missing normals are found before anything is drawn. A target error
+    /// stops the frame at the failing strip and is returned.
+    pub fn render<D, const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        target: &mut D,
+    ) -> Result<Stats, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+    {
+        let mut stats = self.geometry(scene)?;
+        self.rasterize(scene, target, &mut stats)?;
+        Ok(stats)
+    }
+
+    /// Runs the geometry stage only (transform, light, clip, project, cull, bucket) and reports
+    /// what a frame of `scene` needs; nothing is drawn.
+    pub fn prepare<const L: usize>(&mut self, scene: &Scene<'_, S, L>) -> Result<Stats, Error<()>> {
+        match self.geometry::<(), L>(scene) {
+            Ok(s) => Ok(s),
+            Err(e) => Err(e),
+        }
+    }
+
+    fn geometry<E, const L: usize>(&mut self, scene: &Scene<'_, S, L>) -> Result<Stats, Error<E>> {
+        self.verts.clear();
+        self.tris.clear();
+        self.active.clear();
+        self.heads = [NONE; H];
+        self.starts = [0; H];
+        let mut stats = Stats::default();
+        for (i, o) in scene.objects.iter().enumerate() {
+            if o.material.shading == Shading::Gouraud && o.mesh.normals().is_none() {
+                return Err(Error::MissingNormals { object: i });
+            }
+        }
+        let vp = Viewport {
+            width: W as u32,
+            height: H as u32,
+        };
+        let g = S::from_i32(vp.guard_band());
+        let pv = scene
+            .camera
+            .projection
+            .matrix(vp.aspect())
+            .mul(&scene.camera.view);
+        let lights = scene.lights.map(|l| PreparedLight::new(&l));
+        let mut need = (0usize, 0usize);
+        for obj in scene.objects {
+            let (normal_matrix, similar) = obj.transform.normal_matrix();
+            let setup = ObjectSetup {
+                obj,
+                mvp: pv.mul(&obj.transform),
+                normal_matrix,
+                similar,
+                lights: &lights,
+                eye: scene.camera.eye,
+                base: self.verts.len(),
+            };
+            self.object(&setup, &vp, g, &mut stats, &mut need);
+        }
+        stats.vertices = need.0 as u32;
+        if need.0 > VERTS {
+            return Err(Error::Capacity {
+                what: Capacity::Vertices,
+                capacity: VERTS,
+                needed: need.0,
+            });
+        }
+        if need.1 > TRIS {
+            return Err(Error::Capacity {
+                what: Capacity::Triangles,
+                capacity: TRIS,
+                needed: need.1,
+            });
+        }
+        let mut cur = 0i32;
+        let mut max = 0i32;
+        for &s in self.starts.iter() {
+            cur += s as i32;
+            max = max.max(cur);
+        }
+        stats.max_active = max as u32;
+        if max as usize > ACTIVE {
+            return Err(Error::Capacity {
+                what: Capacity::ActiveTriangles,
+                capacity: ACTIVE,
+                needed: max as usize,
+            });
+        }
+        Ok(stats)
+    }
+
+    /// Transforms, lights, clips, projects, culls and buckets one object.
+    fn object<const L: usize>(
+        &mut self,
+        o: &ObjectSetup<'_, '_, S, L>,
+        vp: &Viewport,
+        g: S,
+        stats: &mut Stats,
+        need: &mut (usize, usize),
+    ) {
+        let mesh = o.obj.mesh;
+        let positions = mesh.positions();
+        need.0 += positions.len();
+        if o.base + positions.len() > VERTS {
+            // Count what the object would need; nothing of it can be stored.
+            stats.triangles_in += mesh.indices().len() as u32;
+            need.1 += mesh.indices().len();
+            return;
+        }
+        for &p in positions {
+            let clip = o.mvp.transform_point(p);
+            let mut flags = outcode(clip, g) as u16;
+            let mut sv = ScreenVertex::default();
+            if !clip.iter().all(|v| v.is_valid()) {
+                flags |= INVALID;
+            } else if flags & NEEDS_CLIP as u16 == 0 {
+                if let Some(v) = vp.project(clip, [0; 3]) {
+                    sv = v;
+                    flags |= PROJECTED;
+                }
+            }
+            sv.flags = flags;
+            // Cannot fail: room was checked above.
+            let _ = self.verts.push(sv);
+        }
+        let flat = o.obj.material.shading == Shading::Flat;
+        for tri in mesh.indices() {
+            stats.triangles_in += 1;
+            if tri.iter().any(|&i| i as usize >= positions.len()) {
+                stats.invalid += 1;
+                continue;
+            }
+            let vi = tri.map(|i| o.base + i as usize);
+            let f = vi.map(|i| self.verts[i].flags);
+            if (f[0] | f[1] | f[2]) & INVALID != 0 {
+                stats.invalid += 1;
+                continue;
+            }
+            if f[0] & f[1] & f[2] & 0x3f != 0 {
+                stats.outside += 1;
+                continue;
+            }
+            if (f[0] | f[1] | f[2]) & NEEDS_CLIP as u16 == 0 {
+                let area = signed_area2(&self.verts[vi[0]], &self.verts[vi[1]], &self.verts[vi[2]]);
+                if area == 0 {
+                    stats.degenerate += 1;
+                    continue;
+                }
+                if area < 0 {
+                    stats.culled += 1;
+                    continue;
+                }
+                let color = if flat {
+                    Some(o.face_color::<C>(*tri))
+                } else {
+                    for (k, &v) in vi.iter().enumerate() {
+                        if self.verts[v].flags & LIT == 0 {
+                            self.verts[v].rgb = o.vertex_color::<C>(tri[k] as usize);
+                            self.verts[v].flags |= LIT;
+                        }
+                    }
+                    None
+                };
+                self.push_tri(vi.map(|v| v as u16), color, stats, need);
+            } else {
+                self.clipped(o, tri, vi, flat, vp, g, stats, need);
+            }
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn clipped<const L: usize>(
+        &mut self,
+        o: &ObjectSetup<'_, '_, S, L>,
+        tri: &[u16; 3],
+        vi: [usize; 3],
+        flat: bool,
+        vp: &Viewport,
+        g: S,
+        stats: &mut Stats,
+        need: &mut (usize, usize),
+    ) {
+        let positions = o.obj.mesh.positions();
+        let face = if flat {
+            Some(o.face_color::<C>(*tri))
+        } else {
+            None
+        };
+        let mut input = [ClipVertex {
+            pos: [S::ZERO; 4],
+            rgb: [0; 3],
+        }; 3];
+        for k in 0..3 {
+            let v = vi[k];
+            let rgb = match face {
+                Some(c) => c,
+                None => {
+                    if self.verts[v].flags & LIT == 0 {
+                        self.verts[v].rgb = o.vertex_color::<C>(tri[k] as usize);
+                        self.verts[v].flags |= LIT;
+                    }
+                    self.verts[v].rgb
+                }
+            };
+            input[k] = ClipVertex {
+                pos: o.mvp.transform_point(positions[tri[k] as usize]),
+                rgb,
+            };
+        }
+        let codes = (self.verts[vi[0]].flags | self.verts[vi[1]].flags | self.verts[vi[2]].flags) as u8;
+        let poly = clip_triangle(input, codes, g);
+        if poly.v.is_empty() {
+            stats.outside += 1;
+            return;
+        }
+        stats.clipped += 1;
+        need.0 += poly.v.len();
+        if self.verts.len() + poly.v.len() > VERTS {
+            need.1 += poly.v.len() - 2;
+            return;
+        }
+        let first = self.verts.len();
+        for v in &poly.v {
+            match vp.project(v.pos, v.rgb) {
+                Some(mut sv) => {
+                    sv.flags = PROJECTED | LIT;
+                    let _ = self.verts.push(sv);
+                }
+                None => {
+                    // w ≤ 0 after near clipping can only come from rounding at w ≈ 0 with a
+                    // degenerate near plane; skip the polygon.
+                    self.verts.truncate(first);
+                    stats.invalid += 1;
+                    return;
+                }
+            }
+        }
+        for k in 1..poly.v.len() - 1 {
+            let t = [first, first + k, first + k + 1];
+            let area = signed_area2(&self.verts[t[0]], &self.verts[t[1]], &self.verts[t[2]]);
+            if area == 0 {
+                stats.degenerate += 1;
+            } else if area < 0 {
+                stats.culled += 1;
+            } else {
+                self.push_tri(t.map(|v| v as u16), face, stats, need);
+            }
+        }
+    }
+
+    /// Buckets a triangle by its first covered row, or counts it as empty or off-screen.
+    fn push_tri(&mut self, v: [u16; 3], flat: Option<[u16; 3]>, stats: &mut Stats, need: &mut (usize, usize)) {
+        let p = v.map(|i| self.verts[i as usize]);
+        let (mut x0, mut x1, mut y0, mut y1) = (p[0].x, p[0].x, p[0].y, p[0].y);
+        for q in &p[1..] {
+            x0 = x0.min(q.x);
+            x1 = x1.max(q.x);
+            y0 = y0.min(q.y);
+            y1 = y1.max(q.y);
+        }
+        let (px0, px1, py0, py1) = (first_pixel(x0), first_pixel(x1), first_pixel(y0), first_pixel(y1));
+        if px0 >= px1 || py0 >= py1 {
+            stats.empty += 1;
+            return;
+        }
+        if px1 <= 0 || py1 <= 0 || px0 >= W as i32 || py0 >= H as i32 {
+            stats.outside += 1;
+            return;
+        }
+        need.1 += 1;
+        let row = py0.max(0) as usize;
+        let end = py1.min(H as i32) as usize;
+        let idx = self.tris.len() as u16;
+        if self
+            .tris
+            .push(TriRecord {
+                v,
+                flat,
+                next: self.heads[row],
+            })
+            .is_err()
+        {
+            return;
+        }
+        self.heads[row] = idx;
+        self.starts[row] += 1;
+        if end < H {
+            self.starts[end] -= 1;
+        }
+        stats.drawn += 1;
+    }
+
+    fn rasterize<D, const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        target: &mut D,
+        stats: &mut Stats,
+    ) -> Result<(), Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+    {
+        let bg = crate::color::quantize::<C>(scene.background);
+        let mut y0 = 0usize;
+        while y0 < H {
+            let lines = LINES.min(H - y0);
+            for l in 0..lines {
+                self.color[l] = [bg; W];
+                self.depth[l] = [u16::MAX; W];
+                let row = y0 + l;
+                let mut t = self.heads[row];
+                while t != NONE {
+                    let rec = self.tris[t as usize];
+                    if let Some(a) = ActiveTri::new(&rec, &self.verts, row as i32, H as i32) {
+                        // Cannot fail: the largest number of rows' overlaps was checked.
+                        let _ = self.active.push(a);
+                    }
+                    t = rec.next;
+                }
+                let mut i = 0;
+                while i < self.active.len() {
+                    let (frag, written, done) = self.active[i].draw_row(
+                        row as i32,
+                        &mut self.color[l],
+                        &mut self.depth[l],
+                        self.depth_test,
+                        self.dither,
+                    );
+                    stats.fragments += frag;
+                    stats.pixels_written += written;
+                    if done {
+                        self.active.swap_remove(i);
+                    } else {
+                        i += 1;
+                    }
+                }
+            }
+            let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(W as u32, lines as u32));
+            target
+                .fill_contiguous(&area, self.color[..lines].iter().flatten().copied())
+                .map_err(Error::Target)?;
+            y0 += lines;
+        }
+        Ok(())
+    }
+}
+
+impl<
+        S: Scalar,
+        C: TargetColor,
+        const W: usize,
+        const H: usize,
+        const VERTS: usize,
+        const TRIS: usize,
+        const ACTIVE: usize,
+        const LINES: usize,
+    > Default for Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}

@@ -1,0 +1,434 @@
+//! The number type of the geometry pipeline.
+//!
+//! Every stage before rasterization (transforms, lighting, clipping, the perspective divide) is
+//! written once, generic over [`Scalar`]. It is implemented for
+//!
+//! | type | format | range | step | notes |
+//! |---|---|---|---|---|
+//! | [`Fx<I16F16>`](Fx) | signed Q16.16 in an `i32` | ±32768 | 2⁻¹⁶ ≈ 1.5·10⁻⁵ | the default fixed-point type |
+//! | [`Fx<I20F12>`](Fx) | signed Q20.12 in an `i32` | ±524288 | 2⁻¹² ≈ 2.4·10⁻⁴ | large scenes, coarser |
+//! | [`Fx<I12F20>`](Fx) | signed Q12.20 in an `i32` | ±2048 | 2⁻²⁰ ≈ 9.5·10⁻⁷ | small scenes, finer |
+//! | `f32` | IEEE binary32 | ±3.4·10³⁸ | 2⁻²⁴ relative | float twin |
+//! | `f64` | IEEE binary64 | ±1.8·10³⁰⁸ | 2⁻⁵³ relative | the reference |
+//!
+//! The rasterizer after the perspective divide is integer code shared by all of them, so the
+//! float pipelines are twins of the fixed-point one, not second implementations.
+//!
+//! Fixed-point arithmetic in [`Fx`] **saturates** instead of wrapping or panicking. A vertex whose
+//! clip coordinates reach the saturation rails is reported invalid by [`Scalar::is_valid`] and
+//! its triangles are skipped and counted, never drawn as garbage.
+//!
+//! The perspective divide needs more precision than Q16.16 offers for 1/w (w up to 10³ would
+//! leave 1/w with about six significant bits), so each type supplies its own reciprocal
+//! representation ([`Scalar::Recip`]): for `Fx` a 31-bit normalized mantissa with a shift, for
+//! floats the float itself.
+
+use core::fmt::Debug;
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+use fixed::types::{I12F20, I16F16, I20F12};
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// Fraction bits of the normalized-device-coordinate values that [`Scalar::ndc`] returns
+/// (signed Q31.32 in an `i64`; step 2⁻³² ≈ 2.3·10⁻¹⁰; range ±2³¹).
+pub const NDC_FRAC_BITS: u32 = 32;
+
+/// A number type the geometry pipeline can run on (sealed: implemented for [`Fx`] over
+/// `I16F16`, `I20F12`, `I12F20`, and for `f32` and `f64`).
+pub trait Scalar:
+    Copy
+    + Debug
+    + PartialOrd
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + sealed::Sealed
+    + 'static
+{
+    /// Zero.
+    const ZERO: Self;
+    /// One.
+    const ONE: Self;
+    /// A short name for reports (`"I16F16"`, `"f32"`, ...).
+    const NAME: &'static str;
+    /// The reciprocal of a positive w, in whatever form keeps [`Scalar::ndc`] precise.
+    type Recip: Copy + Debug;
+
+    /// Converts from `f64`, rounding to nearest; saturating for fixed-point types (NaN → 0).
+    #[must_use]
+    fn from_f64(v: f64) -> Self;
+    /// Converts to `f64` (exact for every implemented type except `f64` → itself).
+    #[must_use]
+    fn to_f64(self) -> f64;
+    /// Converts from `f32` (see [`Scalar::from_f64`]).
+    #[must_use]
+    fn from_f32(v: f32) -> Self {
+        Self::from_f64(v as f64)
+    }
+    /// Converts from an integer (saturating for fixed-point types).
+    #[must_use]
+    fn from_i32(v: i32) -> Self {
+        Self::from_f64(v as f64)
+    }
+    /// Square root; negative input gives zero.
+    #[must_use]
+    fn sqrt(self) -> Self;
+    /// Sine and cosine of an angle in radians.
+    #[must_use]
+    fn sin_cos(self) -> (Self, Self);
+    /// Tangent of an angle in radians (saturating for fixed-point types).
+    #[must_use]
+    fn tan(self) -> Self {
+        let (s, c) = self.sin_cos();
+        s / c
+    }
+    /// False for NaN and infinities, and for fixed-point values at a saturation rail (which may
+    /// be the result of an overflow).
+    #[must_use]
+    fn is_valid(self) -> bool;
+    /// Absolute value.
+    #[must_use]
+    fn abs(self) -> Self {
+        if self < Self::ZERO {
+            -self
+        } else {
+            self
+        }
+    }
+    /// The larger of two values.
+    #[must_use]
+    fn max(self, o: Self) -> Self {
+        if o > self {
+            o
+        } else {
+            self
+        }
+    }
+    /// The smaller of two values.
+    #[must_use]
+    fn min(self, o: Self) -> Self {
+        if o < self {
+            o
+        } else {
+            self
+        }
+    }
+    /// The reciprocal of `w` for [`Scalar::ndc`]. `w` must be positive; otherwise the result
+    /// is unspecified but `ndc` still does not panic.
+    #[must_use]
+    fn recip(w: Self) -> Self::Recip;
+    /// `v / w` as signed Q31.32 ([`NDC_FRAC_BITS`]), rounded to nearest and saturated to
+    /// `±2⁶²`; `r` is [`Scalar::recip`]`(w)`.
+    #[must_use]
+    fn ndc(v: Self, r: Self::Recip) -> i64;
+    /// `self` as a signed integer with `frac` fraction bits, rounded to nearest, saturated to
+    /// `i32` (NaN → 0).
+    #[must_use]
+    fn to_fixed_i32(self, frac: u32) -> i32;
+}
+
+/// Rounds and saturates an `f64` to `i64` (NaN → 0).
+fn f64_to_i64(v: f64) -> i64 {
+    // `as` saturates and maps NaN to 0.
+    libm::round(v) as i64
+}
+
+impl sealed::Sealed for f64 {}
+impl Scalar for f64 {
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    const NAME: &'static str = "f64";
+    type Recip = f64;
+    fn from_f64(v: f64) -> Self {
+        v
+    }
+    fn to_f64(self) -> f64 {
+        self
+    }
+    fn sqrt(self) -> Self {
+        if self > 0.0 {
+            libm::sqrt(self)
+        } else {
+            0.0
+        }
+    }
+    fn sin_cos(self) -> (Self, Self) {
+        libm::sincos(self)
+    }
+    fn tan(self) -> Self {
+        libm::tan(self)
+    }
+    fn is_valid(self) -> bool {
+        self.is_finite()
+    }
+    fn recip(w: Self) -> f64 {
+        1.0 / w
+    }
+    fn ndc(v: Self, r: f64) -> i64 {
+        f64_to_i64(v * r * (1u64 << NDC_FRAC_BITS) as f64).clamp(-(1 << 62), 1 << 62)
+    }
+    fn to_fixed_i32(self, frac: u32) -> i32 {
+        libm::round(self * (1u64 << frac) as f64) as i32
+    }
+}
+
+impl sealed::Sealed for f32 {}
+impl Scalar for f32 {
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    const NAME: &'static str = "f32";
+    type Recip = f32;
+    fn from_f64(v: f64) -> Self {
+        v as f32
+    }
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+    fn sqrt(self) -> Self {
+        if self > 0.0 {
+            libm::sqrtf(self)
+        } else {
+            0.0
+        }
+    }
+    fn sin_cos(self) -> (Self, Self) {
+        libm::sincosf(self)
+    }
+    fn tan(self) -> Self {
+        libm::tanf(self)
+    }
+    fn is_valid(self) -> bool {
+        self.is_finite()
+    }
+    fn recip(w: Self) -> f32 {
+        1.0 / w
+    }
+    fn ndc(v: Self, r: f32) -> i64 {
+        // The product v·r is rounded once in f32; the scaling by 2^32 in f64 is exact.
+        f64_to_i64((v * r) as f64 * (1u64 << NDC_FRAC_BITS) as f64).clamp(-(1 << 62), 1 << 62)
+    }
+    fn to_fixed_i32(self, frac: u32) -> i32 {
+        libm::round(self as f64 * (1u64 << frac) as f64) as i32
+    }
+}
+
+/// A fixed-point number from the `fixed` crate with **saturating** arithmetic.
+///
+/// `Fx<I16F16>` is the default number type of the fixed-point pipeline. The operators
+/// saturate at the type's range instead of wrapping (release) or panicking (debug); a value at a
+/// rail is treated as invalid by [`Scalar::is_valid`]. Division by zero saturates.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(transparent)]
+pub struct Fx<T>(pub T);
+
+/// Normalized reciprocal used by the fixed-point perspective divide:
+/// `1/w = mantissa · 2^-(shift)` with `mantissa` in (2³⁰, 2³¹] (31 significant bits).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct FxRecip {
+    mantissa: i64,
+    shift: u32,
+}
+
+macro_rules! impl_fx {
+    ($t:ident, $frac:expr, $name:expr) => {
+        impl Fx<$t> {
+            /// Builds a value from a float literal (rounds to nearest, saturates).
+            #[must_use]
+            pub fn lit(v: f64) -> Self {
+                <Self as Scalar>::from_f64(v)
+            }
+            /// The raw bits.
+            #[must_use]
+            pub fn to_bits(self) -> i32 {
+                self.0.to_bits()
+            }
+        }
+        impl Add for Fx<$t> {
+            type Output = Self;
+            #[inline(always)]
+            fn add(self, o: Self) -> Self {
+                Fx(self.0.saturating_add(o.0))
+            }
+        }
+        impl Sub for Fx<$t> {
+            type Output = Self;
+            #[inline(always)]
+            fn sub(self, o: Self) -> Self {
+                Fx(self.0.saturating_sub(o.0))
+            }
+        }
+        impl Mul for Fx<$t> {
+            type Output = Self;
+            #[inline(always)]
+            fn mul(self, o: Self) -> Self {
+                Fx(self.0.saturating_mul(o.0))
+            }
+        }
+        impl Div for Fx<$t> {
+            type Output = Self;
+            fn div(self, o: Self) -> Self {
+                if o.0 == $t::ZERO {
+                    return Fx(if self.0 < $t::ZERO { $t::MIN } else { $t::MAX });
+                }
+                Fx(self.0.saturating_div(o.0))
+            }
+        }
+        impl Neg for Fx<$t> {
+            type Output = Self;
+            #[inline(always)]
+            fn neg(self) -> Self {
+                Fx(self.0.saturating_neg())
+            }
+        }
+        impl sealed::Sealed for Fx<$t> {}
+        impl Scalar for Fx<$t> {
+            const ZERO: Self = Fx($t::ZERO);
+            const ONE: Self = Fx($t::ONE);
+            const NAME: &'static str = $name;
+            type Recip = FxRecip;
+            fn from_f64(v: f64) -> Self {
+                // Round to nearest in f64, then saturate.
+                Fx($t::from_bits(
+                    f64_to_i64(v * (1u64 << $frac) as f64).clamp(i32::MIN as i64, i32::MAX as i64)
+                        as i32,
+                ))
+            }
+            fn to_f64(self) -> f64 {
+                self.0.to_bits() as f64 / (1u64 << $frac) as f64
+            }
+            fn from_i32(v: i32) -> Self {
+                Fx($t::saturating_from_num(v))
+            }
+            fn sqrt(self) -> Self {
+                if self.0 <= $t::ZERO {
+                    Self::ZERO
+                } else {
+                    // The square root of a positive in-range value never overflows for
+                    // formats with at least one integer bit.
+                    Fx(self.0.wrapping_sqrt())
+                }
+            }
+            fn sin_cos(self) -> (Self, Self) {
+                // Evaluated in f64 by libm (pure software, so bit-identical on every target)
+                // and rounded once: setup-time only.
+                let (s, c) = libm::sincos(self.to_f64());
+                (Self::from_f64(s), Self::from_f64(c))
+            }
+            fn tan(self) -> Self {
+                Self::from_f64(libm::tan(self.to_f64()))
+            }
+            fn is_valid(self) -> bool {
+                self.0 != $t::MAX && self.0 != $t::MIN
+            }
+            fn recip(w: Self) -> FxRecip {
+                let wb = w.0.to_bits().max(1) as i64;
+                // wb in [2^(len-1), 2^len); mantissa = 2^(30+len) / wb in (2^30, 2^31].
+                let len = 64 - wb.leading_zeros();
+                FxRecip { mantissa: (1i64 << (30 + len)) / wb, shift: 30 + len }
+            }
+            fn ndc(v: Self, r: FxRecip) -> i64 {
+                // v/w = v_bits / w_bits = v_bits · mantissa · 2^-shift; |product| < 2^62.
+                let p = v.0.to_bits() as i64 * r.mantissa;
+                let s = r.shift as i32 - NDC_FRAC_BITS as i32;
+                if s > 0 {
+                    (p + (1i64 << (s - 1))) >> s
+                } else {
+                    p.saturating_mul(1i64 << (-s).min(62)).clamp(-(1 << 62), 1 << 62)
+                }
+            }
+            fn to_fixed_i32(self, frac: u32) -> i32 {
+                let b = self.0.to_bits() as i64;
+                let v = if frac >= $frac {
+                    b << (frac - $frac)
+                } else {
+                    let s = $frac - frac;
+                    (b + (1i64 << (s - 1))) >> s
+                };
+                v.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+            }
+        }
+    };
+}
+
+impl_fx!(I16F16, 16, "I16F16");
+impl_fx!(I20F12, 12, "I20F12");
+impl_fx!(I12F20, 20, "I12F20");
+
+/// Shorthand for [`Scalar::from_f64`].
+#[must_use]
+pub fn s<S: Scalar>(v: f64) -> S {
+    S::from_f64(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    type Q = Fx<I16F16>;
+
+    #[test]
+    fn fixed_saturates_instead_of_overflowing() {
+        let big = Q::lit(30000.0);
+        assert!(!(big + big).is_valid());
+        assert!(!(big * big).is_valid());
+        assert!(!(Q::ONE / Q::ZERO).is_valid());
+        assert_eq!((-Q::lit(2.0)).sqrt(), Q::ZERO);
+        assert!(Q::lit(1.5).is_valid());
+    }
+
+    #[test]
+    fn from_f64_rounds_to_nearest_step() {
+        // 2^-17 is half a step: rounds away from zero in f64's round().
+        assert_eq!(Q::lit(1.0 / 131072.0).to_bits(), 1);
+        assert_eq!(Q::lit(0.4 / 65536.0).to_bits(), 0);
+        assert_eq!(Q::lit(f64::NAN).to_bits(), 0);
+        assert_eq!(Q::lit(1e30).to_bits(), i32::MAX);
+    }
+
+    fn ndc_matches_f64<S: Scalar>(tol_q32: f64) {
+        let mut worst = 0.0f64;
+        for wi in 1..400 {
+            let w = 0.01 * wi as f64 * wi as f64 / 4.0 + 0.05;
+            for vi in -20..=20 {
+                let v = w * vi as f64 / 10.0;
+                let (vs, ws) = (S::from_f64(v), S::from_f64(w));
+                let exact = vs.to_f64() / ws.to_f64() * 4294967296.0;
+                let got = S::ndc(vs, S::recip(ws)) as f64;
+                worst = worst.max((got - exact).abs() / exact.abs().max(4294967296.0));
+            }
+        }
+        assert!(worst <= tol_q32, "{}: worst relative error {worst:e}", S::NAME);
+    }
+
+    #[test]
+    fn ndc_relative_error_within_bounds() {
+        ndc_matches_f64::<Q>(1.0e-9);
+        ndc_matches_f64::<Fx<I20F12>>(1.0e-9);
+        ndc_matches_f64::<f32>(2.0e-7);
+        ndc_matches_f64::<f64>(1.0e-9);
+    }
+
+    #[test]
+    fn to_fixed_rounds() {
+        assert_eq!(Q::lit(1.5).to_fixed_i32(8), 384);
+        assert_eq!(Q::lit(-1.5).to_fixed_i32(20), -(3 << 19));
+        assert_eq!(1.5f32.to_fixed_i32(8), 384);
+        assert_eq!(f64::NAN.to_fixed_i32(8), 0);
+    }
+
+    #[test]
+    fn sin_cos_within_one_step() {
+        for i in 0..64 {
+            let a = i as f64 * 0.1 - 3.2;
+            let (s, c) = Q::lit(a).sin_cos();
+            let a_q = Q::lit(a).to_f64();
+            assert!((s.to_f64() - libm::sin(a_q)).abs() <= 1.0 / 65536.0);
+            assert!((c.to_f64() - libm::cos(a_q)).abs() <= 1.0 / 65536.0);
+        }
+    }
+}

@@ -1,0 +1,209 @@
+//! Lighting: ambient + Lambert diffuse + optional Phong specular, for directional lights.
+//!
+//! For each channel `c` (0..=255):
+//!
+//! `colour_c = material_c · (ambient + Σ diffuse · light_c/255 · max(0, N·L))
+//!           + Σ specular · light_c · max(0, R·V)^shininess`, clamped to 0..=255,
+//!
+//! with `L` the unit direction toward the light, `R = 2(N·L)N − L` its mirror about the unit
+//! normal `N`, and `V` the unit direction from the point toward the eye (a local viewer). No
+//! gamma. Flat shading evaluates this once per face with the face normal, Gouraud once per
+//! vertex with the vertex normal; Gouraud colours are then interpolated linearly in screen space.
+
+use crate::math::{dot, normalize, scale, sub, Vec3};
+use crate::scalar::Scalar;
+
+/// How a surface is shaded.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
+pub enum Shading {
+    /// One colour per face, from the face normal.
+    Flat,
+    /// Per-vertex lighting from vertex normals, interpolated across the face.
+    #[default]
+    Gouraud,
+}
+
+/// A directional light.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Light<S> {
+    /// Direction **toward** the light, world space; need not be unit length (it is normalized
+    /// once per frame; a zero vector makes the light contribute nothing).
+    pub direction: Vec3<S>,
+    /// Light colour, 8 bits per channel (255 = full intensity).
+    pub color: [u8; 3],
+}
+
+impl<S: Scalar> Light<S> {
+    /// A white light toward `direction`.
+    #[must_use]
+    pub fn white(direction: Vec3<S>) -> Self {
+        Light {
+            direction,
+            color: [255; 3],
+        }
+    }
+}
+
+/// Surface properties.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Material<S> {
+    /// Base colour, 8 bits per channel.
+    pub color: [u8; 3],
+    /// Ambient coefficient (typically 0..=1).
+    pub ambient: S,
+    /// Diffuse coefficient (typically 0..=1).
+    pub diffuse: S,
+    /// Specular coefficient; zero skips the specular term and its per-vertex cost.
+    pub specular: S,
+    /// Phong exponent.
+    pub shininess: u8,
+    /// Flat or Gouraud.
+    pub shading: Shading,
+}
+
+impl<S: Scalar> Material<S> {
+    /// A matte material: the given colour, ambient and diffuse, no specular, Gouraud.
+    #[must_use]
+    pub fn matte(color: [u8; 3], ambient: S, diffuse: S) -> Self {
+        Material {
+            color,
+            ambient,
+            diffuse,
+            specular: S::ZERO,
+            shininess: 1,
+            shading: Shading::Gouraud,
+        }
+    }
+}
+
+/// A light prepared for one frame: unit direction and colour as fractions.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct PreparedLight<S> {
+    dir: Vec3<S>,
+    /// light_c / 255, step of `S`.
+    frac: [S; 3],
+    /// light_c (0..=255).
+    full: [S; 3],
+}
+
+impl<S: Scalar> PreparedLight<S> {
+    pub(crate) fn new(l: &Light<S>) -> Self {
+        let k = S::from_f64(1.0 / 255.0);
+        let c = |i: usize| S::from_i32(l.color[i] as i32);
+        PreparedLight {
+            dir: normalize(l.direction),
+            frac: [c(0) * k, c(1) * k, c(2) * k],
+            full: [c(0), c(1), c(2)],
+        }
+    }
+}
+
+fn powi<S: Scalar>(mut b: S, mut e: u8) -> S {
+    let mut r = S::ONE;
+    while e > 0 {
+        if e & 1 == 1 {
+            r = r * b;
+        }
+        b = b * b;
+        e >>= 1;
+    }
+    r
+}
+
+/// The lit colour of a point with unit normal `n` (world space), as 8.8 fixed point per channel
+/// (0..=65280). `to_eye` is the unit direction toward the eye; it is only read when the material
+/// has a specular term.
+pub(crate) fn lit_color<S: Scalar>(
+    m: &Material<S>,
+    lights: &[PreparedLight<S>],
+    n: Vec3<S>,
+    to_eye: Vec3<S>,
+) -> [u16; 3] {
+    let mut diffuse = [m.ambient; 3];
+    let mut spec = [S::ZERO; 3];
+    let two = S::ONE + S::ONE;
+    for l in lights {
+        let ndl = dot(n, l.dir);
+        if ndl > S::ZERO {
+            let d = m.diffuse * ndl;
+            for c in 0..3 {
+                diffuse[c] = diffuse[c] + d * l.frac[c];
+            }
+        }
+        if m.specular > S::ZERO {
+            // R·V = 2(N·L)(N·V) − L·V.
+            let r = sub(scale(n, two * ndl), l.dir);
+            let rv = dot(r, to_eye);
+            if rv > S::ZERO && ndl > S::ZERO {
+                let p = m.specular * powi(rv, m.shininess);
+                for c in 0..3 {
+                    spec[c] = spec[c] + p * l.full[c];
+                }
+            }
+        }
+    }
+    let mut out = [0u16; 3];
+    let top = S::from_i32(255);
+    for c in 0..3 {
+        let v = S::from_i32(m.color[c] as i32) * diffuse[c] + spec[c];
+        let v = v.max(S::ZERO).min(top);
+        out[c] = v.to_fixed_i32(8).clamp(0, 255 << 8) as u16;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::Fx;
+    use fixed::types::I16F16;
+
+    fn lambert<S: Scalar>() {
+        let m = Material::matte([200, 100, 50], S::from_f64(0.2), S::from_f64(0.8));
+        let l = [PreparedLight::new(&Light::white([S::ZERO, S::ZERO, S::from_f64(5.0)]))];
+        let z = [S::ZERO; 3];
+        // Facing the light: full.
+        let c = lit_color(&m, &l, [S::ZERO, S::ZERO, S::ONE], z);
+        assert_eq!(c.map(|v| (v + 128) >> 8), [200, 100, 50]);
+        // Facing away: ambient only.
+        let c = lit_color(&m, &l, [S::ZERO, S::ZERO, -S::ONE], z);
+        assert_eq!(c.map(|v| (v + 128) >> 8), [40, 20, 10]);
+        // 60°: 0.2 + 0.8·0.5 = 0.6.
+        let h = S::from_f64(libm::sqrt(0.75));
+        let c = lit_color(&m, &l, [h, S::ZERO, S::from_f64(0.5)], z);
+        assert_eq!(c.map(|v| (v + 128) >> 8), [120, 60, 30]);
+    }
+
+    #[test]
+    fn lambert_for_every_type() {
+        lambert::<f64>();
+        lambert::<f32>();
+        lambert::<Fx<I16F16>>();
+    }
+
+    #[test]
+    fn specular_peaks_at_the_mirror_direction_and_clamps() {
+        let mut m = Material::matte([100, 100, 100], 0.0f64, 0.5);
+        m.specular = 1.0;
+        m.shininess = 8;
+        let l = [PreparedLight::new(&Light::white([0.0, 0.0, 1.0]))];
+        let n = [0.0, 0.0, 1.0];
+        let c = lit_color(&m, &l, n, [0.0, 0.0, 1.0]);
+        assert_eq!(c, [255 << 8; 3]);
+        let v = normalize([1.0, 0.0, 1.0]);
+        let c = lit_color(&m, &l, n, v);
+        // 50 + 255·(0.7071^8 = 0.0625) = 65.94
+        assert_eq!((c[0] + 128) >> 8, 66);
+    }
+
+    #[test]
+    fn coloured_light_tints_diffuse() {
+        let m = Material::matte([255, 255, 255], 0.0f32, 1.0);
+        let l = [PreparedLight::new(&Light {
+            direction: [0.0, 1.0, 0.0],
+            color: [255, 0, 128],
+        })];
+        let c = lit_color(&m, &l, [0.0, 1.0, 0.0], [0.0; 3]);
+        assert_eq!(c.map(|v| (v + 128) >> 8), [255, 0, 128]);
+    }
+}
