@@ -100,7 +100,7 @@ pub struct Stats {
 /// # RAM
 ///
 /// `size_of::<Renderer>()` ≈ `LINES·W·(size_of::<C>() + 2)` (colour and depth lines)
-/// `+ 20·VERTS + 12·TRIS + 168·ACTIVE` (vertex store, triangle list, active list)
+/// `+ 20·VERTS + 16·TRIS + 216·ACTIVE` (vertex store, triangle list, active list)
 /// `+ 4·H` (row buckets and the active-count sweep) plus a few words; [`Renderer::RAM_BYTES`]
 /// is the exact figure for a given instantiation. No framebuffer, no full-screen depth buffer.
 #[derive(Debug)]
@@ -611,5 +611,33 @@ impl<
 {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+/// The documented RAM formula (see the crate docs): colour and depth lines, vertex store,
+/// triangle list, active list, row buckets; `extra` covers alignment and a few words of state.
+#[must_use]
+pub const fn ram_formula(w: usize, h: usize, color_bytes: usize, lines: usize, verts: usize, tris: usize, active: usize) -> usize {
+    lines * w * (color_bytes + 2) + 20 * verts + 16 * tris + 216 * active + 4 * h
+}
+
+#[cfg(test)]
+mod ram_tests {
+    use super::*;
+    use crate::scalar::Fx;
+    use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
+    use fixed::types::I16F16;
+
+    fn check<R>(formula: usize) {
+        let real = core::mem::size_of::<R>();
+        assert!(real >= formula && real <= formula + 64, "size {real}, formula {formula}");
+    }
+
+    #[test]
+    fn ram_formula_matches_size_of() {
+        type Q = Fx<I16F16>;
+        check::<Renderer<Q, Rgb565, 240, 240, 512, 512, 48>>(ram_formula(240, 240, 2, 1, 512, 512, 48));
+        check::<Renderer<f32, Rgb888, 320, 200, 100, 300, 20, 4>>(ram_formula(320, 200, 4, 4, 100, 300, 20));
+        check::<Renderer<f64, Rgb565, 16, 16, 8, 8, 8, 16>>(ram_formula(16, 16, 2, 16, 8, 8, 8));
     }
 }

@@ -1,0 +1,185 @@
+//! Host-side helpers shared by the integration tests: a simulated display buffer that counts how
+//! often each pixel is written, PNG golden files, and scenes placed in screen coordinates.
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use embedded_graphics::prelude::*;
+use scanline3d::prelude::*;
+
+/// A simulated display: every pixel stored, every write counted.
+pub struct Frame<C> {
+    pub w: u32,
+    pub h: u32,
+    pub px: Vec<C>,
+    pub writes: Vec<u32>,
+}
+
+impl<C: PixelColor> Frame<C> {
+    pub fn new(w: u32, h: u32, fill: C) -> Self {
+        Frame {
+            w,
+            h,
+            px: vec![fill; (w * h) as usize],
+            writes: vec![0; (w * h) as usize],
+        }
+    }
+
+    pub fn get(&self, x: u32, y: u32) -> C {
+        self.px[(y * self.w + x) as usize]
+    }
+
+    /// Panics unless every pixel was written exactly once.
+    pub fn assert_each_written_once(&self) {
+        for (i, &n) in self.writes.iter().enumerate() {
+            assert_eq!(n, 1, "pixel ({}, {}) written {n} times", i as u32 % self.w, i as u32 / self.w);
+        }
+    }
+}
+
+impl<C: PixelColor> OriginDimensions for Frame<C> {
+    fn size(&self) -> Size {
+        Size::new(self.w, self.h)
+    }
+}
+
+impl<C: PixelColor> DrawTarget for Frame<C> {
+    type Color = C;
+    type Error = core::convert::Infallible;
+    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(&mut self, pixels: I) -> Result<(), Self::Error> {
+        for Pixel(p, c) in pixels {
+            if p.x >= 0 && p.y >= 0 && (p.x as u32) < self.w && (p.y as u32) < self.h {
+                let i = (p.y as u32 * self.w + p.x as u32) as usize;
+                self.px[i] = c;
+                self.writes[i] += 1;
+            }
+        }
+        Ok(())
+    }
+}
+
+pub fn golden_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden")
+}
+
+/// Encodes a frame as 8-bit RGB PNG (RGB565 expanded by embedded-graphics' rounding conversion).
+pub fn png_bytes<C: PixelColor + Into<Rgb888>>(f: &Frame<C>) -> Vec<u8> {
+    let mut out = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut out, f.w, f.h);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut w = enc.write_header().unwrap();
+        let data: Vec<u8> = f
+            .px
+            .iter()
+            .flat_map(|&c| {
+                let c: Rgb888 = c.into();
+                [c.r(), c.g(), c.b()]
+            })
+            .collect();
+        w.write_image_data(&data).unwrap();
+    }
+    out
+}
+
+/// Decodes an 8-bit RGB PNG into (width, height, rgb bytes).
+pub fn read_png(path: &std::path::Path) -> Option<(u32, u32, Vec<u8>)> {
+    let file = std::fs::File::open(path).ok()?;
+    let dec = png::Decoder::new(file);
+    let mut r = dec.read_info().ok()?;
+    let mut buf = vec![0; r.output_buffer_size()];
+    let info = r.next_frame(&mut buf).ok()?;
+    buf.truncate(info.buffer_size());
+    Some((info.width, info.height, buf))
+}
+
+/// Compares a frame with `tests/golden/<name>.png` pixel for pixel. With `UPDATE_GOLDEN=1` the
+/// golden file is (re)written instead; a missing golden file is an error, never a silent pass.
+pub fn check_golden<C: PixelColor + Into<Rgb888>>(name: &str, f: &Frame<C>) {
+    let path = golden_dir().join(format!("{name}.png"));
+    let bytes = png_bytes(f);
+    if std::env::var("UPDATE_GOLDEN").is_ok() {
+        std::fs::create_dir_all(golden_dir()).unwrap();
+        std::fs::write(&path, &bytes).unwrap();
+        return;
+    }
+    let (w, h, want) = read_png(&path)
+        .unwrap_or_else(|| panic!("missing golden image {} (run with UPDATE_GOLDEN=1 and look at it)", path.display()));
+    assert_eq!((w, h), (f.w, f.h), "{name}: size");
+    let got: Vec<u8> = f
+        .px
+        .iter()
+        .flat_map(|&c| {
+            let c: Rgb888 = c.into();
+            [c.r(), c.g(), c.b()]
+        })
+        .collect();
+    let diff = got.chunks(3).zip(want.chunks(3)).filter(|(a, b)| a != b).count();
+    if diff != 0 {
+        let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("target/{name}.actual.png"));
+        std::fs::write(&out, &bytes).unwrap();
+        panic!("{name}: {diff} pixels differ from the golden image; actual written to {}", out.display());
+    }
+}
+
+/// Per-channel comparison of two RGB565 frames: (max |Δ| in LSB per channel, pixels differing,
+/// coverage mismatches against the background).
+pub fn compare565(a: &Frame<Rgb565>, b: &Frame<Rgb565>, bg: Rgb565) -> ([u8; 3], usize, usize) {
+    let mut max = [0u8; 3];
+    let mut differ = 0;
+    let mut coverage = 0;
+    for (x, y) in a.px.iter().zip(b.px.iter()) {
+        if x != y {
+            differ += 1;
+        }
+        if (*x == bg) != (*y == bg) {
+            coverage += 1;
+            continue;
+        }
+        max[0] = max[0].max(x.r().abs_diff(y.r()));
+        max[1] = max[1].max(x.g().abs_diff(y.g()));
+        max[2] = max[2].max(x.b().abs_diff(y.b()));
+    }
+    (max, differ, coverage)
+}
+
+/// An orthographic camera that maps world (x, y) to screen pixels: world x = px − w/2,
+/// world y = h/2 − py, looking down −Z from z = 10 with near 1 and far 19 (so world z = 0 has
+/// depth 0.5).
+pub fn screen_camera<S: Scalar>(h: u32) -> Camera<S> {
+    Camera::look_at(
+        [S::ZERO, S::ZERO, S::from_f64(10.0)],
+        [S::ZERO; 3],
+        [S::ZERO, S::ONE, S::ZERO],
+        Projection::Orthographic {
+            height: S::from_f64(h as f64),
+            near: S::ONE,
+            far: S::from_f64(19.0),
+        },
+    )
+    .unwrap()
+}
+
+/// World position of screen point (sx, sy) (in pixels, y down) at world depth z, for a
+/// `screen_camera(h)` on a `w`-wide screen.
+pub fn at<S: Scalar>(w: u32, h: u32, sx: f64, sy: f64, z: f64) -> [S; 3] {
+    [
+        S::from_f64(sx - w as f64 / 2.0),
+        S::from_f64(h as f64 / 2.0 - sy),
+        S::from_f64(z),
+    ]
+}
+
+/// A material that shows exactly `color` whatever the normal: ambient 1, no diffuse.
+pub fn unlit<S: Scalar>(color: [u8; 3], shading: Shading) -> Material<S> {
+    Material {
+        color,
+        ambient: S::ONE,
+        diffuse: S::ZERO,
+        specular: S::ZERO,
+        shininess: 1,
+        shading,
+    }
+}
