@@ -32,7 +32,9 @@ fn render<S: Scalar>(runs: usize) -> Result<(Frame<Rgb565>, Stats, f64), String>
     for _ in 0..runs.max(1) {
         frame = Frame::new(W as u32, H as u32, Rgb565::BLACK);
         let t = Instant::now();
-        stats = r.render(&scene, &mut frame).map_err(|e| format!("render: {e:?}"))?;
+        stats = r
+            .render(&scene, &mut frame)
+            .map_err(|e| format!("render: {e:?}"))?;
         times.push(t.elapsed().as_secs_f64());
     }
     times.sort_by(|a, b| a.total_cmp(b));

@@ -95,7 +95,12 @@ fn distance<S: Scalar>(plane: Plane, p: [S; 4], g: S) -> S {
     }
 }
 
-fn intersect<S: Scalar>(inside: &ClipVertex<S>, outside: &ClipVertex<S>, di: S, d_o: S) -> ClipVertex<S> {
+fn intersect<S: Scalar>(
+    inside: &ClipVertex<S>,
+    outside: &ClipVertex<S>,
+    di: S,
+    d_o: S,
+) -> ClipVertex<S> {
     // t in [0, 1] from the inside vertex; di ≥ 0 > d_o so the denominator is positive.
     let t = di / (di - d_o);
     let t = t.max(S::ZERO).min(S::ONE);
@@ -120,7 +125,9 @@ pub struct Polygon<S> {
 }
 
 fn clip_plane<S: Scalar>(poly: &Polygon<S>, plane: Plane, g: S) -> Polygon<S> {
-    let mut out = Polygon { v: heapless::Vec::new() };
+    let mut out = Polygon {
+        v: heapless::Vec::new(),
+    };
     let n = poly.v.len();
     for i in 0..n {
         let a = &poly.v[i];
@@ -150,7 +157,9 @@ fn clip_plane<S: Scalar>(poly: &Polygon<S>, plane: Plane, g: S) -> Polygon<S> {
 /// Returns a convex polygon with 0 or 3..=9 vertices.
 #[must_use]
 pub fn clip_triangle<S: Scalar>(tri: [ClipVertex<S>; 3], codes: u8, g: S) -> Polygon<S> {
-    let mut poly = Polygon { v: heapless::Vec::new() };
+    let mut poly = Polygon {
+        v: heapless::Vec::new(),
+    };
     for v in tri {
         let _ = poly.v.push(v);
     }
@@ -186,7 +195,12 @@ mod tests {
 
     fn cv<S: Scalar>(x: f64, y: f64, z: f64, w: f64) -> ClipVertex<S> {
         ClipVertex {
-            pos: [S::from_f64(x), S::from_f64(y), S::from_f64(z), S::from_f64(w)],
+            pos: [
+                S::from_f64(x),
+                S::from_f64(y),
+                S::from_f64(z),
+                S::from_f64(w),
+            ],
             rgb: [0, 100, 65280],
         }
     }
@@ -207,7 +221,11 @@ mod tests {
     fn near_clip_one_and_two_behind<S: Scalar>() {
         let g = S::from_f64(8.0);
         // One vertex behind the near plane: quad.
-        let t = [cv::<S>(-1.0, -1.0, 0.5, 1.0), cv(1.0, -1.0, 0.5, 1.0), cv(0.0, 1.0, -0.5, 0.5)];
+        let t = [
+            cv::<S>(-1.0, -1.0, 0.5, 1.0),
+            cv(1.0, -1.0, 0.5, 1.0),
+            cv(0.0, 1.0, -0.5, 0.5),
+        ];
         let p = clip_triangle(t, NEAR, g);
         assert_eq!(p.v.len(), 4);
         for v in &p.v {
@@ -215,10 +233,18 @@ mod tests {
             assert!(v.pos[3] > S::ZERO);
         }
         // Two behind: triangle.
-        let t = [cv::<S>(-1.0, -1.0, 0.5, 1.0), cv(1.0, -1.0, -0.5, 0.5), cv(0.0, 1.0, -0.5, 0.5)];
+        let t = [
+            cv::<S>(-1.0, -1.0, 0.5, 1.0),
+            cv(1.0, -1.0, -0.5, 0.5),
+            cv(0.0, 1.0, -0.5, 0.5),
+        ];
         assert_eq!(clip_triangle(t, NEAR, g).v.len(), 3);
         // All behind: nothing.
-        let t = [cv::<S>(-1.0, -1.0, -0.5, 0.5), cv(1.0, -1.0, -0.5, 0.5), cv(0.0, 1.0, -0.5, 0.5)];
+        let t = [
+            cv::<S>(-1.0, -1.0, -0.5, 0.5),
+            cv(1.0, -1.0, -0.5, 0.5),
+            cv(0.0, 1.0, -0.5, 0.5),
+        ];
         assert_eq!(clip_triangle(t, NEAR, g).v.len(), 0);
     }
 

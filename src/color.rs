@@ -7,8 +7,8 @@
 //! (round to nearest) or, with dithering, a 4×4 ordered (Bayer) threshold.
 
 use embedded_graphics_core::pixelcolor::{
-    Bgr555, Bgr565, Bgr666, Bgr888, BinaryColor, Gray2, Gray4, Gray8, PixelColor,
-    Rgb555, Rgb565, Rgb666, Rgb888, RgbColor,
+    Bgr555, Bgr565, Bgr666, Bgr888, BinaryColor, Gray2, Gray4, Gray8, PixelColor, Rgb555, Rgb565,
+    Rgb666, Rgb888, RgbColor,
 };
 
 /// A pixel colour the renderer can write.

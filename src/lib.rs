@@ -78,6 +78,9 @@
 #![deny(unsafe_code)]
 #![deny(missing_debug_implementations)]
 #![deny(rustdoc::broken_intra_doc_links)]
+// Matrix, vector and colour-channel code indexes several arrays in lockstep; index loops say
+// that more plainly than zipped iterators.
+#![allow(clippy::needless_range_loop)]
 
 pub mod camera;
 pub mod clip;
@@ -116,3 +119,8 @@ pub mod prelude {
         Scene, Shading, Shape, TargetColor,
     };
 }
+
+/// The README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

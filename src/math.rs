@@ -321,8 +321,14 @@ mod tests {
             // Compare with the exact direction of the (already quantized) input.
             let l = libm::hypot(x.to_f64(), z.to_f64());
             let v = normalize([x, Q::ZERO, z]);
-            assert!(close(v[0].to_f64(), x.to_f64() / l, 3.0 / 65536.0), "2^{e}: {v:?}");
-            assert!(close(v[2].to_f64(), z.to_f64() / l, 3.0 / 65536.0), "2^{e}: {v:?}");
+            assert!(
+                close(v[0].to_f64(), x.to_f64() / l, 3.0 / 65536.0),
+                "2^{e}: {v:?}"
+            );
+            assert!(
+                close(v[2].to_f64(), z.to_f64() / l, 3.0 / 65536.0),
+                "2^{e}: {v:?}"
+            );
         }
         assert_eq!(normalize([Q::ZERO; 3]), [Q::ZERO; 3]);
         assert_eq!(normalize([0.0f32; 3]), [0.0; 3]);

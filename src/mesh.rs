@@ -110,7 +110,10 @@ impl<'a, S: Scalar> Mesh<'a, S> {
         for (t, tri) in self.indices.iter().enumerate() {
             for &i in tri {
                 if i as usize >= self.positions.len() {
-                    return Err(MeshError::IndexOutOfRange { triangle: t, index: i });
+                    return Err(MeshError::IndexOutOfRange {
+                        triangle: t,
+                        index: i,
+                    });
                 }
             }
         }
@@ -199,10 +202,16 @@ mod tests {
         let m = Mesh::new(&pos, &idx).unwrap();
         assert_eq!(
             m.validate(),
-            Err(MeshError::IndexOutOfRange { triangle: 0, index: 3 })
+            Err(MeshError::IndexOutOfRange {
+                triangle: 0,
+                index: 3
+            })
         );
         let n = [[0.0f32; 3]; 2];
-        assert!(matches!(m.with_normals(&n), Err(MeshError::NormalCount { .. })));
+        assert!(matches!(
+            m.with_normals(&n),
+            Err(MeshError::NormalCount { .. })
+        ));
         let mut out = [[0.0f32; 3]; 3];
         assert!(vertex_normals(&pos, &idx, &mut out).is_err());
     }

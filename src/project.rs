@@ -71,7 +71,7 @@ impl Viewport {
     #[must_use]
     pub fn project<S: Scalar>(&self, p: [S; 4], rgb: [u16; 3]) -> Option<ScreenVertex> {
         let [x, y, z, w] = p;
-        if !(w > S::ZERO) {
+        if w.partial_cmp(&S::ZERO) != Some(core::cmp::Ordering::Greater) {
             return None;
         }
         let r = S::recip(w);
@@ -116,13 +116,17 @@ mod tests {
             height: 160,
         };
         let o = S::ZERO;
-        let v = vp.project([o, o, S::from_f64(0.5), S::ONE], [0; 3]).unwrap();
+        let v = vp
+            .project([o, o, S::from_f64(0.5), S::ONE], [0; 3])
+            .unwrap();
         assert_eq!((v.x, v.y), (120 * 16, 80 * 16));
         assert_eq!(v.z, 65535 << 11);
         // Top-left corner of the view volume is (0, 0); +y is up in clip space, down on screen.
         let v = vp.project([-S::ONE, S::ONE, o, S::ONE], [0; 3]).unwrap();
         assert_eq!((v.x, v.y, v.z), (0, 0, 0));
-        let v = vp.project([S::ONE, -S::ONE, S::ONE, S::ONE], [0; 3]).unwrap();
+        let v = vp
+            .project([S::ONE, -S::ONE, S::ONE, S::ONE], [0; 3])
+            .unwrap();
         assert_eq!((v.x, v.y, v.z), (240 * 16, 160 * 16, 65535 << 12));
         assert!(vp.project([o, o, o, -S::ONE], [0; 3]).is_none());
     }

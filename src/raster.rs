@@ -60,7 +60,11 @@ pub(crate) fn first_pixel(v: i32) -> i32 {
 /// `round(n / d)` (half away from zero) for `d ≠ 0`, clamped to ±[`GRAD_LIMIT`].
 fn div_round(n: i64, d: i64) -> i64 {
     let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
-    let q = if n >= 0 { (n + d / 2) / d } else { -((-n + d / 2) / d) };
+    let q = if n >= 0 {
+        (n + d / 2) / d
+    } else {
+        -((-n + d / 2) / d)
+    };
     q.clamp(-GRAD_LIMIT, GRAD_LIMIT)
 }
 
@@ -170,8 +174,17 @@ pub(crate) struct ActiveTri {
 impl ActiveTri {
     /// Sets up triangle `t` starting at `row` (its first covered row, clamped to the screen).
     /// Returns `None` if it covers no row from `row` on.
-    pub(crate) fn new(t: &TriRecord, verts: &[ScreenVertex], row: i32, height: i32) -> Option<Self> {
-        let mut p = [verts[t.v[0] as usize], verts[t.v[1] as usize], verts[t.v[2] as usize]];
+    pub(crate) fn new(
+        t: &TriRecord,
+        verts: &[ScreenVertex],
+        row: i32,
+        height: i32,
+    ) -> Option<Self> {
+        let mut p = [
+            verts[t.v[0] as usize],
+            verts[t.v[1] as usize],
+            verts[t.v[2] as usize],
+        ];
         // Sort by y (stable for equal y: order does not matter, horizontal edges are unused).
         if p[1].y < p[0].y {
             p.swap(0, 1);
@@ -201,7 +214,11 @@ impl ActiveTri {
         } else {
             Edge::new(b.x, b.y, c.x, c.y, row)
         };
-        let (left, right) = if mid_left { (short, long) } else { (long, short) };
+        let (left, right) = if mid_left {
+            (short, long)
+        } else {
+            (long, short)
+        };
 
         let mut attrs = [Attr::default(); 4];
         let n_attrs = if t.flat.is_some() { 1 } else { 4 };
@@ -268,7 +285,11 @@ impl ActiveTri {
             }
         } else {
             let short_carry = short.step();
-            self.step_attrs(if self.mid_left { short_carry } else { long_carry });
+            self.step_attrs(if self.mid_left {
+                short_carry
+            } else {
+                long_carry
+            });
         }
     }
 
@@ -314,7 +335,12 @@ impl ActiveTri {
                 x1: xe as usize,
                 row,
                 start,
-                gx: [self.attrs[0].gx, self.attrs[1].gx, self.attrs[2].gx, self.attrs[3].gx],
+                gx: [
+                    self.attrs[0].gx,
+                    self.attrs[1].gx,
+                    self.attrs[2].gx,
+                    self.attrs[3].gx,
+                ],
             };
             let written = match self.flat {
                 Some(rgb) => span.fill_flat(colors, depth, test, C::vertex_channels_done(rgb)),
@@ -416,9 +442,8 @@ impl Span {
         let [_, mut r, mut g, mut b] = self.start;
         let [gz, gr, gg, gb] = self.gx;
         let mut written = 0;
-        let mut x = self.x0;
         let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
-        for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
+        for (x, (zb, cb)) in (self.x0..).zip(zs.iter_mut().zip(cs.iter_mut())) {
             let z16 = (z >> DEPTH_FRAC_BITS) as u16;
             if passes(test, z16, *zb) {
                 let t = bias[x & 3];
@@ -434,7 +459,6 @@ impl Span {
             r = r.wrapping_add(gr);
             g = g.wrapping_add(gg);
             b = b.wrapping_add(gb);
-            x += 1;
         }
         written
     }
@@ -468,12 +492,19 @@ mod tests {
             let end = first_pixel(yb);
             let mut e = Edge::new(xa, ya, xb, yb, first);
             for row in first..end.min(first + 3000) {
-                assert_eq!(e.c, reference(xa, ya, xb, yb, row), "edge {xa},{ya}->{xb},{yb} row {row}");
+                assert_eq!(
+                    e.c,
+                    reference(xa, ya, xb, yb, row),
+                    "edge {xa},{ya}->{xb},{yb} row {row}"
+                );
                 e.step();
             }
             // Starting anywhere gives the same value.
             let mid = (first + end) / 2;
-            assert_eq!(Edge::new(xa, ya, xb, yb, mid).c, reference(xa, ya, xb, yb, mid));
+            assert_eq!(
+                Edge::new(xa, ya, xb, yb, mid).c,
+                reference(xa, ya, xb, yb, mid)
+            );
         }
     }
 

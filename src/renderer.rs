@@ -461,7 +461,8 @@ impl<
                 rgb,
             };
         }
-        let codes = (self.verts[vi[0]].flags | self.verts[vi[1]].flags | self.verts[vi[2]].flags) as u8;
+        let codes =
+            (self.verts[vi[0]].flags | self.verts[vi[1]].flags | self.verts[vi[2]].flags) as u8;
         let poly = clip_triangle(input, codes, g);
         if poly.v.is_empty() {
             stats.outside += 1;
@@ -503,7 +504,13 @@ impl<
     }
 
     /// Buckets a triangle by its first covered row, or counts it as empty or off-screen.
-    fn push_tri(&mut self, v: [u16; 3], flat: Option<[u16; 3]>, stats: &mut Stats, need: &mut (usize, usize)) {
+    fn push_tri(
+        &mut self,
+        v: [u16; 3],
+        flat: Option<[u16; 3]>,
+        stats: &mut Stats,
+        need: &mut (usize, usize),
+    ) {
         let p = v.map(|i| self.verts[i as usize]);
         let (mut x0, mut x1, mut y0, mut y1) = (p[0].x, p[0].x, p[0].y, p[0].y);
         for q in &p[1..] {
@@ -512,7 +519,12 @@ impl<
             y0 = y0.min(q.y);
             y1 = y1.max(q.y);
         }
-        let (px0, px1, py0, py1) = (first_pixel(x0), first_pixel(x1), first_pixel(y0), first_pixel(y1));
+        let (px0, px1, py0, py1) = (
+            first_pixel(x0),
+            first_pixel(x1),
+            first_pixel(y0),
+            first_pixel(y1),
+        );
         if px0 >= px1 || py0 >= py1 {
             stats.empty += 1;
             return;
@@ -617,7 +629,15 @@ impl<
 /// The documented RAM formula (see the crate docs): colour and depth lines, vertex store,
 /// triangle list, active list, row buckets; `extra` covers alignment and a few words of state.
 #[must_use]
-pub const fn ram_formula(w: usize, h: usize, color_bytes: usize, lines: usize, verts: usize, tris: usize, active: usize) -> usize {
+pub const fn ram_formula(
+    w: usize,
+    h: usize,
+    color_bytes: usize,
+    lines: usize,
+    verts: usize,
+    tris: usize,
+    active: usize,
+) -> usize {
     lines * w * (color_bytes + 2) + 20 * verts + 16 * tris + 216 * active + 4 * h
 }
 
@@ -630,14 +650,21 @@ mod ram_tests {
 
     fn check<R>(formula: usize) {
         let real = core::mem::size_of::<R>();
-        assert!(real >= formula && real <= formula + 64, "size {real}, formula {formula}");
+        assert!(
+            real >= formula && real <= formula + 64,
+            "size {real}, formula {formula}"
+        );
     }
 
     #[test]
     fn ram_formula_matches_size_of() {
         type Q = Fx<I16F16>;
-        check::<Renderer<Q, Rgb565, 240, 240, 512, 512, 48>>(ram_formula(240, 240, 2, 1, 512, 512, 48));
-        check::<Renderer<f32, Rgb888, 320, 200, 100, 300, 20, 4>>(ram_formula(320, 200, 4, 4, 100, 300, 20));
+        check::<Renderer<Q, Rgb565, 240, 240, 512, 512, 48>>(ram_formula(
+            240, 240, 2, 1, 512, 512, 48,
+        ));
+        check::<Renderer<f32, Rgb888, 320, 200, 100, 300, 20, 4>>(ram_formula(
+            320, 200, 4, 4, 100, 300, 20,
+        ));
         check::<Renderer<f64, Rgb565, 16, 16, 8, 8, 8, 16>>(ram_formula(16, 16, 2, 16, 8, 8, 8));
     }
 }

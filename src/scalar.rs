@@ -329,7 +329,10 @@ macro_rules! impl_fx {
                 let wb = w.0.to_bits().max(1) as i64;
                 // wb in [2^(len-1), 2^len); mantissa = 2^(30+len) / wb in (2^30, 2^31].
                 let len = 64 - wb.leading_zeros();
-                FxRecip { mantissa: (1i64 << (30 + len)) / wb, shift: 30 + len }
+                FxRecip {
+                    mantissa: (1i64 << (30 + len)) / wb,
+                    shift: 30 + len,
+                }
             }
             fn ndc(v: Self, r: FxRecip) -> i64 {
                 // v/w = v_bits / w_bits = v_bits · mantissa · 2^-shift; |product| < 2^62.
@@ -338,7 +341,8 @@ macro_rules! impl_fx {
                 if s > 0 {
                     (p + (1i64 << (s - 1))) >> s
                 } else {
-                    p.saturating_mul(1i64 << (-s).min(62)).clamp(-(1 << 62), 1 << 62)
+                    p.saturating_mul(1i64 << (-s).min(62))
+                        .clamp(-(1 << 62), 1 << 62)
                 }
             }
             fn to_fixed_i32(self, frac: u32) -> i32 {
@@ -402,7 +406,11 @@ mod tests {
                 worst = worst.max((got - exact).abs() / exact.abs().max(4294967296.0));
             }
         }
-        assert!(worst <= tol_q32, "{}: worst relative error {worst:e}", S::NAME);
+        assert!(
+            worst <= tol_q32,
+            "{}: worst relative error {worst:e}",
+            S::NAME
+        );
     }
 
     #[test]

@@ -160,7 +160,11 @@ mod tests {
 
     fn lambert<S: Scalar>() {
         let m = Material::matte([200, 100, 50], S::from_f64(0.2), S::from_f64(0.8));
-        let l = [PreparedLight::new(&Light::white([S::ZERO, S::ZERO, S::from_f64(5.0)]))];
+        let l = [PreparedLight::new(&Light::white([
+            S::ZERO,
+            S::ZERO,
+            S::from_f64(5.0),
+        ]))];
         let z = [S::ZERO; 3];
         // Facing the light: full.
         let c = lit_color(&m, &l, [S::ZERO, S::ZERO, S::ONE], z);

@@ -44,12 +44,19 @@ fn render<S: Scalar, C: TargetColor>(
         .iter()
         .zip(positions.iter())
         .map(|((_, color), pos)| Object {
-            mesh: Mesh::new(pos, &ONE_TRI).unwrap().with_normals(&normals).unwrap(),
+            mesh: Mesh::new(pos, &ONE_TRI)
+                .unwrap()
+                .with_normals(&normals)
+                .unwrap(),
             transform: Mat4::identity(),
             material: unlit(*color, shading),
         })
         .collect();
-    let scene = Scene::new(&objects, screen_camera::<S>(H), [Light::white([S::ZERO, S::ZERO, S::ONE])]);
+    let scene = Scene::new(
+        &objects,
+        screen_camera::<S>(H),
+        [Light::white([S::ZERO, S::ZERO, S::ONE])],
+    );
     let mut r = Renderer::<S, C, 16, 16, 64, 64, 16>::new().with_dither(dither);
     let mut d = MockDisplay::new();
     let stats = r.render(&scene, &mut d).unwrap();
@@ -73,11 +80,27 @@ fn split_square<S: Scalar>() {
     // is the right edge of the upper-left triangle and the left edge of the lower-right one.
     let (a, b, c, d) = ([2.0, 2.0], [7.0, 2.0], [7.0, 7.0], [2.0, 7.0]);
     let (red, blue) = ([255, 0, 0], [0, 0, 255]);
-    let (disp, stats) = render::<S, Rgb888>(&[([a, b, d], red), ([b, c, d], blue)], Shading::Flat, false);
-    assert_eq!(count(&disp, Rgb888::RED), 10, "{}: upper-left triangle", S::NAME);
-    assert_eq!(count(&disp, Rgb888::BLUE), 15, "{}: lower-right triangle", S::NAME);
+    let (disp, stats) =
+        render::<S, Rgb888>(&[([a, b, d], red), ([b, c, d], blue)], Shading::Flat, false);
+    assert_eq!(
+        count(&disp, Rgb888::RED),
+        10,
+        "{}: upper-left triangle",
+        S::NAME
+    );
+    assert_eq!(
+        count(&disp, Rgb888::BLUE),
+        15,
+        "{}: lower-right triangle",
+        S::NAME
+    );
     // 25 fragments for 25 pixels: no pixel rasterized twice.
-    assert_eq!((stats.fragments, stats.pixels_written), (25, 25), "{}", S::NAME);
+    assert_eq!(
+        (stats.fragments, stats.pixels_written),
+        (25, 25),
+        "{}",
+        S::NAME
+    );
 }
 
 fn quad_on_centre_lines<S: Scalar>() {
@@ -105,20 +128,39 @@ fn fan_around_a_centre<S: Scalar>() {
     }
     let (disp, stats) = render::<S, Rgb888>(&tris, Shading::Flat, false);
     let covered = (W * H) as usize - count(&disp, Rgb888::BLACK);
-    assert_eq!(stats.fragments as usize, covered, "{}: a pixel was rasterized twice", S::NAME);
+    assert_eq!(
+        stats.fragments as usize,
+        covered,
+        "{}: a pixel was rasterized twice",
+        S::NAME
+    );
     assert_ne!(disp.get_pixel(Point::new(8, 8)), Some(Rgb888::BLACK));
 }
 
 fn constant_gouraud<S: Scalar>() {
-    let tri = [([1.0, 1.0], [255, 160, 64]), ([14.0, 3.0], [0; 3]), ([5.0, 15.0], [0; 3])];
+    let tri = [
+        ([1.0, 1.0], [255, 160, 64]),
+        ([14.0, 3.0], [0; 3]),
+        ([5.0, 15.0], [0; 3]),
+    ];
     let p = [tri[0].0, tri[1].0, tri[2].0];
     let want: Rgb565 = quantize([255, 160, 64]);
     let (disp, stats) = render::<S, Rgb565>(&[(p, [255, 160, 64])], Shading::Gouraud, false);
-    assert_eq!(count(&disp, want), stats.pixels_written as usize, "{}", S::NAME);
+    assert_eq!(
+        count(&disp, want),
+        stats.pixels_written as usize,
+        "{}",
+        S::NAME
+    );
     assert!(stats.pixels_written > 60);
     // Dithering leaves a representable colour unchanged.
     let (disp, stats) = render::<S, Rgb565>(&[(p, [255, 255, 255])], Shading::Gouraud, true);
-    assert_eq!(count(&disp, Rgb565::WHITE), stats.pixels_written as usize, "{}", S::NAME);
+    assert_eq!(
+        count(&disp, Rgb565::WHITE),
+        stats.pixels_written as usize,
+        "{}",
+        S::NAME
+    );
 }
 
 fn whole_pixel_translation<S: Scalar>() {

@@ -73,7 +73,11 @@ fn torus<S: Scalar>() -> (Frame<Rgb565>, Stats) {
     let scene = Scene::new(&objects, demo::camera().unwrap(), demo::lights());
     let (f, stats) = render::<S, 240, 240, 1>(&scene);
     assert_eq!(stats.triangles_in, 1024);
-    assert!((36_000..37_000).contains(&stats.pixels_written), "{}", stats.pixels_written);
+    assert!(
+        (36_000..37_000).contains(&stats.pixels_written),
+        "{}",
+        stats.pixels_written
+    );
     (f, stats)
 }
 
@@ -102,12 +106,20 @@ fn cube<S: Scalar>() -> (Frame<Rgb565>, Stats) {
         },
     )
     .unwrap();
-    let scene = Scene::new(&objects, camera, [Light::white([-S::ONE, S::from_f64(2.0), S::from_f64(3.0)])]);
+    let scene = Scene::new(
+        &objects,
+        camera,
+        [Light::white([-S::ONE, S::from_f64(2.0), S::from_f64(3.0)])],
+    );
     let (f, stats) = render::<S, 128, 128, 1>(&scene);
     // Three faces visible: 6 triangles drawn, 6 culled.
     assert_eq!((stats.drawn, stats.culled), (6, 6));
     // Flat shading: exactly three distinct non-background colours.
-    let mut colours: Vec<Rgb565> = f.px.iter().copied().filter(|&c| c != Rgb565::BLACK).collect();
+    let mut colours: Vec<Rgb565> =
+        f.px.iter()
+            .copied()
+            .filter(|&c| c != Rgb565::BLACK)
+            .collect();
     colours.sort_by_key(|c| (c.r(), c.g(), c.b()));
     colours.dedup();
     assert_eq!(colours.len(), 3, "{colours:?}");
@@ -152,7 +164,12 @@ fn floor<S: Scalar>(behind: usize) -> (Frame<Rgb565>, Stats) {
     // be mirrored up there.
     for y in 0..48 {
         for x in 0..96 {
-            assert_eq!(f.get(x, y), Rgb565::BLACK, "{}: pixel ({x}, {y}) above the horizon", S::NAME);
+            assert_eq!(
+                f.get(x, y),
+                Rgb565::BLACK,
+                "{}: pixel ({x}, {y}) above the horizon",
+                S::NAME
+            );
         }
     }
     // The floor under the camera reaches the bottom row.
@@ -201,7 +218,11 @@ fn interpenetrating<S: Scalar>() -> (Frame<Rgb565>, Stats) {
             material: unlit([0, 0, 255], Shading::Flat),
         },
     ];
-    let scene = Scene::new(&objects, screen_camera::<S>(h), [Light::white([S::ZERO, S::ZERO, S::ONE])]);
+    let scene = Scene::new(
+        &objects,
+        screen_camera::<S>(h),
+        [Light::white([S::ZERO, S::ZERO, S::ONE])],
+    );
     let (f, stats) = render::<S, 64, 64, 1>(&scene);
     // The blue plane crosses z = 0 at x = 32: red in front on the left, blue on the right.
     assert_eq!(f.get(22, 32), Rgb565::RED, "{}", S::NAME);
@@ -212,7 +233,11 @@ fn interpenetrating<S: Scalar>() -> (Frame<Rgb565>, Stats) {
     // The intersection column, row by row, is within one pixel of x = 32.
     for y in 24..40 {
         let first_blue = (0..64).find(|&x| f.get(x, y) == Rgb565::BLUE).unwrap();
-        assert!((31..=33).contains(&first_blue), "{}: row {y} switches at {first_blue}", S::NAME);
+        assert!(
+            (31..=33).contains(&first_blue),
+            "{}: row {y} switches at {first_blue}",
+            S::NAME
+        );
     }
     (f, stats)
 }
@@ -240,7 +265,11 @@ fn ground_and_model<S: Scalar>() -> (Frame<Rgb565>, Stats) {
         },
         Object {
             mesh: torus.mesh(),
-            transform: Mat4::rotate_y(deg(30.0)).then(&Mat4::translate([S::ZERO, S::from_f64(0.05), S::ZERO])),
+            transform: Mat4::rotate_y(deg(30.0)).then(&Mat4::translate([
+                S::ZERO,
+                S::from_f64(0.05),
+                S::ZERO,
+            ])),
             material: torus_mat,
         },
     ];

@@ -33,7 +33,13 @@ impl<C: PixelColor> Frame<C> {
     /// Panics unless every pixel was written exactly once.
     pub fn assert_each_written_once(&self) {
         for (i, &n) in self.writes.iter().enumerate() {
-            assert_eq!(n, 1, "pixel ({}, {}) written {n} times", i as u32 % self.w, i as u32 / self.w);
+            assert_eq!(
+                n,
+                1,
+                "pixel ({}, {}) written {n} times",
+                i as u32 % self.w,
+                i as u32 / self.w
+            );
         }
     }
 }
@@ -47,7 +53,10 @@ impl<C: PixelColor> OriginDimensions for Frame<C> {
 impl<C: PixelColor> DrawTarget for Frame<C> {
     type Color = C;
     type Error = core::convert::Infallible;
-    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(&mut self, pixels: I) -> Result<(), Self::Error> {
+    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
         for Pixel(p, c) in pixels {
             if p.x >= 0 && p.y >= 0 && (p.x as u32) < self.w && (p.y as u32) < self.h {
                 let i = (p.y as u32 * self.w + p.x as u32) as usize;
@@ -71,14 +80,13 @@ pub fn png_bytes<C: PixelColor + Into<Rgb888>>(f: &Frame<C>) -> Vec<u8> {
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         let mut w = enc.write_header().unwrap();
-        let data: Vec<u8> = f
-            .px
-            .iter()
-            .flat_map(|&c| {
-                let c: Rgb888 = c.into();
-                [c.r(), c.g(), c.b()]
-            })
-            .collect();
+        let data: Vec<u8> =
+            f.px.iter()
+                .flat_map(|&c| {
+                    let c: Rgb888 = c.into();
+                    [c.r(), c.g(), c.b()]
+                })
+                .collect();
         w.write_image_data(&data).unwrap();
     }
     out
@@ -105,22 +113,33 @@ pub fn check_golden<C: PixelColor + Into<Rgb888>>(name: &str, f: &Frame<C>) {
         std::fs::write(&path, &bytes).unwrap();
         return;
     }
-    let (w, h, want) = read_png(&path)
-        .unwrap_or_else(|| panic!("missing golden image {} (run with UPDATE_GOLDEN=1 and look at it)", path.display()));
+    let (w, h, want) = read_png(&path).unwrap_or_else(|| {
+        panic!(
+            "missing golden image {} (run with UPDATE_GOLDEN=1 and look at it)",
+            path.display()
+        )
+    });
     assert_eq!((w, h), (f.w, f.h), "{name}: size");
-    let got: Vec<u8> = f
-        .px
-        .iter()
-        .flat_map(|&c| {
-            let c: Rgb888 = c.into();
-            [c.r(), c.g(), c.b()]
-        })
-        .collect();
-    let diff = got.chunks(3).zip(want.chunks(3)).filter(|(a, b)| a != b).count();
+    let got: Vec<u8> =
+        f.px.iter()
+            .flat_map(|&c| {
+                let c: Rgb888 = c.into();
+                [c.r(), c.g(), c.b()]
+            })
+            .collect();
+    let diff = got
+        .chunks(3)
+        .zip(want.chunks(3))
+        .filter(|(a, b)| a != b)
+        .count();
     if diff != 0 {
-        let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("target/{name}.actual.png"));
+        let out =
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("target/{name}.actual.png"));
         std::fs::write(&out, &bytes).unwrap();
-        panic!("{name}: {diff} pixels differ from the golden image; actual written to {}", out.display());
+        panic!(
+            "{name}: {diff} pixels differ from the golden image; actual written to {}",
+            out.display()
+        );
     }
 }
 
