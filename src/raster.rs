@@ -10,9 +10,13 @@
 //! stepping one row is two additions and a compare, and the value is exact at every row, so an
 //! edge shared by two triangles yields the same pixel boundary in both — no gaps, no pixel twice.
 //!
-//! Depth and colour are planes `A(x, y) = A₀ + gx·(x − x₀) + gy·(y − y₀)`; their gradients cost
-//! two divisions per attribute per triangle, after which a row costs one addition per attribute
-//! and a pixel one addition per attribute, a shift, a compare and stores.
+//! Depth and colour are planes `A(x, y) = A₀ + gx·(x − x₀) + gy·(y − y₀)`.
+//!
+//! Cost per triangle: one division for a normalized reciprocal of its area (every gradient is
+//! then a multiply), and one division-with-remainder per edge for its start and one for its
+//! step (32-bit whenever the values fit, which is the case for on-screen triangles below
+//! ~1000 px), i.e. at most seven divisions. Per row: one or two additions per edge and one
+//! per attribute. Per pixel: one addition per attribute, a shift, a compare and stores.
 
 use crate::color::{TargetColor, BAYER};
 use crate::project::{ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS};
@@ -57,15 +61,64 @@ pub(crate) fn first_pixel(v: i32) -> i32 {
     ceil_div(v as i64 - (SUBPIXELS / 2) as i64, SUBPIXELS as i64) as i32
 }
 
-/// `round(n / d)` (half away from zero) for `d ≠ 0`, clamped to ±[`GRAD_LIMIT`].
-fn div_round(n: i64, d: i64) -> i64 {
-    let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
-    let q = if n >= 0 {
-        (n + d / 2) / d
+/// A normalized reciprocal `1/d ≈ ±m · 2^-e` with `m` in (2³⁰, 2³¹]: computed with **one**
+/// division per triangle, after which every attribute gradient is a multiply.
+#[derive(Copy, Clone, Debug)]
+struct Reciprocal {
+    m: i64,
+    e: u32,
+    neg: bool,
+}
+
+impl Reciprocal {
+    /// `d ≠ 0`, `|d| < 2⁶²`.
+    fn new(d: i64) -> Self {
+        let a = d.unsigned_abs().max(1);
+        let s = 64 - a.leading_zeros(); // a in [2^(s-1), 2^s)
+        let sh = s.saturating_sub(32); // keep 32 significant bits of d
+        let a2 = a >> sh;
+        let s2 = s - sh;
+        // 2^(s2+30) / a2 in (2^30, 2^31]; s2 + 30 ≤ 62.
+        let m = (1u64 << (s2 + 30)) / a2;
+        Reciprocal {
+            m: m as i64,
+            e: s2 + 30 + sh,
+            neg: d < 0,
+        }
+    }
+
+    /// `round(n / d)` to within 2⁻²⁹ relative, clamped to ±[`GRAD_LIMIT`].
+    fn div(&self, n: i64) -> i64 {
+        let a = n.unsigned_abs();
+        let nb = 64 - a.leading_zeros();
+        let shn = nb.saturating_sub(31); // keep 31 significant bits of n
+        let p = (a >> shn) as i64 * self.m; // < 2^62
+        let e = self.e as i64 - shn as i64;
+        let q = if e <= 0 {
+            GRAD_LIMIT
+        } else if e >= 63 {
+            0
+        } else {
+            ((p >> (e - 1)) + 1) >> 1
+        };
+        let q = q.min(GRAD_LIMIT);
+        if (n < 0) != self.neg {
+            -q
+        } else {
+            q
+        }
+    }
+}
+
+/// `(floor(n / d), n mod d)` for `d > 0`, in 32 bits when both fit (the usual case on screen).
+#[inline]
+fn div_floor(n: i64, d: i64) -> (i64, i64) {
+    if let (Ok(n32), Ok(d32)) = (i32::try_from(n), i32::try_from(d)) {
+        let (q, r) = (n32.div_euclid(d32), n32.rem_euclid(d32));
+        (q as i64, r as i64)
     } else {
-        -((-n + d / 2) / d)
-    };
-    q.clamp(-GRAD_LIMIT, GRAD_LIMIT)
+        (n.div_euclid(d), n.rem_euclid(d))
+    }
 }
 
 /// One edge from its upper vertex `a` to its lower vertex `b`, positioned on a pixel row:
@@ -95,11 +148,10 @@ impl Edge {
         let ys = SUBPIXELS as i64 * row as i64 + (SUBPIXELS / 2) as i64;
         // x − 8 at the sample row, times dy: |n| < 2^47.
         let n = (xa as i64 - (SUBPIXELS / 2) as i64) * dy + (ys - ya as i64) * dx;
-        let c = ceil_div(n, d);
-        let e = c * d - n;
-        let step = SUBPIXELS as i64 * dx;
-        let sq = step.div_euclid(d);
-        let sr = step - sq * d;
+        // c = ceil(n/d), e = c·d − n.
+        let (q, r) = div_floor(n, d);
+        let (c, e) = if r == 0 { (q, 0) } else { (q + 1, d - r) };
+        let (sq, sr) = div_floor(SUBPIXELS as i64 * dx, d);
         Edge {
             c: c as i32,
             e: e as i32,
@@ -230,12 +282,14 @@ impl ActiveTri {
             }
         };
         let s = SUBPIXELS as i64;
+        let inv = Reciprocal::new(det);
         for (k, at) in attrs.iter_mut().enumerate().take(n_attrs) {
             let (a0, a1, a2) = (val(&a, k), val(&b, k), val(&c, k));
             let (da1, da2) = (a1 as i64 - a0 as i64, a2 as i64 - a0 as i64);
             at.a0 = a0;
-            at.gx = div_round(s * (da1 * dy2 - da2 * dy1), det) as i32;
-            at.gy = div_round(s * (dx1 * da2 - dx2 * da1), det) as i32;
+            // |da| < 2^29, |d·| < 2^24: each numerator < 2^58.
+            at.gx = inv.div(s * (da1 * dy2 - da2 * dy1)) as i32;
+            at.gy = inv.div(s * (dx1 * da2 - dx2 * da1)) as i32;
         }
         let mut tri = ActiveTri {
             left,
@@ -523,10 +577,54 @@ mod tests {
     }
 
     #[test]
-    fn rounding_division() {
-        assert_eq!(div_round(7, 2), 4);
-        assert_eq!(div_round(-7, 2), -4);
-        assert_eq!(div_round(7, -2), -4);
-        assert_eq!(div_round(1 << 62, 1), GRAD_LIMIT);
+    fn reciprocal_division_matches_exact_rounding() {
+        let dens = [
+            1i64,
+            -1,
+            3,
+            7,
+            -255,
+            4096,
+            123_456_789,
+            -(1 << 40) + 12345,
+            (1 << 47) - 1,
+        ];
+        let nums = [
+            0i64,
+            1,
+            -1,
+            7,
+            1000,
+            -99_999,
+            1 << 30,
+            -(1 << 45) + 3,
+            (1 << 57) + 12_345,
+        ];
+        for &d in &dens {
+            let r = Reciprocal::new(d);
+            for &n in &nums {
+                let exact = n as f64 / d as f64;
+                let got = r.div(n) as f64;
+                if exact.abs() < GRAD_LIMIT as f64 {
+                    let bound = 0.5 + exact.abs() * 2f64.powi(-29);
+                    assert!((got - exact).abs() <= bound, "{n}/{d}: {got} vs {exact}");
+                } else {
+                    assert_eq!(got.abs(), GRAD_LIMIT as f64, "{n}/{d} clamps");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn floor_division_both_paths() {
+        for (n, d) in [
+            (7i64, 2i64),
+            (-7, 2),
+            (0, 5),
+            (-(1 << 40), 3),
+            ((1 << 40) + 1, 1 << 20),
+        ] {
+            assert_eq!(div_floor(n, d), (n.div_euclid(d), n.rem_euclid(d)));
+        }
     }
 }
