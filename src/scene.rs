@@ -45,3 +45,78 @@ impl<'a, S: Scalar, const L: usize> Scene<'a, S, L> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Projection;
+    use crate::shade::Shading;
+    use crate::Renderer;
+    use embedded_graphics::mock_display::MockDisplay;
+    use embedded_graphics_core::pixelcolor::Rgb888;
+
+    fn quad(z: f64, x0: f64) -> [[f64; 3]; 4] {
+        [
+            [x0, -1.0, z],
+            [x0 + 2.0, -1.0, z],
+            [x0 + 2.0, 1.0, z],
+            [x0, 1.0, z],
+        ]
+    }
+
+    /// Two overlapping objects at different depths: the nearer one wins whatever their order
+    /// in the scene, in one pass.
+    #[test]
+    fn objects_are_depth_tested_against_each_other_in_any_order() {
+        let idx = [[0u16, 1, 2], [0, 2, 3]];
+        let near = quad(0.5, -1.5);
+        let far = quad(-0.5, -0.5);
+        let mat = |c: [u8; 3]| Material {
+            color: c,
+            ambient: 1.0,
+            diffuse: 0.0,
+            specular: 0.0,
+            shininess: 1,
+            shading: Shading::Flat,
+        };
+        let near_s: &[[f64; 3]] = &near;
+        let far_s: &[[f64; 3]] = &far;
+        let a = Object {
+            mesh: Mesh::new(near_s, &idx).unwrap(),
+            transform: Mat4::identity(),
+            material: mat([255, 0, 0]),
+        };
+        let b = Object {
+            mesh: Mesh::new(far_s, &idx).unwrap(),
+            transform: Mat4::identity(),
+            material: mat([0, 0, 255]),
+        };
+        let cam = Camera::look_at(
+            [0.0, 0.0, 4.0],
+            [0.0; 3],
+            [0.0, 1.0, 0.0],
+            Projection::Perspective {
+                fov_y: 1.0,
+                near: 0.1,
+                far: 10.0,
+            },
+        )
+        .unwrap();
+        let light = [Light::white([0.0, 0.0, 1.0])];
+        let render = |objs: &[Object<'_, f64>]| {
+            let scene = Scene::new(objs, cam, light);
+            let mut r = Renderer::<f64, Rgb888, 32, 32, 16, 16, 8>::new();
+            let mut d = MockDisplay::<Rgb888>::new();
+            r.render(&scene, &mut d).unwrap();
+            d
+        };
+        let ab = render(&[a, b]);
+        let ba = render(&[b, a]);
+        assert_eq!(ab, ba);
+        // Where they overlap (centre), the nearer red quad shows.
+        assert_eq!(
+            ab.get_pixel(embedded_graphics_core::geometry::Point::new(16, 16)),
+            Some(Rgb888::new(255, 0, 0))
+        );
+    }
+}

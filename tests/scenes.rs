@@ -331,3 +331,89 @@ fn rgb888_and_gray8_targets() {
     let full: Rgb888 = quantize([255, 160, 64]);
     assert!(f888.px.iter().any(|&c| c.r() == full.r()));
 }
+
+/// A closed convex mesh after back-face culling covers its silhouette exactly once: every
+/// fragment is a distinct pixel (no pixel twice) and the silhouette has no holes (no gaps).
+fn watertight_sphere<S: Scalar>() {
+    let ico = Shape::<S, 642, 1280>::icosphere(1.0, 3).unwrap();
+    let mut m = Material::matte([200, 200, 200], S::from_f64(0.3), S::from_f64(0.7));
+    m.shading = Shading::Flat;
+    let objects = [Object {
+        mesh: ico.mesh(),
+        transform: Mat4::rotate_y(deg(17.0)).then(&Mat4::rotate_x(deg(11.0))),
+        material: m,
+    }];
+    let camera = Camera::look_at(
+        [S::ZERO, S::ZERO, S::from_f64(3.0)],
+        [S::ZERO; 3],
+        [S::ZERO, S::ONE, S::ZERO],
+        Projection::Perspective {
+            fov_y: deg(50.0),
+            near: S::from_f64(0.1),
+            far: S::from_f64(10.0),
+        },
+    )
+    .unwrap();
+    let scene = Scene::new(&objects, camera, [Light::white([S::ONE, S::ONE, S::ONE])]);
+    let mut r: Box<Renderer<S, Rgb565, 128, 128, 700, 1300, 128>> = Box::default();
+    r.set_depth_test(DepthTest::Always);
+    let mut f = frame(128, 128);
+    let stats = r.render(&scene, &mut f).unwrap();
+    let covered = f.px.iter().filter(|&&c| c != Rgb565::BLACK).count();
+    assert_eq!(
+        stats.fragments as usize,
+        covered,
+        "{}: a pixel was rasterized twice",
+        S::NAME
+    );
+    // No holes: every row's covered pixels are one contiguous run.
+    for y in 0..128 {
+        let xs: Vec<u32> = (0..128).filter(|&x| f.get(x, y) != Rgb565::BLACK).collect();
+        if let (Some(a), Some(b)) = (xs.first(), xs.last()) {
+            assert_eq!(xs.len() as u32, b - a + 1, "{}: gap in row {y}", S::NAME);
+        }
+    }
+    assert!(covered > 4000);
+}
+
+#[test]
+fn closed_mesh_is_watertight() {
+    watertight_sphere::<Q>();
+    watertight_sphere::<f32>();
+    watertight_sphere::<f64>();
+}
+
+fn torus_with_lines<const LINES: usize>(dither: bool) -> Frame<Rgb565> {
+    let shape = demo::torus::<Q>().unwrap();
+    let objects = [demo::torus_object(&shape)];
+    let scene = Scene::new(&objects, demo::camera().unwrap(), demo::lights());
+    let mut r: Box<Renderer<Q, Rgb565, 240, 240, 512, 512, 64, LINES>> = Box::default();
+    r.set_dither(dither);
+    let mut f = frame(240, 240);
+    r.render(&scene, &mut f).unwrap();
+    f.assert_each_written_once();
+    f
+}
+
+#[test]
+fn strip_height_does_not_change_the_image() {
+    let one = torus_with_lines::<1>(false);
+    assert_eq!(one.px, torus_with_lines::<4>(false).px);
+    // 240 = 34·7 + 2: the last strip is partial.
+    assert_eq!(one.px, torus_with_lines::<7>(false).px);
+    assert_eq!(
+        torus_with_lines::<1>(true).px,
+        torus_with_lines::<16>(true).px
+    );
+}
+
+#[test]
+fn dithering_stays_within_one_lsb_and_breaks_up_bands() {
+    let plain = torus_with_lines::<1>(false);
+    let dith = torus_with_lines::<1>(true);
+    check_golden("torus_gouraud_dithered_I16F16", &dith);
+    let (max, differ, coverage) = compare565(&dith, &plain, Rgb565::BLACK);
+    assert_eq!(coverage, 0);
+    assert!(max.iter().all(|&m| m <= 1), "{max:?}");
+    assert!(differ > 5000, "dithering changed only {differ} pixels");
+}
