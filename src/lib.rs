@@ -85,6 +85,7 @@
 pub mod camera;
 pub mod clip;
 pub mod color;
+pub mod cull;
 pub mod demo;
 pub mod math;
 pub mod mesh;

@@ -96,14 +96,6 @@ impl Viewport {
     }
 }
 
-/// Twice the signed area of a snapped triangle in subpixels², positive for front faces
-/// (counter-clockwise as the viewer sees them, which is clockwise in y-down screen space).
-#[must_use]
-pub fn signed_area2(a: &ScreenVertex, b: &ScreenVertex, c: &ScreenVertex) -> i64 {
-    let (x0, y0) = (a.x as i64, a.y as i64);
-    (c.x as i64 - x0) * (b.y as i64 - y0) - (b.x as i64 - x0) * (c.y as i64 - y0)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -148,18 +140,5 @@ mod tests {
         assert_eq!(g, 2183.0);
         let v = vp.project([g, -g, 0.0, 1.0f64], [0; 3]).unwrap();
         assert!(v.x.abs() <= COORD_LIMIT && v.y.abs() <= COORD_LIMIT);
-    }
-
-    #[test]
-    fn facing_sign() {
-        let v = |x: i32, y: i32| ScreenVertex {
-            x,
-            y,
-            ..Default::default()
-        };
-        // Counter-clockwise with y up = clockwise on a y-down screen: front.
-        assert!(signed_area2(&v(0, 0), &v(16, 0), &v(0, -16)) > 0);
-        assert!(signed_area2(&v(0, 0), &v(0, -16), &v(16, 0)) < 0);
-        assert_eq!(signed_area2(&v(0, 0), &v(16, 16), &v(32, 32)), 0);
     }
 }

@@ -9,9 +9,10 @@ use heapless::Vec;
 
 use crate::clip::{clip_triangle, outcode, ClipVertex, NEEDS_CLIP};
 use crate::color::TargetColor;
+use crate::cull::{facing, Facing};
 use crate::math::{normalize, sub, Mat4, Vec3};
 use crate::mesh::face_normal;
-use crate::project::{signed_area2, ScreenVertex, Viewport, MAX_SCREEN};
+use crate::project::{ScreenVertex, Viewport, MAX_SCREEN};
 use crate::raster::{first_pixel, ActiveTri, DepthTest, TriRecord};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
@@ -395,14 +396,16 @@ impl<
                 continue;
             }
             if (f[0] | f[1] | f[2]) & NEEDS_CLIP as u16 == 0 {
-                let area = signed_area2(&self.verts[vi[0]], &self.verts[vi[1]], &self.verts[vi[2]]);
-                if area == 0 {
-                    stats.degenerate += 1;
-                    continue;
-                }
-                if area < 0 {
-                    stats.culled += 1;
-                    continue;
+                match facing(&self.verts[vi[0]], &self.verts[vi[1]], &self.verts[vi[2]]) {
+                    Facing::Degenerate => {
+                        stats.degenerate += 1;
+                        continue;
+                    }
+                    Facing::Back => {
+                        stats.culled += 1;
+                        continue;
+                    }
+                    Facing::Front => {}
                 }
                 let color = if flat {
                     Some(o.face_color::<C>(*tri))
@@ -492,13 +495,10 @@ impl<
         }
         for k in 1..poly.v.len() - 1 {
             let t = [first, first + k, first + k + 1];
-            let area = signed_area2(&self.verts[t[0]], &self.verts[t[1]], &self.verts[t[2]]);
-            if area == 0 {
-                stats.degenerate += 1;
-            } else if area < 0 {
-                stats.culled += 1;
-            } else {
-                self.push_tri(t.map(|v| v as u16), face, stats, need);
+            match facing(&self.verts[t[0]], &self.verts[t[1]], &self.verts[t[2]]) {
+                Facing::Degenerate => stats.degenerate += 1,
+                Facing::Back => stats.culled += 1,
+                Facing::Front => self.push_tri(t.map(|v| v as u16), face, stats, need),
             }
         }
     }

@@ -9,6 +9,7 @@
 //! | [`Fx<I20F12>`](Fx) | signed Q20.12 in an `i32` | ±524288 | 2⁻¹² ≈ 2.4·10⁻⁴ | large scenes, coarser |
 //! | [`Fx<I12F20>`](Fx) | signed Q12.20 in an `i32` | ±2048 | 2⁻²⁰ ≈ 9.5·10⁻⁷ | small scenes, finer |
 //! | `f32` | IEEE binary32 | ±3.4·10³⁸ | 2⁻²⁴ relative | float twin |
+//! | `micromath::F32` | IEEE binary32 | ±3.4·10³⁸ | 2⁻²⁴ relative | approximate sqrt/sin: a benchmark candidate |
 //! | `f64` | IEEE binary64 | ±1.8·10³⁰⁸ | 2⁻⁵³ relative | the reference |
 //!
 //! The rasterizer after the perspective divide is integer code shared by all of them, so the
@@ -217,6 +218,46 @@ impl Scalar for f32 {
     }
 }
 
+impl sealed::Sealed for micromath::F32 {}
+/// micromath's approximate `f32`: IEEE arithmetic, but square root (up to ±6.5 %) and sine/cosine
+/// (±0.002) by micromath's fast approximations. A speed/accuracy **candidate** for the
+/// comparison benchmarks, not a recommended rendering type: normalization error of a few
+/// percent shows in the lighting.
+impl Scalar for micromath::F32 {
+    const ZERO: Self = micromath::F32(0.0);
+    const ONE: Self = micromath::F32(1.0);
+    const NAME: &'static str = "micromath-f32";
+    type Recip = f32;
+    fn from_f64(v: f64) -> Self {
+        micromath::F32(v as f32)
+    }
+    fn to_f64(self) -> f64 {
+        self.0 as f64
+    }
+    fn sqrt(self) -> Self {
+        if self.0 > 0.0 {
+            self.sqrt()
+        } else {
+            Self::ZERO
+        }
+    }
+    fn sin_cos(self) -> (Self, Self) {
+        (self.sin(), self.cos())
+    }
+    fn is_valid(self) -> bool {
+        self.0.is_finite()
+    }
+    fn recip(w: Self) -> f32 {
+        1.0 / w.0
+    }
+    fn ndc(v: Self, r: f32) -> i64 {
+        <f32 as Scalar>::ndc(v.0, r)
+    }
+    fn to_fixed_i32(self, frac: u32) -> i32 {
+        self.0.to_fixed_i32(frac)
+    }
+}
+
 /// A fixed-point number from the `fixed` crate with **saturating** arithmetic.
 ///
 /// `Fx<I16F16>` is the default number type of the fixed-point pipeline. The operators
@@ -419,6 +460,25 @@ mod tests {
         ndc_matches_f64::<Fx<I20F12>>(1.0e-9);
         ndc_matches_f64::<f32>(2.0e-7);
         ndc_matches_f64::<f64>(1.0e-9);
+        ndc_matches_f64::<micromath::F32>(2.0e-7);
+    }
+
+    #[test]
+    fn micromath_candidate_is_approximate_but_bounded() {
+        // micromath documents ~5 % *average* deviation; the worst case over [1, 4] is ~6.1 %.
+        let mut worst = 0.0f32;
+        for i in 0..300 {
+            let x = 1.0 + i as f32 * 0.01;
+            let got = Scalar::sqrt(micromath::F32(x)).0;
+            worst = worst.max((got - libm::sqrtf(x)).abs() / libm::sqrtf(x));
+        }
+        assert!(
+            worst > 0.01 && worst < 0.065,
+            "worst relative sqrt error {worst}"
+        );
+        let (s, c) = micromath::F32(0.5).sin_cos();
+        assert!((s.0 - libm::sinf(0.5)).abs() < 0.002 && (c.0 - libm::cosf(0.5)).abs() < 0.002);
+        assert_eq!(Scalar::sqrt(micromath::F32(-1.0)), micromath::F32(0.0));
     }
 
     #[test]
