@@ -33,7 +33,8 @@ const GRAD_LIMIT: i64 = 1 << 30;
 /// The comparison a fragment's depth must pass against the stored depth (0 = nearest).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
 pub enum DepthTest {
-    /// Nearer than what is stored (the first of equal depths wins).
+    /// Nearer than what is stored (the first of equal depths wins). Lines are cleared to the
+    /// far plane (65535), so a fragment exactly at the far plane is not drawn, as in OpenGL.
     #[default]
     Less,
     /// Nearer or equal (the last of equal depths wins).

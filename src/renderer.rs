@@ -80,9 +80,9 @@ pub struct Stats {
     pub drawn: u32,
     /// Vertices stored (mesh vertices plus clipper output).
     pub vertices: u32,
-    /// Pixels tested against the depth buffer.
+    /// Pixels tested against the depth buffer (saturates at `u32::MAX`).
     pub fragments: u32,
-    /// Pixels that passed the depth test and were written to the strip.
+    /// Pixels that passed the depth test and were written to the strip (saturates).
     pub pixels_written: u32,
     /// The largest number of triangles active on one row.
     pub max_active: u32,
@@ -591,8 +591,8 @@ impl<
                         self.depth_test,
                         self.dither,
                     );
-                    stats.fragments += frag;
-                    stats.pixels_written += written;
+                    stats.fragments = stats.fragments.saturating_add(frag);
+                    stats.pixels_written = stats.pixels_written.saturating_add(written);
                     if done {
                         self.active.swap_remove(i);
                     } else {

@@ -207,3 +207,46 @@ for_each_type!(
     constant_gouraud,
     whole_pixel_translation
 );
+
+/// A user's own colour type: `From<Rgb888>` plus an empty `impl TargetColor` is enough.
+#[derive(Copy, Clone, PartialEq, Eq, Debug)]
+struct Rgb332(u8);
+impl PixelColor for Rgb332 {
+    type Raw = embedded_graphics::pixelcolor::raw::RawU8;
+}
+impl From<Rgb888> for Rgb332 {
+    fn from(c: Rgb888) -> Self {
+        Rgb332((c.r() & 0xe0) | ((c.g() >> 3) & 0x1c) | (c.b() >> 6))
+    }
+}
+impl TargetColor for Rgb332 {}
+
+#[test]
+fn custom_colour_type_through_rgb888() {
+    let pos = [
+        at::<f32>(W, H, 1.0, 1.0, 0.0),
+        at(W, H, 1.0, 15.0, 0.0),
+        at(W, H, 15.0, 8.0, 0.0),
+    ];
+    let idx = [[0u16, 1, 2]];
+    let objects = [Object {
+        mesh: Mesh::new(&pos, &idx).unwrap(),
+        transform: Mat4::identity(),
+        material: unlit([255, 128, 255], Shading::Flat),
+    }];
+    let scene = Scene::new(
+        &objects,
+        screen_camera::<f32>(H),
+        [Light::white([0.0, 0.0, 1.0])],
+    );
+    let mut r = Renderer::<f32, Rgb332, 16, 16, 8, 8, 4>::new();
+    let mut f = common::Frame::new(W, H, Rgb332(0));
+    let stats = r.render(&scene, &mut f).unwrap();
+    f.assert_each_written_once();
+    let want = Rgb332::from(Rgb888::new(255, 128, 255));
+    assert_eq!(
+        f.px.iter().filter(|&&c| c == want).count(),
+        stats.pixels_written as usize
+    );
+    assert!(stats.pixels_written > 40);
+}
