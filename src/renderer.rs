@@ -59,6 +59,42 @@ pub enum Error<E> {
     },
 }
 
+/// A pipeline stage, as reported to a [`Probe`].
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Stage {
+    /// Per-vertex transform, outcodes and projection.
+    Vertices,
+    /// Per-vertex (Gouraud) or per-face (flat) lighting.
+    Lighting,
+    /// Per-triangle culling, clipping and bucketing.
+    Triangles,
+    /// Per-triangle edge and gradient setup when a triangle becomes active.
+    Setup,
+    /// Line clears and spans.
+    Raster,
+    /// Handing finished strips to the draw target.
+    Output,
+    /// The frame is finished.
+    Done,
+}
+
+/// Observes stage changes during a frame, e.g. to count instructions per stage on a
+/// microcontroller. [`Renderer::render`] uses [`NoProbe`], which compiles to nothing.
+pub trait Probe {
+    /// Called when the renderer enters `stage`.
+    fn enter(&mut self, stage: Stage);
+}
+
+/// A probe that does nothing.
+#[derive(Copy, Clone, Debug, Default)]
+pub struct NoProbe;
+
+impl Probe for NoProbe {
+    #[inline(always)]
+    fn enter(&mut self, _: Stage) {}
+}
+
 /// What happened to the triangles and pixels of a frame.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub struct Stats {
@@ -261,21 +297,42 @@ impl<
     where
         D: DrawTarget<Color = C>,
     {
-        let mut stats = self.geometry(scene)?;
-        self.rasterize(scene, target, &mut stats)?;
-        Ok(stats)
+        self.render_probed(scene, target, &mut NoProbe)
+    }
+
+    /// [`Renderer::render`], reporting each stage change to `probe`.
+    pub fn render_probed<D, P, const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        target: &mut D,
+        probe: &mut P,
+    ) -> Result<Stats, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+        P: Probe,
+    {
+        let result = self.geometry(scene, probe).and_then(|mut stats| {
+            self.rasterize(scene, target, &mut stats, probe)?;
+            Ok(stats)
+        });
+        probe.enter(Stage::Done);
+        result
     }
 
     /// Runs the geometry stage only (transform, light, clip, project, cull, bucket) and reports
     /// what a frame of `scene` needs; nothing is drawn.
     pub fn prepare<const L: usize>(&mut self, scene: &Scene<'_, S, L>) -> Result<Stats, Error<()>> {
-        match self.geometry::<(), L>(scene) {
+        match self.geometry::<(), _, L>(scene, &mut NoProbe) {
             Ok(s) => Ok(s),
             Err(e) => Err(e),
         }
     }
 
-    fn geometry<E, const L: usize>(&mut self, scene: &Scene<'_, S, L>) -> Result<Stats, Error<E>> {
+    fn geometry<E, P: Probe, const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        probe: &mut P,
+    ) -> Result<Stats, Error<E>> {
         self.verts.clear();
         self.tris.clear();
         self.active.clear();
@@ -310,7 +367,7 @@ impl<
                 eye: scene.camera.eye,
                 base: self.verts.len(),
             };
-            self.object(&setup, &vp, g, &mut stats, &mut need);
+            self.object(&setup, &vp, g, &mut stats, &mut need, probe);
         }
         stats.vertices = need.0 as u32;
         if need.0 > VERTS {
@@ -345,13 +402,14 @@ impl<
     }
 
     /// Transforms, lights, clips, projects, culls and buckets one object.
-    fn object<const L: usize>(
+    fn object<P: Probe, const L: usize>(
         &mut self,
         o: &ObjectSetup<'_, '_, S, L>,
         vp: &Viewport,
         g: S,
         stats: &mut Stats,
         need: &mut (usize, usize),
+        probe: &mut P,
     ) {
         let mesh = o.obj.mesh;
         let positions = mesh.positions();
@@ -362,6 +420,7 @@ impl<
             need.1 += mesh.indices().len();
             return;
         }
+        probe.enter(Stage::Vertices);
         for &p in positions {
             let clip = o.mvp.transform_point(p);
             let mut flags = outcode(clip, g) as u16;
@@ -379,6 +438,7 @@ impl<
             let _ = self.verts.push(sv);
         }
         let flat = o.obj.material.shading == Shading::Flat;
+        probe.enter(Stage::Triangles);
         for tri in mesh.indices() {
             stats.triangles_in += 1;
             if tri.iter().any(|&i| i as usize >= positions.len()) {
@@ -407,6 +467,7 @@ impl<
                     }
                     Facing::Front => {}
                 }
+                probe.enter(Stage::Lighting);
                 let color = if flat {
                     Some(o.face_color::<C>(*tri))
                 } else {
@@ -418,6 +479,7 @@ impl<
                     }
                     None
                 };
+                probe.enter(Stage::Triangles);
                 self.push_tri(vi.map(|v| v as u16), color, stats, need);
             } else {
                 self.clipped(o, tri, vi, flat, vp, g, stats, need);
@@ -556,15 +618,17 @@ impl<
         stats.drawn += 1;
     }
 
-    fn rasterize<D, const L: usize>(
+    fn rasterize<D, P: Probe, const L: usize>(
         &mut self,
         scene: &Scene<'_, S, L>,
         target: &mut D,
         stats: &mut Stats,
+        probe: &mut P,
     ) -> Result<(), Error<D::Error>>
     where
         D: DrawTarget<Color = C>,
     {
+        probe.enter(Stage::Raster);
         let bg = crate::color::quantize::<C>(scene.background);
         let mut y0 = 0usize;
         while y0 < H {
@@ -574,6 +638,9 @@ impl<
                 self.depth[l] = [u16::MAX; W];
                 let row = y0 + l;
                 let mut t = self.heads[row];
+                if t != NONE {
+                    probe.enter(Stage::Setup);
+                }
                 while t != NONE {
                     let rec = self.tris[t as usize];
                     if let Some(a) = ActiveTri::new(&rec, &self.verts, row as i32, H as i32) {
@@ -582,6 +649,7 @@ impl<
                     }
                     t = rec.next;
                 }
+                probe.enter(Stage::Raster);
                 let mut i = 0;
                 while i < self.active.len() {
                     let (frag, written, done) = self.active[i].draw_row(
@@ -601,9 +669,11 @@ impl<
                 }
             }
             let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(W as u32, lines as u32));
+            probe.enter(Stage::Output);
             target
                 .fill_contiguous(&area, self.color[..lines].iter().flatten().copied())
                 .map_err(Error::Target)?;
+            probe.enter(Stage::Raster);
             y0 += lines;
         }
         Ok(())
