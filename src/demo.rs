@@ -77,3 +77,285 @@ pub fn lights<S: Scalar>() -> [Light<S>; 1] {
 /// 512 triangles (a full turn about Y keeps at most 466 after culling) and 64 active triangles
 /// per row (at most 61 seen). `cargo run --release --example render` prints its RAM.
 pub type TorusRenderer<S, C> = crate::Renderer<S, C, 240, 240, 512, 512, 64>;
+
+/// The benchmark scenes, shared by the examples, the host tests and the microcontroller
+/// benchmark so that every figure is measured on the same frames.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Bench {
+    /// A flat-shaded cube filling about a third of the screen.
+    Cube,
+    /// The default scene: the Gouraud torus.
+    Torus,
+    /// An icosphere (3 subdivisions, 642 vertices) with Gouraud shading and a specular term.
+    Icosphere,
+    /// A 16 × 16-cell height field seen from low above, whose near part crosses the near plane.
+    Terrain,
+    /// Eight large overlapping quads at close depths, drawn back to front (maximum overdraw).
+    Overdraw,
+    /// Six cubes from 0.05 to 800 units away with near 0.01 and far 1000 (depth precision).
+    Deep,
+}
+
+impl Bench {
+    /// Every benchmark scene.
+    pub const ALL: [Bench; 6] = [
+        Bench::Cube,
+        Bench::Torus,
+        Bench::Icosphere,
+        Bench::Terrain,
+        Bench::Overdraw,
+        Bench::Deep,
+    ];
+
+    /// Its name in reports.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Bench::Cube => "cube",
+            Bench::Torus => "torus",
+            Bench::Icosphere => "icosphere",
+            Bench::Terrain => "terrain",
+            Bench::Overdraw => "overdraw",
+            Bench::Deep => "deep",
+        }
+    }
+}
+
+/// What one benchmark frame produced.
+#[derive(Copy, Clone, Debug)]
+pub struct BenchFrame {
+    /// The frame's statistics.
+    pub stats: crate::Stats,
+    /// `size_of` the renderer the scene used.
+    pub renderer_ram_bytes: usize,
+}
+
+/// Why a benchmark frame failed.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum BenchError<E> {
+    /// Building the scene failed (a shape or camera).
+    Scene,
+    /// Rendering failed.
+    Render(crate::Error<E>),
+}
+
+fn look<S: Scalar>(
+    eye: [f64; 3],
+    target: [f64; 3],
+    projection: Projection<S>,
+) -> Result<Camera<S>, CameraError> {
+    Camera::look_at(
+        eye.map(S::from_f64),
+        target.map(S::from_f64),
+        [S::ZERO, S::ONE, S::ZERO],
+        projection,
+    )
+}
+
+fn persp<S: Scalar>(fov_deg: f64, near: f64, far: f64) -> Projection<S> {
+    Projection::Perspective {
+        fov_y: deg(fov_deg),
+        near: S::from_f64(near),
+        far: S::from_f64(far),
+    }
+}
+
+/// Renders one frame of benchmark scene `bench` at 240 × 240 into `target`, with `dither`,
+/// reporting stages to `probe`. Meshes are generated on the stack; each scene has its own
+/// renderer sized for it (see [`BenchFrame::renderer_ram_bytes`]).
+pub fn render_bench<S, C, D, P>(
+    bench: Bench,
+    spin_deg: f64,
+    dither: bool,
+    target: &mut D,
+    probe: &mut P,
+) -> Result<BenchFrame, BenchError<D::Error>>
+where
+    S: Scalar,
+    C: crate::TargetColor,
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+    P: crate::Probe,
+{
+    use crate::shade::Shading;
+    macro_rules! go {
+        ($objects:expr, $camera:expr, $lights:expr, $v:expr, $t:expr, $a:expr) => {{
+            let camera = $camera.map_err(|_| BenchError::Scene)?;
+            let scene = crate::Scene::new(&$objects, camera, $lights);
+            let mut r = crate::Renderer::<S, C, 240, 240, $v, $t, $a>::new().with_dither(dither);
+            let stats = r
+                .render_probed(&scene, target, probe)
+                .map_err(BenchError::Render)?;
+            Ok(BenchFrame {
+                stats,
+                renderer_ram_bytes: core::mem::size_of_val(&r),
+            })
+        }};
+    }
+    let spin = Mat4::rotate_y(deg(spin_deg));
+    match bench {
+        Bench::Cube => {
+            let shape = Shape::<S, 24, 12>::cube(1.0).map_err(|_| BenchError::Scene)?;
+            let mut m = Material::matte([90, 160, 255], S::from_f64(0.2), S::from_f64(0.8));
+            m.shading = Shading::Flat;
+            let objects = [Object {
+                mesh: shape.mesh(),
+                transform: Mat4::rotate_y(deg(35.0))
+                    .then(&Mat4::rotate_x(deg(25.0)))
+                    .then(&spin),
+                material: m,
+            }];
+            let cam = look([0.0, 0.0, 4.5], [0.0; 3], persp(45.0, 0.1, 10.0));
+            go!(
+                objects,
+                cam,
+                [Light::white([-S::ONE, S::from_f64(2.0), S::from_f64(3.0)])],
+                24,
+                16,
+                8
+            )
+        }
+        Bench::Torus => {
+            let shape = torus::<S>().map_err(|_| BenchError::Scene)?;
+            let objects = [Object {
+                mesh: shape.mesh(),
+                transform: torus_transform(spin_deg),
+                material: torus_material(),
+            }];
+            go!(objects, camera(), lights(), 512, 512, 64)
+        }
+        Bench::Icosphere => {
+            let shape = Shape::<S, 642, 1280>::icosphere(1.0, 3).map_err(|_| BenchError::Scene)?;
+            let mut m = Material::matte([200, 60, 60], S::from_f64(0.1), S::from_f64(0.8));
+            m.specular = S::from_f64(0.6);
+            m.shininess = 20;
+            let objects = [Object {
+                mesh: shape.mesh(),
+                transform: spin,
+                material: m,
+            }];
+            let cam = look([0.0, 0.5, 3.0], [0.0; 3], persp(45.0, 0.1, 10.0));
+            go!(
+                objects,
+                cam,
+                [Light::white([-S::ONE, S::ONE, S::ONE])],
+                642,
+                704,
+                96
+            )
+        }
+        Bench::Terrain => {
+            let shape =
+                Shape::<S, 289, 512>::terrain(8.0, 16, 0.5).map_err(|_| BenchError::Scene)?;
+            let m = Material::matte([110, 180, 90], S::from_f64(0.25), S::from_f64(0.75));
+            let objects = [Object {
+                mesh: shape.mesh(),
+                transform: spin,
+                material: m,
+            }];
+            // The ground under the eye (a grid vertex at x = 0, z = 2.5) is at y = −0.163; the
+            // eye is 3 cm above it, less than the near plane's half-height (0.1·tan 30° =
+            // 5.8 cm), so the ground in front of the eye crosses the near plane.
+            let cam = look(
+                [0.0, -0.133, 2.5],
+                [0.0, -0.35, -2.0],
+                persp(60.0, 0.1, 20.0),
+            );
+            go!(
+                objects,
+                cam,
+                [Light::white([S::ONE, S::from_f64(2.0), S::ONE])],
+                400,
+                600,
+                96
+            )
+        }
+        Bench::Overdraw => {
+            const QUAD: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
+            let p = |x: f64, y: f64| [S::from_f64(x), S::from_f64(y), S::ZERO];
+            let quad = [p(-1.0, -1.0), p(1.0, -1.0), p(1.0, 1.0), p(-1.0, 1.0)];
+            let mesh = crate::Mesh::new(&quad, &QUAD).map_err(|_| BenchError::Scene)?;
+            let mut objects = [Object {
+                mesh,
+                transform: Mat4::identity(),
+                material: Material::matte([0; 3], S::ONE, S::ZERO),
+            }; 8];
+            for (k, o) in objects.iter_mut().enumerate() {
+                let t = k as f64;
+                // 0.01 apart, the first object nearest: triangles of a row bucket are activated
+                // last-in first-out, so the farthest layer is drawn first and every layer passes
+                // the depth test (worst case for writes).
+                o.transform = Mat4::rotate_z(deg(7.0 * t))
+                    .then(&Mat4::translate([
+                        S::from_f64(0.05 * t - 0.2),
+                        S::from_f64(0.03 * t - 0.1),
+                        S::from_f64(-0.01 * t),
+                    ]))
+                    .then(&spin);
+                o.material = Material::matte(
+                    [(40 + 25 * k) as u8, (200 - 20 * k) as u8, 128],
+                    S::ONE,
+                    S::ZERO,
+                );
+                o.material.shading = Shading::Flat;
+            }
+            let cam = look([0.0, 0.0, 2.2], [0.0; 3], persp(45.0, 0.1, 10.0));
+            go!(
+                objects,
+                cam,
+                [Light::white([S::ZERO, S::ZERO, S::ONE])],
+                32,
+                16,
+                16
+            )
+        }
+        Bench::Deep => {
+            let shape = Shape::<S, 24, 12>::cube(1.0).map_err(|_| BenchError::Scene)?;
+            let mut objects = [Object {
+                mesh: shape.mesh(),
+                transform: Mat4::identity(),
+                material: Material::matte([0; 3], S::ONE, S::ZERO),
+            }; 6];
+            for (k, (dist, x)) in [
+                (0.05, -0.03),
+                (0.5, 0.1),
+                (5.0, -0.6),
+                (40.0, 4.0),
+                (200.0, -30.0),
+                (800.0, 80.0),
+            ]
+            .iter()
+            .enumerate()
+            {
+                let size = dist * 0.12;
+                o_set(&mut objects[k], *dist, *x, size, k, &spin);
+            }
+            let cam = look([0.0, 0.0, 0.0], [0.0, 0.0, -1.0], persp(60.0, 0.01, 1000.0));
+            go!(
+                objects,
+                cam,
+                [Light::white([S::ONE, S::ONE, S::ONE])],
+                160,
+                80,
+                40
+            )
+        }
+    }
+}
+
+fn o_set<S: Scalar>(o: &mut Object<'_, S>, dist: f64, x: f64, size: f64, k: usize, spin: &Mat4<S>) {
+    let s = S::from_f64(size);
+    o.transform = Mat4::scale([s, s, s])
+        .then(spin)
+        .then(&Mat4::rotate_x(deg(20.0 + 10.0 * k as f64)))
+        .then(&Mat4::translate([
+            S::from_f64(x),
+            S::from_f64(-0.1 * dist),
+            S::from_f64(-dist),
+        ]));
+    o.material = Material::matte(
+        [(60 + 30 * k) as u8, 120, (230 - 30 * k) as u8],
+        S::from_f64(0.3),
+        S::from_f64(0.7),
+    );
+    o.material.shading = crate::shade::Shading::Flat;
+}

@@ -1,0 +1,65 @@
+//! The benchmark scenes render for every number type, over a full turn, within their renderers'
+//! capacities, each exercising what it is meant to (clipping, overdraw, depth range).
+
+mod common;
+
+use common::Frame;
+use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+use scanline3d::demo::{render_bench, Bench};
+use scanline3d::fixed::types::I16F16;
+use scanline3d::hash::HashTarget;
+use scanline3d::prelude::*;
+use scanline3d::NoProbe;
+
+type Q = Fx<I16F16>;
+
+fn frame<S: Scalar>(b: Bench, spin: f64) -> (Frame<Rgb565>, scanline3d::demo::BenchFrame) {
+    let mut f = Frame::new(240, 240, Rgb565::BLACK);
+    let r = render_bench::<S, Rgb565, _, _>(b, spin, false, &mut f, &mut NoProbe)
+        .unwrap_or_else(|e| panic!("{b:?} {} at {spin}°: {e:?}", S::NAME));
+    f.assert_each_written_once();
+    (f, r)
+}
+
+#[test]
+fn every_scene_renders_over_a_full_turn() {
+    for b in Bench::ALL {
+        for spin in (0..360).step_by(15) {
+            frame::<Q>(b, spin as f64);
+            frame::<f32>(b, spin as f64);
+        }
+        let (f, r) = frame::<Q>(b, 0.0);
+        std::fs::create_dir_all("target/bench-scenes").unwrap();
+        std::fs::write(
+            format!("target/bench-scenes/{}.png", b.name()),
+            common::png_bytes(&f),
+        )
+        .unwrap();
+        let s = r.stats;
+        assert!(s.drawn > 0 && s.pixels_written > 1000, "{b:?}: {s:?}");
+        match b {
+            Bench::Terrain => assert!(s.clipped > 0, "terrain must cross the near plane: {s:?}"),
+            Bench::Overdraw => assert!(s.pixels_written > 3 * 240 * 240, "overdraw: {s:?}"),
+            Bench::Deep => assert!(s.drawn >= 12, "deep: {s:?}"),
+            _ => {}
+        }
+    }
+}
+
+#[test]
+fn hash_target_sees_the_same_frame_as_a_buffer() {
+    for b in Bench::ALL {
+        let (f, _) = frame::<Q>(b, 0.0);
+        let mut h = HashTarget::<Rgb565>::new(240, 240);
+        render_bench::<Q, Rgb565, _, _>(b, 0.0, false, &mut h, &mut NoProbe).unwrap();
+        let mut h2 = HashTarget::<Rgb565>::new(240, 240);
+        use embedded_graphics::prelude::*;
+        h2.fill_contiguous(
+            &embedded_graphics::primitives::Rectangle::new(Point::zero(), Size::new(240, 240)),
+            f.px.iter().copied(),
+        )
+        .unwrap();
+        assert_eq!(h.hash(), h2.hash(), "{b:?}");
+        assert_eq!(h.pixels(), 240 * 240);
+    }
+}
