@@ -84,6 +84,12 @@ pub enum Stage {
 pub trait Probe {
     /// Called when the renderer enters `stage`.
     fn enter(&mut self, stage: Stage);
+    /// Called first thing in a frame, before any work.
+    #[inline(always)]
+    fn frame_start(&mut self) {}
+    /// Called last thing in a frame, after the last strip was handed to the target.
+    #[inline(always)]
+    fn frame_end(&mut self) {}
 }
 
 /// A probe that does nothing.
@@ -311,11 +317,13 @@ impl<
         D: DrawTarget<Color = C>,
         P: Probe,
     {
+        probe.frame_start();
         let result = self.geometry(scene, probe).and_then(|mut stats| {
             self.rasterize(scene, target, &mut stats, probe)?;
             Ok(stats)
         });
         probe.enter(Stage::Done);
+        probe.frame_end();
         result
     }
 

@@ -1,0 +1,254 @@
+//! Benchmark firmware: renders every benchmark scene with the fixed-point type and with f32 into
+//! a line-hashing target and prints, over semihosting, exact instruction counts (QEMU with
+//! `-icount shift=7`: every instruction advances the virtual clock by 128 ns, so a board timer
+//! counts instructions), per-stage counts, the image hash, and memory figures.
+//!
+//! Output lines (parsed by `examples/mcu_report.rs`):
+//! `BENCH scene=.. number=.. instructions=.. vertices=.. lighting=.. triangles=.. setup=..
+//!  raster=.. output=.. hash=.. pixels=.. renderer_ram=.. drawn=..`, then
+//! `MEM static=.. stack=.. flash=..` and `DONE`.
+#![no_std]
+#![no_main]
+
+use core::panic::PanicInfo;
+
+use cortex_m_rt::entry;
+use cortex_m_semihosting::{debug, hprintln};
+use embedded_graphics_core::pixelcolor::Rgb565;
+use scanline3d::demo::{render_bench, Bench};
+use scanline3d::fixed::types::I16F16;
+use scanline3d::hash::{HashTarget, NullTarget};
+use scanline3d::{Fx, NoProbe, Probe, Scalar, Stage};
+
+#[cfg(not(feature = "microbit"))]
+mod timer {
+    //! CMSDK APB TIMER0 of the mps2 boards: a 32-bit down-counter at 25 MHz.
+    const BASE: usize = 0x4000_0000;
+    pub fn start() {
+        // SAFETY: MMIO registers of the emulated board's timer, used by nothing else.
+        unsafe {
+            core::ptr::write_volatile((BASE + 0x8) as *mut u32, u32::MAX); // RELOAD
+            core::ptr::write_volatile((BASE + 0x4) as *mut u32, u32::MAX); // VALUE
+            core::ptr::write_volatile(BASE as *mut u32, 1); // CTRL: enable
+        }
+    }
+    /// Ticks since start (counting up).
+    #[inline(always)]
+    pub fn now() -> u32 {
+        // SAFETY: reading the timer's VALUE register.
+        u32::MAX - unsafe { core::ptr::read_volatile((BASE + 0x4) as *const u32) }
+    }
+    /// Instructions in `ticks`: 25 MHz ticks of 40 ns, 128 ns per instruction.
+    pub fn instructions(ticks: u64) -> u64 {
+        (ticks * 5 + 8) / 16
+    }
+}
+
+#[cfg(feature = "microbit")]
+mod timer {
+    //! nRF51 TIMER0: 32-bit timer at 16 MHz, read by a capture task.
+    const BASE: usize = 0x4000_8000;
+    pub fn start() {
+        // SAFETY: MMIO registers of the emulated board's timer, used by nothing else.
+        unsafe {
+            core::ptr::write_volatile((BASE + 0x504) as *mut u32, 0); // MODE: timer
+            core::ptr::write_volatile((BASE + 0x508) as *mut u32, 3); // BITMODE: 32 bit
+            core::ptr::write_volatile((BASE + 0x510) as *mut u32, 0); // PRESCALER: 16 MHz
+            core::ptr::write_volatile((BASE + 0x00C) as *mut u32, 1); // TASKS_CLEAR
+            core::ptr::write_volatile((BASE + 0x000) as *mut u32, 1); // TASKS_START
+        }
+    }
+    #[inline(always)]
+    pub fn now() -> u32 {
+        // SAFETY: trigger CAPTURE[0], read CC[0].
+        unsafe {
+            core::ptr::write_volatile((BASE + 0x040) as *mut u32, 1);
+            core::ptr::read_volatile((BASE + 0x540) as *const u32)
+        }
+    }
+    /// Instructions in `ticks`: 16 MHz ticks of 62.5 ns, 128 ns per instruction.
+    pub fn instructions(ticks: u64) -> u64 {
+        (ticks * 125 + 128) / 256
+    }
+}
+
+/// Times exactly one `render` call (mesh generation and renderer construction excluded).
+struct FrameTimer {
+    start: u32,
+    ticks: u32,
+}
+
+impl Probe for FrameTimer {
+    #[inline(always)]
+    fn enter(&mut self, _: Stage) {}
+    #[inline(always)]
+    fn frame_start(&mut self) {
+        self.start = timer::now();
+    }
+    #[inline(always)]
+    fn frame_end(&mut self) {
+        self.ticks = timer::now().wrapping_sub(self.start);
+    }
+}
+
+/// Accumulates timer ticks per stage.
+struct StageProbe {
+    last: u32,
+    current: Option<Stage>,
+    ticks: [u64; 7],
+}
+
+fn stage_index(s: Stage) -> usize {
+    match s {
+        Stage::Vertices => 0,
+        Stage::Lighting => 1,
+        Stage::Triangles => 2,
+        Stage::Setup => 3,
+        Stage::Raster => 4,
+        Stage::Output => 5,
+        _ => 6,
+    }
+}
+
+impl Probe for StageProbe {
+    #[inline(never)]
+    fn enter(&mut self, stage: Stage) {
+        let now = timer::now();
+        if let Some(c) = self.current {
+            self.ticks[stage_index(c)] += now.wrapping_sub(self.last) as u64;
+        }
+        self.current = Some(stage);
+        self.last = timer::now();
+    }
+}
+
+const PAINT: u32 = 0x5ca1_ab1e;
+
+extern "C" {
+    static mut __sheap: u32;
+    static _stack_start: u32;
+    static mut __sdata: u32;
+    static mut __edata: u32;
+    static mut __sbss: u32;
+    static mut __ebss: u32;
+    static __sidata: u32;
+}
+
+/// Fills the free RAM between the end of .bss and the current stack pointer with a pattern.
+fn paint_stack() {
+    let sp = cortex_m::register::msp::read() as usize;
+    // SAFETY: the words between the end of .bss (`__sheap`) and 64 bytes below the live stack
+    // pointer are unused: there is no heap, and the stack grows down toward them.
+    unsafe {
+        let mut p = core::ptr::addr_of_mut!(__sheap) as usize;
+        while p + 64 < sp {
+            core::ptr::write_volatile(p as *mut u32, PAINT);
+            p += 4;
+        }
+    }
+}
+
+/// Bytes of stack ever used: from the top of RAM down to the lowest word no longer painted.
+fn stack_high_water() -> usize {
+    // SAFETY: reads the painted region, see `paint_stack`.
+    unsafe {
+        let top = core::ptr::addr_of!(_stack_start) as usize;
+        let mut p = core::ptr::addr_of_mut!(__sheap) as usize;
+        while p < top && core::ptr::read_volatile(p as *const u32) == PAINT {
+            p += 4;
+        }
+        top - p
+    }
+}
+
+fn static_ram() -> usize {
+    // Only the addresses of linker symbols are taken.
+    let a = |p: *const u32| p as usize;
+    (a(core::ptr::addr_of!(__edata)) - a(core::ptr::addr_of!(__sdata)))
+        + (a(core::ptr::addr_of!(__ebss)) - a(core::ptr::addr_of!(__sbss)))
+}
+
+fn flash_used() -> usize {
+    // Flash holds vectors, .text and .rodata up to __sidata, then the initial values of .data.
+    let data = core::ptr::addr_of!(__edata) as usize - core::ptr::addr_of!(__sdata) as usize;
+    core::ptr::addr_of!(__sidata) as usize + data
+}
+
+#[cfg(not(feature = "microbit"))]
+const SCENES: &[Bench] = &Bench::ALL;
+#[cfg(feature = "microbit")]
+const SCENES: &[Bench] = &[Bench::Cube];
+
+fn bench<S: Scalar>(scene: Bench) {
+    // The renderer alone: one `render` call into a target that does nothing.
+    let mut null = NullTarget::<Rgb565>::new(240, 240);
+    let mut ft = FrameTimer { start: 0, ticks: 0 };
+    let r = render_bench::<S, Rgb565, _, _>(scene, 0.0, false, &mut null, &mut ft);
+    let ticks = ft.ticks as u64;
+    // The image hash.
+    let mut target = HashTarget::<Rgb565>::new(240, 240);
+    let _ = render_bench::<S, Rgb565, _, _>(scene, 0.0, false, &mut target, &mut NoProbe);
+    let frame = match r {
+        Ok(f) => f,
+        Err(e) => {
+            hprintln!("ERROR scene={} number={} {:?}", scene.name(), S::NAME, e);
+            return;
+        }
+    };
+    // Per stage, with the probe (its own cost lands in the stages).
+    let mut probe = StageProbe {
+        last: 0,
+        current: None,
+        ticks: [0; 7],
+    };
+    let mut t2 = HashTarget::<Rgb565>::new(240, 240);
+    let _ = render_bench::<S, Rgb565, _, _>(scene, 0.0, false, &mut t2, &mut probe);
+    let i = |k: usize| timer::instructions(probe.ticks[k]);
+    hprintln!(
+        "BENCH scene={} number={} instructions={} vertices={} lighting={} triangles={} setup={} raster={} output={} hash={:016x} pixels={} renderer_ram={} drawn={} written={}",
+        scene.name(),
+        S::NAME,
+        timer::instructions(ticks),
+        i(0),
+        i(1),
+        i(2),
+        i(3),
+        i(4),
+        i(5),
+        target.hash(),
+        target.pixels(),
+        frame.renderer_ram_bytes,
+        frame.stats.drawn,
+        frame.stats.pixels_written
+    );
+}
+
+#[entry]
+fn main() -> ! {
+    paint_stack();
+    timer::start();
+    for &scene in SCENES {
+        bench::<Fx<I16F16>>(scene);
+        bench::<f32>(scene);
+    }
+    hprintln!(
+        "MEM static={} stack={} flash={}",
+        static_ram(),
+        stack_high_water(),
+        flash_used()
+    );
+    hprintln!("DONE");
+    debug::exit(debug::EXIT_SUCCESS);
+    loop {
+        cortex_m::asm::nop();
+    }
+}
+
+#[panic_handler]
+fn panic(info: &PanicInfo) -> ! {
+    hprintln!("PANIC {}", info);
+    debug::exit(debug::EXIT_FAILURE);
+    loop {
+        cortex_m::asm::nop();
+    }
+}
