@@ -30,7 +30,7 @@ pub fn scale<S: Scalar>(a: Vec3<S>, k: S) -> Vec3<S> {
 /// Dot product.
 #[must_use]
 pub fn dot<S: Scalar>(a: Vec3<S>, b: Vec3<S>) -> S {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    S::dot3_add(a, b, S::ZERO)
 }
 
 /// Cross product `a × b` (right-handed).
@@ -167,10 +167,11 @@ impl<S: Scalar> Mat4<S> {
         let mut r = [[S::ZERO; 4]; 4];
         for (i, row) in r.iter_mut().enumerate() {
             for (j, e) in row.iter_mut().enumerate() {
-                *e = self.m[i][0] * o.m[0][j]
-                    + self.m[i][1] * o.m[1][j]
-                    + self.m[i][2] * o.m[2][j]
-                    + self.m[i][3] * o.m[3][j];
+                *e = S::dot3_add(
+                    [self.m[i][0], self.m[i][1], self.m[i][2]],
+                    [o.m[0][j], o.m[1][j], o.m[2][j]],
+                    self.m[i][3] * o.m[3][j],
+                );
             }
         }
         Mat4 { m: r }
@@ -186,7 +187,7 @@ impl<S: Scalar> Mat4<S> {
     #[must_use]
     pub fn transform_point(&self, p: Vec3<S>) -> [S; 4] {
         let m = &self.m;
-        let row = |i: usize| m[i][0] * p[0] + m[i][1] * p[1] + m[i][2] * p[2] + m[i][3];
+        let row = |i: usize| S::dot3_add([m[i][0], m[i][1], m[i][2]], p, m[i][3]);
         [row(0), row(1), row(2), row(3)]
     }
 
@@ -194,7 +195,7 @@ impl<S: Scalar> Mat4<S> {
     #[must_use]
     pub fn transform_dir(&self, v: Vec3<S>) -> Vec3<S> {
         let m = &self.m;
-        let row = |i: usize| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+        let row = |i: usize| S::dot3_add([m[i][0], m[i][1], m[i][2]], v, S::ZERO);
         [row(0), row(1), row(2)]
     }
 

@@ -56,10 +56,12 @@ pub(crate) fn ceil_div(n: i64, d: i64) -> i64 {
     }
 }
 
-/// First pixel index whose centre is at or right of (below) the subpixel coordinate `v`.
-#[inline]
+/// First pixel index whose centre is at or right of (below) the subpixel coordinate `v`:
+/// `ceil((v − 8) / 16)`, which for a power of two is `(v − 8 + 15) >> 4` (arithmetic shift =
+/// floor), exact for every `v` in the coordinate range.
+#[inline(always)]
 pub(crate) fn first_pixel(v: i32) -> i32 {
-    ceil_div(v as i64 - (SUBPIXELS / 2) as i64, SUBPIXELS as i64) as i32
+    (v - SUBPIXELS / 2 + (SUBPIXELS - 1)) >> crate::project::SUBPIXEL_BITS
 }
 
 /// A normalized reciprocal `1/d ≈ ±m · 2^-e` with `m` in (2³⁰, 2³¹]: computed with **one**
@@ -383,7 +385,8 @@ impl ActiveTri {
                 } else {
                     (C::CHANNEL_MAX[k - 1] as i64) << COLOR_FRAC_BITS
                 };
-                start[k] = (at.row + at.gx as i64 * skip).clamp(0, max) as i32;
+                let v = if skip == 0 { at.row } else { at.row + at.gx as i64 * skip };
+                start[k] = v.clamp(0, max) as i32;
             }
             let span = Span {
                 x0: xs as usize,
@@ -397,9 +400,21 @@ impl ActiveTri {
                     self.attrs[3].gx,
                 ],
             };
-            let written = match self.flat {
-                Some(rgb) => span.fill_flat(colors, depth, test, C::vertex_channels_done(rgb)),
-                None => span.fill_gouraud(colors, depth, test, dither && C::can_dither()),
+            let dither = dither && C::can_dither();
+            let written = match (self.flat, test) {
+                (Some(rgb), t) => {
+                    let c = C::vertex_channels_done(rgb);
+                    match t {
+                        DepthTest::Less => span.fill_flat::<C, LESS>(colors, depth, c),
+                        DepthTest::LessEqual => span.fill_flat::<C, LESS_EQUAL>(colors, depth, c),
+                        DepthTest::Equal => span.fill_flat::<C, EQUAL>(colors, depth, c),
+                        DepthTest::Always => span.fill_flat::<C, ALWAYS>(colors, depth, c),
+                    }
+                }
+                (None, DepthTest::Less) => span.fill_gouraud::<C, LESS>(colors, depth, dither),
+                (None, DepthTest::LessEqual) => span.fill_gouraud::<C, LESS_EQUAL>(colors, depth, dither),
+                (None, DepthTest::Equal) => span.fill_gouraud::<C, EQUAL>(colors, depth, dither),
+                (None, DepthTest::Always) => span.fill_gouraud::<C, ALWAYS>(colors, depth, dither),
             };
             counts = ((xe - xs) as u32, written);
         }
@@ -434,13 +449,19 @@ struct Span {
     gx: [i32; 4],
 }
 
+const LESS: u8 = 0;
+const LESS_EQUAL: u8 = 1;
+const EQUAL: u8 = 2;
+const ALWAYS: u8 = 3;
+
+/// The depth test, resolved at compile time in each monomorphized span loop.
 #[inline(always)]
-fn passes(test: DepthTest, z: u16, stored: u16) -> bool {
-    match test {
-        DepthTest::Less => z < stored,
-        DepthTest::LessEqual => z <= stored,
-        DepthTest::Equal => z == stored,
-        DepthTest::Always => true,
+fn passes<const T: u8>(z: u16, stored: u16) -> bool {
+    match T {
+        LESS => z < stored,
+        LESS_EQUAL => z <= stored,
+        EQUAL => z == stored,
+        _ => true,
     }
 }
 
@@ -453,20 +474,14 @@ impl Span {
         self.start[0] + (1 << (DEPTH_FRAC_BITS - 1))
     }
 
-    fn fill_flat<C: TargetColor>(
-        &self,
-        colors: &mut [C],
-        depth: &mut [u16],
-        test: DepthTest,
-        color: C,
-    ) -> u32 {
+    fn fill_flat<C: TargetColor, const T: u8>(&self, colors: &mut [C], depth: &mut [u16], color: C) -> u32 {
         let mut z = self.z_start();
         let gz = self.gx[0];
         let mut written = 0;
         let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
         for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
             let z16 = (z >> DEPTH_FRAC_BITS) as u16;
-            if passes(test, z16, *zb) {
+            if passes::<T>(z16, *zb) {
                 *zb = z16;
                 *cb = color;
                 written += 1;
@@ -476,22 +491,49 @@ impl Span {
         written
     }
 
-    fn fill_gouraud<C: TargetColor>(
-        &self,
-        colors: &mut [C],
-        depth: &mut [u16],
-        test: DepthTest,
-        dither: bool,
-    ) -> u32 {
-        // Rounding bias per column phase: one half, or the ordered-dither thresholds
-        // (2·B + 1)/32 of a channel unit.
-        let half = 1i32 << (COLOR_FRAC_BITS - 1);
-        let mut bias = [half; 4];
+    fn fill_gouraud<C: TargetColor, const T: u8>(&self, colors: &mut [C], depth: &mut [u16], dither: bool) -> u32 {
         if dither {
-            let b = &BAYER[(self.row & 3) as usize];
-            for (k, t) in bias.iter_mut().enumerate() {
-                *t = (2 * b[k] as i32 + 1) << (COLOR_FRAC_BITS - 5);
+            self.fill_gouraud_dither::<C, T>(colors, depth)
+        } else {
+            self.fill_gouraud_round::<C, T>(colors, depth)
+        }
+    }
+
+    /// Gouraud span, rounding to nearest: the half is folded into the start values.
+    fn fill_gouraud_round<C: TargetColor, const T: u8>(&self, colors: &mut [C], depth: &mut [u16]) -> u32 {
+        let half = 1i32 << (COLOR_FRAC_BITS - 1);
+        let mut z = self.z_start();
+        let [_, r0, g0, b0] = self.start;
+        let (mut r, mut g, mut b) = (r0 + half, g0 + half, b0 + half);
+        let [gz, gr, gg, gb] = self.gx;
+        let mut written = 0;
+        let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
+        for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
+            let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+            if passes::<T>(z16, *zb) {
+                *zb = z16;
+                *cb = C::from_channels([
+                    (r >> COLOR_FRAC_BITS) as u8,
+                    (g >> COLOR_FRAC_BITS) as u8,
+                    (b >> COLOR_FRAC_BITS) as u8,
+                ]);
+                written += 1;
             }
+            z = z.wrapping_add(gz);
+            r = r.wrapping_add(gr);
+            g = g.wrapping_add(gg);
+            b = b.wrapping_add(gb);
+        }
+        written
+    }
+
+    /// Gouraud span with 4×4 ordered dithering: the rounding bias is the Bayer threshold
+    /// (2·B + 1)/32 of a channel unit for the pixel's column phase.
+    fn fill_gouraud_dither<C: TargetColor, const T: u8>(&self, colors: &mut [C], depth: &mut [u16]) -> u32 {
+        let mut bias = [0i32; 4];
+        let row = &BAYER[(self.row & 3) as usize];
+        for (k, t) in bias.iter_mut().enumerate() {
+            *t = (2 * row[k] as i32 + 1) << (COLOR_FRAC_BITS - 5);
         }
         let mut z = self.z_start();
         let [_, mut r, mut g, mut b] = self.start;
@@ -500,7 +542,7 @@ impl Span {
         let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
         for (x, (zb, cb)) in (self.x0..).zip(zs.iter_mut().zip(cs.iter_mut())) {
             let z16 = (z >> DEPTH_FRAC_BITS) as u16;
-            if passes(test, z16, *zb) {
+            if passes::<T>(z16, *zb) {
                 let t = bias[x & 3];
                 *zb = z16;
                 *cb = C::from_channels([

@@ -642,8 +642,8 @@ impl<
         while y0 < H {
             let lines = LINES.min(H - y0);
             for l in 0..lines {
-                self.color[l] = [bg; W];
-                self.depth[l] = [u16::MAX; W];
+                self.color[l].fill(bg);
+                self.depth[l].fill(u16::MAX);
                 let row = y0 + l;
                 let mut t = self.heads[row];
                 if t != NONE {

@@ -82,6 +82,13 @@ pub trait Scalar:
     /// Sine and cosine of an angle in radians.
     #[must_use]
     fn sin_cos(self) -> (Self, Self);
+    /// `a·b + c` for 3-vectors: `a₀b₀ + a₁b₁ + a₂b₂ + c`. Fixed-point types sum the exact
+    /// products and round once; floats evaluate it left to right.
+    #[must_use]
+    #[inline(always)]
+    fn dot3_add(a: [Self; 3], b: [Self; 3], c: Self) -> Self {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + c
+    }
     /// Tangent of an angle in radians (saturating for fixed-point types).
     #[must_use]
     fn tan(self) -> Self {
@@ -131,6 +138,22 @@ pub trait Scalar:
     /// `i32` (NaN → 0).
     #[must_use]
     fn to_fixed_i32(self, frac: u32) -> i32;
+}
+
+/// The exact 64-bit product of two `i32`, from four 16 × 16-bit products.
+///
+/// On a Cortex-M0 `(a as i64) * (b as i64)` becomes a call to the general 64 × 64-bit
+/// `__aeabi_lmul`; this needs only four single-instruction `MULS` and a few adds.
+#[inline(always)]
+#[must_use]
+pub fn mul_wide(a: i32, b: i32) -> i64 {
+    let (al, ah) = ((a & 0xffff) as u32, a >> 16);
+    let (bl, bh) = ((b & 0xffff) as u32, b >> 16);
+    let lo = al * bl; // < 2^32
+    let m1 = ah * bl as i32; // |.| < 2^31
+    let m2 = al as i32 * bh; // |.| < 2^31
+    let hi = ah * bh; // |.| ≤ 2^30
+    ((hi as i64) << 32) + (((m1 as i64) + (m2 as i64)) << 16) + lo as i64
 }
 
 /// Rounds and saturates an `f64` to `i64` (NaN → 0).
@@ -305,9 +328,11 @@ macro_rules! impl_fx {
         }
         impl Mul for Fx<$t> {
             type Output = Self;
+            /// Rounds to nearest (ties up) and saturates.
             #[inline(always)]
             fn mul(self, o: Self) -> Self {
-                Fx(self.0.saturating_mul(o.0))
+                let p = mul_wide(self.0.to_bits(), o.0.to_bits());
+                Fx($t::from_bits(sat32((p + (1i64 << ($frac - 1))) >> $frac)))
             }
         }
         impl Div for Fx<$t> {
@@ -366,6 +391,17 @@ macro_rules! impl_fx {
             fn is_valid(self) -> bool {
                 self.0 != $t::MAX && self.0 != $t::MIN
             }
+            #[inline(always)]
+            fn dot3_add(a: [Self; 3], b: [Self; 3], c: Self) -> Self {
+                // Each product is below 2^62 in magnitude; the sum saturates instead of
+                // overflowing, and a saturated sum saturates the result.
+                let p = mul_wide(a[0].0.to_bits(), b[0].0.to_bits())
+                    .saturating_add(mul_wide(a[1].0.to_bits(), b[1].0.to_bits()))
+                    .saturating_add(mul_wide(a[2].0.to_bits(), b[2].0.to_bits()))
+                    .saturating_add((c.0.to_bits() as i64) << $frac)
+                    .saturating_add(1i64 << ($frac - 1));
+                Fx($t::from_bits(sat32(p >> $frac)))
+            }
             fn recip(w: Self) -> FxRecip {
                 let wb = w.0.to_bits().max(1) as i64;
                 // wb in [2^(len-1), 2^len); mantissa = 2^(30+len) / wb in (2^30, 2^31].
@@ -403,6 +439,18 @@ macro_rules! impl_fx {
 impl_fx!(I16F16, 16, "I16F16");
 impl_fx!(I20F12, 12, "I20F12");
 impl_fx!(I12F20, 20, "I12F20");
+
+/// Saturates an `i64` to `i32`.
+#[inline(always)]
+fn sat32(v: i64) -> i32 {
+    if v > i32::MAX as i64 {
+        i32::MAX
+    } else if v < i32::MIN as i64 {
+        i32::MIN
+    } else {
+        v as i32
+    }
+}
 
 /// Shorthand for [`Scalar::from_f64`].
 #[must_use]
@@ -479,6 +527,30 @@ mod tests {
         let (s, c) = micromath::F32(0.5).sin_cos();
         assert!((s.0 - libm::sinf(0.5)).abs() < 0.002 && (c.0 - libm::cosf(0.5)).abs() < 0.002);
         assert_eq!(Scalar::sqrt(micromath::F32(-1.0)), micromath::F32(0.0));
+    }
+
+    #[test]
+    fn mul_wide_is_exact() {
+        let vals = [0, 1, -1, 2, 65535, 65536, -65536, 123_456_789, -987_654_321, i32::MAX, i32::MIN, 0x7fff_0001, -0x8000];
+        for &a in &vals {
+            for &b in &vals {
+                assert_eq!(mul_wide(a, b), a as i64 * b as i64, "{a} * {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn fixed_mul_rounds_to_nearest_and_dot_rounds_once() {
+        let q = |v: f64| Q::lit(v);
+        assert_eq!((q(1.5) * q(-2.25)).to_f64(), -3.375);
+        // 3·2^-16 · 0.5 = 1.5 steps → rounds to 2 steps.
+        assert_eq!((Fx(I16F16::from_bits(3)) * q(0.5)).to_bits(), 2);
+        let a = [q(0.1), q(0.2), q(0.3)];
+        let b = [q(0.7), q(-0.4), q(0.9)];
+        let exact: f64 = (0..3).map(|k| a[k].to_f64() * b[k].to_f64()).sum::<f64>() + 0.25;
+        let got = Q::dot3_add(a, b, q(0.25)).to_f64();
+        assert!((got - exact).abs() <= 0.5 / 65536.0, "{got} vs {exact}");
+        assert!(!Q::dot3_add([q(30000.0); 3], [q(30000.0); 3], Q::ZERO).is_valid());
     }
 
     #[test]
