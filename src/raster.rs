@@ -20,6 +20,7 @@
 
 use crate::color::{TargetColor, BAYER};
 use crate::project::{ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS};
+use crate::scalar::mul_wide;
 
 /// Fraction bits of interpolated colour channels (channel units, so 0..=255·2²⁰ < 2²⁸ fits an
 /// `i32`; step 2⁻²⁰ of a channel unit).
@@ -64,63 +65,74 @@ pub(crate) fn first_pixel(v: i32) -> i32 {
     (v - SUBPIXELS / 2 + (SUBPIXELS - 1)) >> crate::project::SUBPIXEL_BITS
 }
 
-/// A normalized reciprocal `1/d ≈ ±m · 2^-e` with `m` in (2³⁰, 2³¹]: computed with **one**
-/// division per triangle, after which every attribute gradient is a multiply.
+/// `1/d` for a triangle's doubled area `d ≠ 0` (|d| < 2⁶²), as `±m · 2^-e` with `m` in
+/// (2²⁹, 2³⁰]: one 32-bit division for a 16-bit estimate and one Newton step to 30 bits, so no
+/// 64-bit division is needed.
 #[derive(Copy, Clone, Debug)]
 struct Reciprocal {
-    m: i64,
+    m: i32,
     e: u32,
     neg: bool,
 }
 
+/// Number of significant bits of a `u64` (0 for 0), with 32-bit `leading_zeros` only.
+#[inline]
+fn bitlen64(a: u64) -> u32 {
+    let hi = (a >> 32) as u32;
+    if hi != 0 {
+        64 - hi.leading_zeros()
+    } else {
+        32 - (a as u32).leading_zeros()
+    }
+}
+
 impl Reciprocal {
-    /// `d ≠ 0`, `|d| < 2⁶²`.
     fn new(d: i64) -> Self {
         let a = d.unsigned_abs().max(1);
-        let s = 64 - a.leading_zeros(); // a in [2^(s-1), 2^s)
-        let sh = s.saturating_sub(32); // keep 32 significant bits of d
-        let a2 = a >> sh;
-        let s2 = s - sh;
-        // 2^(s2+30) / a2 in (2^30, 2^31]; s2 + 30 ≤ 62.
-        let m = (1u64 << (s2 + 30)) / a2;
-        Reciprocal {
-            m: m as i64,
-            e: s2 + 30 + sh,
-            neg: d < 0,
-        }
-    }
-
-    /// `round(n / d)` to within 2⁻²⁹ relative, clamped to ±[`GRAD_LIMIT`].
-    fn div(&self, n: i64) -> i64 {
-        let a = n.unsigned_abs();
-        let nb = 64 - a.leading_zeros();
-        let shn = nb.saturating_sub(31); // keep 31 significant bits of n
-        let p = (a >> shn) as i64 * self.m; // < 2^62
-        let e = self.e as i64 - shn as i64;
-        let q = if e <= 0 {
-            GRAD_LIMIT
-        } else if e >= 63 {
-            0
+        let s = bitlen64(a);
+        // a32 in [2^31, 2^32) carries the 32 leading bits of |d|: |d| ≈ a32 · 2^(s − 32).
+        let a32 = if s > 32 {
+            (a >> (s - 32)) as u32
         } else {
-            ((p >> (e - 1)) + 1) >> 1
+            (a << (32 - s)) as u32
         };
-        let q = q.min(GRAD_LIMIT);
-        if (n < 0) != self.neg {
-            -q
-        } else {
-            q
+        // Estimate 2^61 / a32 from 2^32 / (a32 >> 16) (16 significant bits), then one Newton
+        // step m' = m + m·(2^61 − a32·m)/2^61 doubles that to 30.
+        let m0 = ((u32::MAX / (a32 >> 16)) as u64) << 13;
+        let err = (1i64 << 61) - mul_wide_u(a32, m0 as u32) as i64; // |err| < 2^47
+        let m1 = m0 as i64 + ((mul_wide(m0 as i32, (err >> 30) as i32)) >> 31);
+        // 1/|d| = m1 · 2^-(61 + s − 32).
+        Reciprocal {
+            m: m1.clamp(1, 1 << 30) as i32,
+            e: 29 + s,
+            neg: d < 0,
         }
     }
 }
 
-/// `(floor(n / d), n mod d)` for `d > 0`, in 32 bits when both fit (the usual case on screen).
+/// The exact product of two `u32`, from four 16 × 16-bit products (see [`mul_wide`]).
+#[inline(always)]
+fn mul_wide_u(a: u32, b: u32) -> u64 {
+    let (al, ah) = (a & 0xffff, a >> 16);
+    let (bl, bh) = (b & 0xffff, b >> 16);
+    let mid = (ah * bl) as u64 + (al * bh) as u64;
+    (((ah * bh) as u64) << 32) + (mid << 16) + (al * bl) as u64
+}
+
+/// `(floor(n / d), n − d·floor(n / d))` for `d > 0` and a quotient that fits in `i32`: one
+/// 32-bit division when `n` fits.
 #[inline]
-fn div_floor(n: i64, d: i64) -> (i64, i64) {
-    if let (Ok(n32), Ok(d32)) = (i32::try_from(n), i32::try_from(d)) {
-        let (q, r) = (n32.div_euclid(d32), n32.rem_euclid(d32));
-        (q as i64, r as i64)
+fn div_floor(n: i64, d: i32) -> (i32, i32) {
+    if let Ok(n32) = i32::try_from(n) {
+        let (mut q, mut r) = (n32 / d, n32 % d);
+        if r < 0 {
+            q -= 1;
+            r += d;
+        }
+        (q, r)
     } else {
-        (n.div_euclid(d), n.rem_euclid(d))
+        let d = d as i64;
+        (n.div_euclid(d) as i32, n.rem_euclid(d) as i32)
     }
 }
 
@@ -143,25 +155,20 @@ pub(crate) struct Edge {
 
 impl Edge {
     /// The edge `a → b` (`a.y < b.y`) at pixel row `row`. Coordinates must be within
-    /// ±[`crate::project::COORD_LIMIT`] subpixels.
+    /// ±[`crate::project::COORD_LIMIT`] subpixels (plus the screen), so that every quantity but
+    /// the start numerator fits in 32 bits.
     pub(crate) fn new(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> Edge {
-        let dy = (yb as i64 - ya as i64).max(1);
-        let dx = xb as i64 - xa as i64;
-        let d = SUBPIXELS as i64 * dy;
-        let ys = SUBPIXELS as i64 * row as i64 + (SUBPIXELS / 2) as i64;
-        // x − 8 at the sample row, times dy: |n| < 2^47.
-        let n = (xa as i64 - (SUBPIXELS / 2) as i64) * dy + (ys - ya as i64) * dx;
+        let dy = (yb - ya).max(1);
+        let dx = xb - xa;
+        let d = SUBPIXELS * dy;
+        let ys = SUBPIXELS * row + SUBPIXELS / 2;
+        // (x − 8) at the sample row, times dy: |n| < 2^47.
+        let n = mul_wide(xa - SUBPIXELS / 2, dy) + mul_wide(ys - ya, dx);
         // c = ceil(n/d), e = c·d − n.
         let (q, r) = div_floor(n, d);
         let (c, e) = if r == 0 { (q, 0) } else { (q + 1, d - r) };
-        let (sq, sr) = div_floor(SUBPIXELS as i64 * dx, d);
-        Edge {
-            c: c as i32,
-            e: e as i32,
-            sq: sq as i32,
-            sr: sr as i32,
-            d: d as i32,
-        }
+        let (sq, sr) = div_floor((SUBPIXELS * dx) as i64, d);
+        Edge { c, e, sq, sr, d }
     }
 
     /// Moves to the next row; returns true when the boundary moved by `sq + 1` instead of `sq`.
@@ -179,21 +186,7 @@ impl Edge {
     }
 }
 
-/// One interpolated attribute of a triangle being drawn.
-#[derive(Copy, Clone, Debug, Default)]
-struct Attr {
-    /// Value at the vertex the plane is anchored on.
-    a0: i32,
-    /// Per-pixel gradients, |g| ≤ 2³⁰.
-    gx: i32,
-    gy: i32,
-    /// Value at the centre of the current row's first pixel (column `left.c`).
-    row: i64,
-    /// Change of `row` per row when the left edge moves by `sq` columns: `gy + gx·sq`.
-    inc: i64,
-}
-
-/// A triangle as stored between geometry and rasterization (12 bytes).
+/// A triangle as stored between geometry and rasterization (16 bytes).
 #[derive(Copy, Clone, Debug)]
 pub(crate) struct TriRecord {
     /// Indices into the renderer's vertex store.
@@ -205,6 +198,11 @@ pub(crate) struct TriRecord {
 }
 
 /// A triangle on the active list.
+///
+/// Attribute values are 32-bit and updated with wrapping arithmetic: every value that is
+/// *used* is the plane at a pixel centre inside the triangle, which lies within the attribute's
+/// range, and two's-complement arithmetic is exact modulo 2³², so intermediate wrap-arounds
+/// (far outside the triangle) cannot change it.
 #[derive(Clone, Debug)]
 pub(crate) struct ActiveTri {
     left: Edge,
@@ -215,14 +213,21 @@ pub(crate) struct ActiveTri {
     row_end: i32,
     /// v1 is left of the long edge.
     mid_left: bool,
+    /// Number of attributes: 1 (depth; flat) or 4 (depth, r, g, b).
+    n_attrs: u8,
     /// Sorted (top to bottom) vertices, kept for the switch at `row_mid`.
+    v0: (i32, i32),
     v1: (i32, i32),
     v2: (i32, i32),
-    x0: i32,
-    y0: i32,
-    /// z, r, g, b (only z for flat).
-    attrs: [Attr; 4],
-    n_attrs: u8,
+    /// Attribute values at v0 (depth 16.12; colour channel units with 20 fraction bits).
+    a0: [i32; 4],
+    /// Per-pixel gradients, |g| ≤ 2³⁰.
+    gx: [i32; 4],
+    gy: [i32; 4],
+    /// Values at the centre of the current row's first pixel (column `left.c`).
+    row: [i32; 4],
+    /// Change of `row` when the left edge moves by `sq` columns: `gy + gx·sq`.
+    inc: [i32; 4],
     flat: Option<[u16; 3]>,
 }
 
@@ -240,7 +245,7 @@ impl ActiveTri {
             verts[t.v[1] as usize],
             verts[t.v[2] as usize],
         ];
-        // Sort by y (stable for equal y: order does not matter, horizontal edges are unused).
+        // Sort by y (for equal y the order does not matter: horizontal edges are unused).
         if p[1].y < p[0].y {
             p.swap(0, 1);
         }
@@ -256,9 +261,9 @@ impl ActiveTri {
         if row >= row_end {
             return None;
         }
-        let (dx1, dy1) = (b.x as i64 - a.x as i64, b.y as i64 - a.y as i64);
-        let (dx2, dy2) = (c.x as i64 - a.x as i64, c.y as i64 - a.y as i64);
-        let det = dx1 * dy2 - dx2 * dy1;
+        let (dx1, dy1) = (b.x - a.x, b.y - a.y);
+        let (dx2, dy2) = (c.x - a.x, c.y - a.y);
+        let det = mul_wide(dx1, dy2) - mul_wide(dx2, dy1);
         if det == 0 {
             return None;
         }
@@ -275,7 +280,40 @@ impl ActiveTri {
             (long, short)
         };
 
-        let mut attrs = [Attr::default(); 4];
+        // Barycentric gradient coefficients, 16·(dy2, dy1, dx2, dx1)/det, with a shared
+        // exponent: gx = da1·bx1 − da2·bx2, gy = da2·by1 − da1·by2.
+        let inv = Reciprocal::new(det);
+        let vmax = dy2
+            .unsigned_abs()
+            .max(dy1.unsigned_abs())
+            .max(dx1.unsigned_abs())
+            .max(dx2.unsigned_abs());
+        let l = 32 - vmax.leading_zeros(); // ≤ 24
+        let coef = |v: i32| -> i32 {
+            // |16·v·m| < 2^(l + 34); keep 30 bits.
+            let q = (mul_wide(v, inv.m) << 4) >> (l + 4);
+            (if inv.neg { -q } else { q }) as i32
+        };
+        let (bx1, bx2, by1, by2) = (coef(dy2), coef(dy1), coef(dx1), coef(dx2));
+        // g = S · 2^(l + 4 − e), S = Σ da·b.
+        let shift = inv.e as i32 - (l as i32 + 4);
+        let scale = |s: i64| -> i32 {
+            let g = if shift <= 0 {
+                if s == 0 {
+                    0
+                } else if s > 0 {
+                    GRAD_LIMIT
+                } else {
+                    -GRAD_LIMIT
+                }
+            } else if shift >= 63 {
+                0
+            } else {
+                ((s >> (shift - 1)) + 1) >> 1
+            };
+            g.clamp(-GRAD_LIMIT, GRAD_LIMIT) as i32
+        };
+
         let n_attrs = if t.flat.is_some() { 1 } else { 4 };
         let val = |v: &ScreenVertex, k: usize| -> i32 {
             if k == 0 {
@@ -284,15 +322,15 @@ impl ActiveTri {
                 (v.rgb[k - 1] as i32) << COLOR_SHIFT
             }
         };
-        let s = SUBPIXELS as i64;
-        let inv = Reciprocal::new(det);
-        for (k, at) in attrs.iter_mut().enumerate().take(n_attrs) {
-            let (a0, a1, a2) = (val(&a, k), val(&b, k), val(&c, k));
-            let (da1, da2) = (a1 as i64 - a0 as i64, a2 as i64 - a0 as i64);
-            at.a0 = a0;
-            // |da| < 2^29, |d·| < 2^24: each numerator < 2^58.
-            at.gx = inv.div(s * (da1 * dy2 - da2 * dy1)) as i32;
-            at.gy = inv.div(s * (dx1 * da2 - dx2 * da1)) as i32;
+        let mut a0 = [0i32; 4];
+        let mut gx = [0i32; 4];
+        let mut gy = [0i32; 4];
+        for k in 0..n_attrs {
+            let (v0, v1, v2) = (val(&a, k), val(&b, k), val(&c, k));
+            let (da1, da2) = (v1 - v0, v2 - v0); // |da| < 2^29
+            a0[k] = v0;
+            gx[k] = scale(mul_wide(da1, bx1) - mul_wide(da2, bx2));
+            gy[k] = scale(mul_wide(da2, by1) - mul_wide(da1, by2));
         }
         let mut tri = ActiveTri {
             left,
@@ -300,12 +338,15 @@ impl ActiveTri {
             row_mid,
             row_end,
             mid_left,
+            n_attrs: n_attrs as u8,
+            v0: (a.x, a.y),
             v1: (b.x, b.y),
             v2: (c.x, c.y),
-            x0: a.x,
-            y0: a.y,
-            attrs,
-            n_attrs: n_attrs as u8,
+            a0,
+            gx,
+            gy,
+            row: [0; 4],
+            inc: [0; 4],
             flat: t.flat,
         };
         tri.anchor_attrs(row);
@@ -314,18 +355,19 @@ impl ActiveTri {
 
     /// Evaluates every attribute plane at the centre of pixel (`left.c`, `row`).
     fn anchor_attrs(&mut self, row: i32) {
-        let s = SUBPIXELS as i64;
-        let dx = s * self.left.c as i64 + s / 2 - self.x0 as i64;
-        let dy = s * row as i64 + s / 2 - self.y0 as i64;
-        let sq = self.left.sq as i64;
-        for at in self.attrs.iter_mut().take(self.n_attrs as usize) {
-            let (gx, gy) = (at.gx as i64, at.gy as i64);
-            at.row = at.a0 as i64 + ((gx * dx + gy * dy) >> 4);
-            at.inc = gy + gx * sq;
+        let dx = SUBPIXELS * self.left.c + SUBPIXELS / 2 - self.v0.0;
+        let dy = SUBPIXELS * row + SUBPIXELS / 2 - self.v0.1;
+        let sq = self.left.sq;
+        for k in 0..self.n_attrs as usize {
+            let (gx, gy) = (self.gx[k], self.gy[k]);
+            let d = (mul_wide(gx, dx) + mul_wide(gy, dy)) >> crate::project::SUBPIXEL_BITS;
+            self.row[k] = self.a0[k].wrapping_add(d as i32);
+            self.inc[k] = gy.wrapping_add(gx.wrapping_mul(sq));
         }
     }
 
     /// Moves to `next_row` (the row after the one just drawn).
+    #[inline]
     fn advance(&mut self, next_row: i32) {
         let (long, short) = if self.mid_left {
             (&mut self.right, &mut self.left)
@@ -337,9 +379,9 @@ impl ActiveTri {
             *short = Edge::new(self.v1.0, self.v1.1, self.v2.0, self.v2.1, next_row);
             if self.mid_left {
                 self.anchor_attrs(next_row);
-            } else {
-                self.step_attrs(long_carry);
+                return;
             }
+            self.step_attrs(long_carry);
         } else {
             let short_carry = short.step();
             self.step_attrs(if self.mid_left {
@@ -352,11 +394,12 @@ impl ActiveTri {
 
     #[inline(always)]
     fn step_attrs(&mut self, carry: bool) {
-        for at in self.attrs.iter_mut().take(self.n_attrs as usize) {
-            at.row += at.inc;
+        for k in 0..self.n_attrs as usize {
+            let mut v = self.row[k].wrapping_add(self.inc[k]);
             if carry {
-                at.row += at.gx as i64;
+                v = v.wrapping_add(self.gx[k]);
             }
+            self.row[k] = v;
         }
     }
 
@@ -375,30 +418,27 @@ impl ActiveTri {
         let xe = self.right.c.min(width);
         let mut counts = (0, 0);
         if xs < xe {
-            let skip = (xs - self.left.c) as i64;
+            let skip = xs - self.left.c;
             let mut start = [0i32; 4];
-            let zmax = (DEPTH_MAX as i64) << DEPTH_FRAC_BITS;
             for k in 0..self.n_attrs as usize {
-                let at = &self.attrs[k];
                 let max = if k == 0 {
-                    zmax
+                    (DEPTH_MAX as i32) << DEPTH_FRAC_BITS
                 } else {
-                    (C::CHANNEL_MAX[k - 1] as i64) << COLOR_FRAC_BITS
+                    (C::CHANNEL_MAX[k - 1] as i32) << COLOR_FRAC_BITS
                 };
-                let v = if skip == 0 { at.row } else { at.row + at.gx as i64 * skip };
-                start[k] = v.clamp(0, max) as i32;
+                let v = if skip == 0 {
+                    self.row[k]
+                } else {
+                    self.row[k].wrapping_add(self.gx[k].wrapping_mul(skip))
+                };
+                start[k] = v.clamp(0, max);
             }
             let span = Span {
                 x0: xs as usize,
                 x1: xe as usize,
                 row,
                 start,
-                gx: [
-                    self.attrs[0].gx,
-                    self.attrs[1].gx,
-                    self.attrs[2].gx,
-                    self.attrs[3].gx,
-                ],
+                gx: self.gx,
             };
             let dither = dither && C::can_dither();
             let written = match (self.flat, test) {
@@ -412,7 +452,9 @@ impl ActiveTri {
                     }
                 }
                 (None, DepthTest::Less) => span.fill_gouraud::<C, LESS>(colors, depth, dither),
-                (None, DepthTest::LessEqual) => span.fill_gouraud::<C, LESS_EQUAL>(colors, depth, dither),
+                (None, DepthTest::LessEqual) => {
+                    span.fill_gouraud::<C, LESS_EQUAL>(colors, depth, dither)
+                }
                 (None, DepthTest::Equal) => span.fill_gouraud::<C, EQUAL>(colors, depth, dither),
                 (None, DepthTest::Always) => span.fill_gouraud::<C, ALWAYS>(colors, depth, dither),
             };
@@ -465,6 +507,11 @@ fn passes<const T: u8>(z: u16, stored: u16) -> bool {
     }
 }
 
+/// Significant bits of a channel maximum (31 → 5, 63 → 6).
+const fn channel_bits(max: u8) -> u32 {
+    8 - max.leading_zeros()
+}
+
 impl Span {
     /// Depth with a half-step bias so that the shift rounds to nearest. Gradient rounding can
     /// overshoot the clamped range by at most ½ per pixel (< 2¹¹ over a 2048-px span), which
@@ -474,7 +521,15 @@ impl Span {
         self.start[0] + (1 << (DEPTH_FRAC_BITS - 1))
     }
 
-    fn fill_flat<C: TargetColor, const T: u8>(&self, colors: &mut [C], depth: &mut [u16], color: C) -> u32 {
+    // A function of its own: inlined into the row loop, the span loop inherits that loop's
+    // register pressure and spills its accumulators on a Cortex-M0.
+    #[inline(never)]
+    fn fill_flat<C: TargetColor, const T: u8>(
+        &self,
+        colors: &mut [C],
+        depth: &mut [u16],
+        color: C,
+    ) -> u32 {
         let mut z = self.z_start();
         let gz = self.gx[0];
         let mut written = 0;
@@ -491,16 +546,81 @@ impl Span {
         written
     }
 
-    fn fill_gouraud<C: TargetColor, const T: u8>(&self, colors: &mut [C], depth: &mut [u16], dither: bool) -> u32 {
+    fn fill_gouraud<C: TargetColor, const T: u8>(
+        &self,
+        colors: &mut [C],
+        depth: &mut [u16],
+        dither: bool,
+    ) -> u32 {
+        let packable = C::CHANNEL_MAX[0] <= 63 && C::CHANNEL_MAX[2] <= 63 && C::CHANNEL_MAX[0] > 0;
         if dither {
             self.fill_gouraud_dither::<C, T>(colors, depth)
+        } else if packable && self.x1 - self.x0 <= 1024 {
+            self.fill_gouraud_packed::<C, T>(colors, depth)
         } else {
             self.fill_gouraud_round::<C, T>(colors, depth)
         }
     }
 
+    /// Gouraud span for channels of at most 6 bits (RGB565, RGB555, RGB666), rounding to
+    /// nearest. Red and blue share one 32-bit accumulator as two 16-bit fields with
+    /// `16 − bits` fraction bits each (red in the high half): `P = R·2¹⁶ + B` is exact as long
+    /// as `B` stays in `0..2¹⁶`, which holds because the clamped start plus the half-step bias
+    /// leaves `2^(15 − bits)` of headroom and rounding of the gradient drifts by at most ½ unit
+    /// per pixel over at most 1024 pixels. Fewer live values keep the loop in registers on a
+    /// Cortex-M0.
+    // A function of its own: inlined into the row loop, the span loop inherits that loop's
+    // register pressure and spills its accumulators on a Cortex-M0.
+    #[inline(never)]
+    fn fill_gouraud_packed<C: TargetColor, const T: u8>(
+        &self,
+        colors: &mut [C],
+        depth: &mut [u16],
+    ) -> u32 {
+        let (fr, fb) = (
+            16 - channel_bits(C::CHANNEL_MAX[0]),
+            16 - channel_bits(C::CHANNEL_MAX[2]),
+        );
+        let (sr, sb) = (COLOR_FRAC_BITS - fr, COLOR_FRAC_BITS - fb);
+        // Rounded conversions from 20 to `f` fraction bits.
+        let conv = |v: i32, s: u32| (v + (1 << (s - 1))) >> s;
+        let r0 = conv(self.start[1], sr) + (1 << (fr - 1));
+        let b0 = conv(self.start[3], sb) + (1 << (fb - 1));
+        let mut rb = ((r0 as u32) << 16).wrapping_add(b0 as u32);
+        let grb = ((conv(self.gx[1], sr) as u32) << 16).wrapping_add(conv(self.gx[3], sb) as u32);
+        let mut g = self.start[2] + (1 << (COLOR_FRAC_BITS - 1));
+        let gg = self.gx[2];
+        let mut z = self.z_start();
+        let gz = self.gx[0];
+        let mut written = 0;
+        let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
+        for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
+            let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+            if passes::<T>(z16, *zb) {
+                *zb = z16;
+                *cb = C::from_channels([
+                    (rb >> (16 + fr)) as u8,
+                    (g >> COLOR_FRAC_BITS) as u8,
+                    ((rb & 0xffff) >> fb) as u8,
+                ]);
+                written += 1;
+            }
+            z = z.wrapping_add(gz);
+            rb = rb.wrapping_add(grb);
+            g = g.wrapping_add(gg);
+        }
+        written
+    }
+
     /// Gouraud span, rounding to nearest: the half is folded into the start values.
-    fn fill_gouraud_round<C: TargetColor, const T: u8>(&self, colors: &mut [C], depth: &mut [u16]) -> u32 {
+    // A function of its own: inlined into the row loop, the span loop inherits that loop's
+    // register pressure and spills its accumulators on a Cortex-M0.
+    #[inline(never)]
+    fn fill_gouraud_round<C: TargetColor, const T: u8>(
+        &self,
+        colors: &mut [C],
+        depth: &mut [u16],
+    ) -> u32 {
         let half = 1i32 << (COLOR_FRAC_BITS - 1);
         let mut z = self.z_start();
         let [_, r0, g0, b0] = self.start;
@@ -529,7 +649,14 @@ impl Span {
 
     /// Gouraud span with 4×4 ordered dithering: the rounding bias is the Bayer threshold
     /// (2·B + 1)/32 of a channel unit for the pixel's column phase.
-    fn fill_gouraud_dither<C: TargetColor, const T: u8>(&self, colors: &mut [C], depth: &mut [u16]) -> u32 {
+    // A function of its own: inlined into the row loop, the span loop inherits that loop's
+    // register pressure and spills its accumulators on a Cortex-M0.
+    #[inline(never)]
+    fn fill_gouraud_dither<C: TargetColor, const T: u8>(
+        &self,
+        colors: &mut [C],
+        depth: &mut [u16],
+    ) -> u32 {
         let mut bias = [0i32; 4];
         let row = &BAYER[(self.row & 3) as usize];
         for (k, t) in bias.iter_mut().enumerate() {
@@ -620,54 +747,43 @@ mod tests {
     }
 
     #[test]
-    fn reciprocal_division_matches_exact_rounding() {
-        let dens = [
-            1i64,
-            -1,
-            3,
-            7,
-            -255,
-            4096,
-            123_456_789,
-            -(1 << 40) + 12345,
-            (1 << 47) - 1,
-        ];
-        let nums = [
-            0i64,
-            1,
-            -1,
-            7,
-            1000,
-            -99_999,
-            1 << 30,
-            -(1 << 45) + 3,
-            (1 << 57) + 12_345,
-        ];
-        for &d in &dens {
-            let r = Reciprocal::new(d);
-            for &n in &nums {
-                let exact = n as f64 / d as f64;
-                let got = r.div(n) as f64;
-                if exact.abs() < GRAD_LIMIT as f64 {
-                    let bound = 0.5 + exact.abs() * 2f64.powi(-29);
-                    assert!((got - exact).abs() <= bound, "{n}/{d}: {got} vs {exact}");
-                } else {
-                    assert_eq!(got.abs(), GRAD_LIMIT as f64, "{n}/{d} clamps");
-                }
+    fn reciprocal_is_accurate_to_28_bits_over_the_full_range() {
+        let mut worst = 0.0f64;
+        let mut d = 1i64;
+        while d < 1 << 60 {
+            for k in [d, d + 1, d / 2 * 3 + 7, -d, -(d / 4 * 5) - 3] {
+                let r = Reciprocal::new(k);
+                let sign = if r.neg { -1.0 } else { 1.0 };
+                let got = sign * r.m as f64 * 2f64.powi(-(r.e as i32));
+                worst = worst.max((got * k as f64 - 1.0).abs());
+            }
+            d = d * 3 + 1;
+        }
+        assert!(worst < 2f64.powi(-28), "worst relative error {worst:e}");
+    }
+
+    #[test]
+    fn unsigned_wide_multiply_is_exact() {
+        for &a in &[0u32, 1, 0xffff, 0x1_0000, 0xdead_beef, u32::MAX] {
+            for &b in &[0u32, 3, 0xffff, 0x8000_0000, u32::MAX] {
+                assert_eq!(mul_wide_u(a, b), a as u64 * b as u64);
             }
         }
     }
 
     #[test]
     fn floor_division_both_paths() {
+        // Quotients are pixel columns: always within i32, numerators up to 2^47.
         for (n, d) in [
-            (7i64, 2i64),
+            (7i64, 2i32),
             (-7, 2),
             (0, 5),
-            (-(1 << 40), 3),
-            ((1 << 40) + 1, 1 << 20),
+            (-(1 << 40), 1 << 20),
+            ((1 << 46) + 1, 1 << 27),
         ] {
-            assert_eq!(div_floor(n, d), (n.div_euclid(d), n.rem_euclid(d)));
+            let (q, r) = div_floor(n, d);
+            let dd = d as i64;
+            assert_eq!((q as i64, r as i64), (n.div_euclid(dd), n.rem_euclid(dd)));
         }
     }
 }

@@ -143,7 +143,7 @@ pub struct Stats {
 /// # RAM
 ///
 /// `size_of::<Renderer>()` ≈ `LINES·W·(size_of::<C>() + 2)` (colour and depth lines)
-/// `+ 20·VERTS + 16·TRIS + 216·ACTIVE` (vertex store, triangle list, active list)
+/// `+ 20·VERTS + 16·TRIS + 164·ACTIVE` (vertex store, triangle list, active list)
 /// `+ 4·H` (row buckets and the active-count sweep) plus a few words; [`Renderer::RAM_BYTES`]
 /// is the exact figure for a given instantiation. No framebuffer, no full-screen depth buffer.
 #[derive(Debug)]
@@ -716,7 +716,7 @@ pub const fn ram_formula(
     tris: usize,
     active: usize,
 ) -> usize {
-    lines * w * (color_bytes + 2) + 20 * verts + 16 * tris + 216 * active + 4 * h
+    lines * w * (color_bytes + 2) + 20 * verts + 16 * tris + 164 * active + 4 * h
 }
 
 #[cfg(test)]

@@ -531,7 +531,21 @@ mod tests {
 
     #[test]
     fn mul_wide_is_exact() {
-        let vals = [0, 1, -1, 2, 65535, 65536, -65536, 123_456_789, -987_654_321, i32::MAX, i32::MIN, 0x7fff_0001, -0x8000];
+        let vals = [
+            0,
+            1,
+            -1,
+            2,
+            65535,
+            65536,
+            -65536,
+            123_456_789,
+            -987_654_321,
+            i32::MAX,
+            i32::MIN,
+            0x7fff_0001,
+            -0x8000,
+        ];
         for &a in &vals {
             for &b in &vals {
                 assert_eq!(mul_wide(a, b), a as i64 * b as i64, "{a} * {b}");

@@ -261,7 +261,13 @@ fn main() -> ! {
     for &scene in SCENES {
         if cfg!(feature = "profile-torus") {
             let mut null = NullTarget::<Rgb565>::new(240, 240);
-            let _ = render_bench::<Fx<I16F16>, Rgb565, _, _>(scene, 0.0, false, &mut null, &mut Markers);
+            let _ = render_bench::<Fx<I16F16>, Rgb565, _, _>(
+                scene,
+                0.0,
+                false,
+                &mut null,
+                &mut Markers,
+            );
             continue;
         }
         bench::<Fx<I16F16>>(scene);
