@@ -46,6 +46,7 @@ pub enum DepthTest {
     Always,
 }
 
+#[cfg(test)]
 /// `ceil(n / d)` for `d > 0`.
 #[inline]
 pub(crate) fn ceil_div(n: i64, d: i64) -> i64 {
@@ -422,7 +423,7 @@ impl ActiveTri {
             let mut start = [0i32; 4];
             for k in 0..self.n_attrs as usize {
                 let max = if k == 0 {
-                    (DEPTH_MAX as i32) << DEPTH_FRAC_BITS
+                    DEPTH_MAX << DEPTH_FRAC_BITS
                 } else {
                     (C::CHANNEL_MAX[k - 1] as i32) << COLOR_FRAC_BITS
                 };
