@@ -7,7 +7,7 @@
 //! Screen space: pixel (0, 0) is the top-left pixel, its centre is at (0.5, 0.5); x grows right
 //! and y grows **down**. Positions are snapped to a grid of 2⁻⁴ px ([`SUBPIXEL_BITS`]).
 
-use crate::scalar::{Scalar, NDC_FRAC_BITS};
+use crate::scalar::{mul_q32, Scalar, NDC_FRAC_BITS};
 
 /// Fraction bits of snapped screen positions: 4, i.e. 1/16 px.
 pub const SUBPIXEL_BITS: u32 = 4;
@@ -75,17 +75,16 @@ impl Viewport {
             return None;
         }
         let r = S::recip(w);
-        let half = 1i64 << (NDC_FRAC_BITS - 1);
         // x_sub = (ndc_x + 1) · width/2 · 16 = ndc_x · 8·width + 8·width.
         let (sx, sy) = (8 * self.width as i64, 8 * self.height as i64);
         let nx = S::ndc(x, r);
         let ny = S::ndc(y, r);
         let nz = S::ndc(z, r);
         let lim = COORD_LIMIT as i64 + sx.max(sy);
-        let px = ((nx.saturating_mul(sx).saturating_add(half)) >> NDC_FRAC_BITS) + sx;
-        let py = (((-ny).saturating_mul(sy).saturating_add(half)) >> NDC_FRAC_BITS) + sy;
+        let px = mul_q32(nx, sx as u32) + sx;
+        let py = mul_q32(-ny, sy as u32) + sy;
         let dz = (DEPTH_MAX as i64) << DEPTH_FRAC_BITS;
-        let pz = (nz.saturating_mul(dz).saturating_add(half)) >> NDC_FRAC_BITS;
+        let pz = mul_q32(nz.clamp(0, 1 << NDC_FRAC_BITS), dz as u32);
         Some(ScreenVertex {
             x: px.clamp(-lim, lim) as i32,
             y: py.clamp(-lim, lim) as i32,

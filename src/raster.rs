@@ -20,7 +20,7 @@
 
 use crate::color::{TargetColor, BAYER};
 use crate::project::{ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS};
-use crate::scalar::mul_wide;
+use crate::scalar::{mul_wide, recip_norm};
 
 /// Fraction bits of interpolated colour channels (channel units, so 0..=255·2²⁰ < 2²⁸ fits an
 /// `i32`; step 2⁻²⁰ of a channel unit).
@@ -67,8 +67,7 @@ pub(crate) fn first_pixel(v: i32) -> i32 {
 }
 
 /// `1/d` for a triangle's doubled area `d ≠ 0` (|d| < 2⁶²), as `±m · 2^-e` with `m` in
-/// (2²⁹, 2³⁰]: one 32-bit division for a 16-bit estimate and one Newton step to 30 bits, so no
-/// 64-bit division is needed.
+/// (2²⁹, 2³⁰] (see [`crate::scalar::recip_norm`]).
 #[derive(Copy, Clone, Debug)]
 struct Reciprocal {
     m: i32,
@@ -76,48 +75,11 @@ struct Reciprocal {
     neg: bool,
 }
 
-/// Number of significant bits of a `u64` (0 for 0), with 32-bit `leading_zeros` only.
-#[inline]
-fn bitlen64(a: u64) -> u32 {
-    let hi = (a >> 32) as u32;
-    if hi != 0 {
-        64 - hi.leading_zeros()
-    } else {
-        32 - (a as u32).leading_zeros()
-    }
-}
-
 impl Reciprocal {
     fn new(d: i64) -> Self {
-        let a = d.unsigned_abs().max(1);
-        let s = bitlen64(a);
-        // a32 in [2^31, 2^32) carries the 32 leading bits of |d|: |d| ≈ a32 · 2^(s − 32).
-        let a32 = if s > 32 {
-            (a >> (s - 32)) as u32
-        } else {
-            (a << (32 - s)) as u32
-        };
-        // Estimate 2^61 / a32 from 2^32 / (a32 >> 16) (16 significant bits), then one Newton
-        // step m' = m + m·(2^61 − a32·m)/2^61 doubles that to 30.
-        let m0 = ((u32::MAX / (a32 >> 16)) as u64) << 13;
-        let err = (1i64 << 61) - mul_wide_u(a32, m0 as u32) as i64; // |err| < 2^47
-        let m1 = m0 as i64 + ((mul_wide(m0 as i32, (err >> 30) as i32)) >> 31);
-        // 1/|d| = m1 · 2^-(61 + s − 32).
-        Reciprocal {
-            m: m1.clamp(1, 1 << 30) as i32,
-            e: 29 + s,
-            neg: d < 0,
-        }
+        let (m, e) = recip_norm(d.unsigned_abs());
+        Reciprocal { m, e, neg: d < 0 }
     }
-}
-
-/// The exact product of two `u32`, from four 16 × 16-bit products (see [`mul_wide`]).
-#[inline(always)]
-fn mul_wide_u(a: u32, b: u32) -> u64 {
-    let (al, ah) = (a & 0xffff, a >> 16);
-    let (bl, bh) = (b & 0xffff, b >> 16);
-    let mid = (ah * bl) as u64 + (al * bh) as u64;
-    (((ah * bh) as u64) << 32) + (mid << 16) + (al * bl) as u64
 }
 
 /// `(floor(n / d), n − d·floor(n / d))` for `d > 0` and a quotient that fits in `i32`: one
@@ -761,15 +723,6 @@ mod tests {
             d = d * 3 + 1;
         }
         assert!(worst < 2f64.powi(-28), "worst relative error {worst:e}");
-    }
-
-    #[test]
-    fn unsigned_wide_multiply_is_exact() {
-        for &a in &[0u32, 1, 0xffff, 0x1_0000, 0xdead_beef, u32::MAX] {
-            for &b in &[0u32, 3, 0xffff, 0x8000_0000, u32::MAX] {
-                assert_eq!(mul_wide_u(a, b), a as u64 * b as u64);
-            }
-        }
     }
 
     #[test]
