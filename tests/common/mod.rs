@@ -2,6 +2,8 @@
 //! often each pixel is written, PNG golden files, and scenes placed in screen coordinates.
 #![allow(dead_code)]
 
+pub mod compare;
+
 use std::path::PathBuf;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
