@@ -1,0 +1,353 @@
+//! Fixed point against float, speed against error: for each benchmark scene and each number type
+//! the pipeline supports, the error against the f64 twin — (a) on the tested type's own snapped
+//! geometry, isolating arithmetic error, and (b) with f64's own geometry, the whole error a user
+//! sees — and the host time per frame. Prints a table marking the Pareto front and writes
+//! `target/compare/report.md`, `target/compare/report.json` and
+//! `target/compare/speed_vs_error.png`. Cortex-M instruction counts are added from
+//! `target/mcu-bench/report.json` when `scripts/mcu-bench` has been run.
+//!
+//! `cargo run --release --example compare [-- --runs N]`
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+use common::compare::{compare, Row};
+use plotters::prelude::*;
+use scanline3d::demo::Bench;
+use scanline3d::fixed::types::{I12F20, I16F16, I20F12};
+use scanline3d::Fx;
+use serde_json::{json, Value};
+
+const NUMBERS: [&str; 6] = ["f64", "f32", "I16F16", "I20F12", "I12F20", "micromath-f32"];
+
+fn rows_for(b: Bench, runs: usize) -> Vec<Row> {
+    let mut v = Vec::new();
+    v.extend(compare::<f64>(b, runs));
+    v.extend(compare::<f32>(b, runs));
+    v.extend(compare::<Fx<I16F16>>(b, runs));
+    v.extend(compare::<Fx<I20F12>>(b, runs));
+    v.extend(compare::<Fx<I12F20>>(b, runs));
+    v.extend(compare::<micromath::F32>(b, runs));
+    v
+}
+
+/// Instructions per frame from the MCU benchmark report, by (scene, number, core).
+fn mcu_instructions() -> BTreeMap<(String, String, String), u64> {
+    let mut m = BTreeMap::new();
+    let Ok(text) = std::fs::read_to_string("target/mcu-bench/report.json") else {
+        return m;
+    };
+    let Ok(Value::Array(rows)) = serde_json::from_str::<Value>(&text) else {
+        return m;
+    };
+    for r in rows {
+        if let (Some(s), Some(n), Some(c), Some(i)) = (
+            r["scene"].as_str(),
+            r["number"].as_str(),
+            r["core"].as_str(),
+            r["instructions"].as_u64(),
+        ) {
+            m.insert((s.to_string(), n.to_string(), c.to_string()), i);
+        }
+    }
+    m
+}
+
+/// Pareto front per scene on the whole-error rows: no other type is both faster and more
+/// accurate (lower mean absolute error, ties broken by fewer coverage and depth mismatches).
+fn pareto(rows: &[Row]) -> Vec<bool> {
+    let err = |r: &Row| {
+        (
+            r.metrics.mean_abs(),
+            r.metrics.coverage_mismatch + r.metrics.depth_mismatch,
+        )
+    };
+    rows.iter()
+        .map(|r| {
+            r.reference == "f64"
+                && !rows.iter().any(|o| {
+                    o.reference == "f64"
+                        && o.scene == r.scene
+                        && o.number != r.number
+                        && o.host_ns_per_frame < r.host_ns_per_frame
+                        && err(o) <= err(r)
+                })
+        })
+        .collect()
+}
+
+fn main() {
+    let mut runs = 15;
+    let mut publish = false;
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        match a.as_str() {
+            "--runs" => {
+                runs = args
+                    .next()
+                    .and_then(|v| v.parse().ok())
+                    .unwrap_or_else(|| fail("--runs needs a number"))
+            }
+            "--publish" => publish = true,
+            "--help" | "-h" => {
+                println!("usage: compare [--runs N] [--publish]");
+                println!("  --runs N    timed frames per scene and number type (default 15)");
+                println!(
+                    "  --publish   also copy the report and plot to docs/ (linked from the README)"
+                );
+                return;
+            }
+            other => fail(&format!("unknown argument {other:?}")),
+        }
+    }
+    let rows: Vec<Row> = Bench::ALL
+        .into_iter()
+        .flat_map(|b| rows_for(b, runs))
+        .collect();
+    let front = pareto(&rows);
+    let mcu = mcu_instructions();
+    let mcu_of = |r: &Row, core: &str| {
+        mcu.get(&(r.scene.to_string(), r.number.to_string(), core.to_string()))
+            .copied()
+    };
+
+    // Table.
+    let mut table = String::new();
+    let _ = writeln!(
+        table,
+        "| scene | number | reference | max LSB (r,g,b) | mean abs LSB | PSNR dB | coverage mismatch | depth-order mismatch | host µs/frame | M0 instr. | M4F instr. | Pareto |"
+    );
+    let _ = writeln!(
+        table,
+        "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|"
+    );
+    for (r, f) in rows.iter().zip(front.iter()) {
+        let m = &r.metrics;
+        let mcu_cell = |c: &str| mcu_of(r, c).map_or("".to_string(), |i| i.to_string());
+        let _ = writeln!(
+            table,
+            "| {} | {} | {} | {:?} | {:.4} | {} | {} | {} | {:.1} | {} | {} | {} |",
+            r.scene,
+            r.number,
+            r.reference,
+            m.max_lsb,
+            m.mean_abs(),
+            if m.psnr_db().is_finite() {
+                format!("{:.1}", m.psnr_db())
+            } else {
+                "∞".into()
+            },
+            m.coverage_mismatch,
+            m.depth_mismatch,
+            r.host_ns_per_frame / 1e3,
+            if r.reference == "f64" {
+                mcu_cell("m0")
+            } else {
+                String::new()
+            },
+            if r.reference == "f64" {
+                mcu_cell("m4f")
+            } else {
+                String::new()
+            },
+            if *f { "★" } else { "" },
+        );
+    }
+    println!("{table}");
+
+    let out = std::path::Path::new("target/compare");
+    std::fs::create_dir_all(out).unwrap_or_else(|e| fail(&e.to_string()));
+    // JSON: one object per scene × number type × reference.
+    let json: Vec<Value> = rows
+        .iter()
+        .zip(front.iter())
+        .map(|(r, f)| {
+            let m = &r.metrics;
+            json!({
+                "scene": r.scene,
+                "number": r.number,
+                "reference": r.reference,
+                "psnr_db": if m.psnr_db().is_finite() { json!(m.psnr_db()) } else { Value::Null },
+                "max_lsb": m.max_lsb,
+                "mean_abs": m.mean_abs(),
+                "differing_pixels": m.differing,
+                "coverage_mismatch": m.coverage_mismatch,
+                "depth_mismatch": m.depth_mismatch,
+                "host_ns_per_frame": r.host_ns_per_frame,
+                "m0_instructions": mcu_of(r, "m0"),
+                "m4f_instructions": mcu_of(r, "m4f"),
+                "pareto": f,
+            })
+        })
+        .collect();
+    std::fs::write(
+        out.join("report.json"),
+        serde_json::to_string_pretty(&json).unwrap_or_default(),
+    )
+    .unwrap_or_else(|e| fail(&e.to_string()));
+
+    // What dominates each reference.
+    let worst = |reference: &str, number: &str| {
+        rows.iter()
+            .filter(|r| r.reference == reference && r.number == number)
+            .map(|r| {
+                (
+                    r.metrics.max_lsb.into_iter().max().unwrap_or(0),
+                    r.metrics.coverage_mismatch,
+                    r.metrics.depth_mismatch,
+                )
+            })
+            .fold((0, 0, 0), |a, b| (a.0.max(b.0), a.1 + b.1, a.2 + b.2))
+    };
+    let (a_lsb, a_cov, a_depth) = worst("f64-same-geometry", "I16F16");
+    let (b_lsb, b_cov, b_depth) = worst("f64", "I16F16");
+    let mut md = String::new();
+    let _ = writeln!(md, "# Fixed point against float\n");
+    let _ = writeln!(
+        md,
+        "Generated by `cargo run --release --example compare` ({runs} timed frames per cell, median). 240 × 240 RGB565; errors in RGB565 LSB (5/6/5 bits) against the f64 twin of the pipeline; reference `f64-same-geometry` renders f64 on the tested type's own snapped vertex positions (arithmetic error only), `f64` lets f64 snap its own (the whole error a user sees). Colour error is measured where both images drew the same triangle; coverage and depth-order mismatches (found by rendering triangle ids) are counted apart. ★ marks the Pareto front per scene: no other type is both faster on the host and more accurate.\n"
+    );
+    let _ = writeln!(
+        md,
+        "**What dominates.** On the same geometry, I16F16 stays within {a_lsb} LSB with {a_cov} coverage and {a_depth} depth-order mismatches over all scenes: what is left is vertex lighting rounded in Q16.16, which flips a channel by one step where the exact value sits near a rounding boundary. Against f64's own geometry the worst channel error is {b_lsb} LSB with {b_cov} coverage and {b_depth} depth-order mismatches: that difference is dominated by snapping — a vertex whose exact position lies near a 1/16-px boundary snaps to the neighbouring grid point, which moves silhouette pixels (coverage) and the shading of the pixels next to them.\n"
+    );
+    md.push_str(&table);
+    std::fs::write(out.join("report.md"), md).unwrap_or_else(|e| fail(&e.to_string()));
+
+    if let Err(e) = plot(&rows, &mcu, &out.join("speed_vs_error.png")) {
+        fail(&format!("plot: {e}"));
+    }
+    println!("wrote target/compare/report.md, report.json and speed_vs_error.png");
+    if publish {
+        let copy = |from: &str, to: &str| {
+            std::fs::copy(out.join(from), to)
+                .map(|_| ())
+                .unwrap_or_else(|e| fail(&format!("{to}: {e}")))
+        };
+        std::fs::create_dir_all("docs").unwrap_or_else(|e| fail(&e.to_string()));
+        copy("report.md", "docs/COMPARE.md");
+        copy("speed_vs_error.png", "docs/speed_vs_error.png");
+        println!("published docs/COMPARE.md and docs/speed_vs_error.png");
+    }
+}
+
+/// Errors of exactly zero are drawn at this floor of the log axis.
+const ZERO_FLOOR: f64 = 1e-5;
+
+fn plot(
+    rows: &[Row],
+    mcu: &BTreeMap<(String, String, String), u64>,
+    path: &std::path::Path,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let pts: Vec<&Row> = rows.iter().filter(|r| r.reference == "f64").collect();
+    let err = |r: &Row| r.metrics.mean_abs().max(ZERO_FLOOR);
+    let ymax = pts.iter().map(|r| err(r)).fold(0.01, f64::max) * 2.0;
+    let root = BitMapBackend::new(path, (1280, 620)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let (title, body) = root.split_vertically(40);
+    title.titled(
+        "scanline3d: speed against error vs the f64 twin (240×240 RGB565, one point per scene × number type)",
+        ("sans-serif", 20),
+    )?;
+    let (left, right) = body.split_horizontally(640);
+    let palette = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
+    // Left: host time.
+    let xmax = pts
+        .iter()
+        .map(|r| r.host_ns_per_frame / 1e3)
+        .fold(1.0, f64::max)
+        * 1.1;
+    let mut chart = ChartBuilder::on(&left)
+        .caption("host (x86-64), median µs per frame", ("sans-serif", 16))
+        .margin(12)
+        .x_label_area_size(44)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..xmax, (ZERO_FLOOR..ymax).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("µs per frame")
+        .y_desc("mean abs. error, RGB565 LSB (0 drawn at 1e-5)")
+        .draw()?;
+    for (k, number) in NUMBERS.iter().enumerate() {
+        let color = palette[k % palette.len()];
+        let series: Vec<(f64, f64, &str)> = pts
+            .iter()
+            .filter(|r| r.number == *number)
+            .map(|r| (r.host_ns_per_frame / 1e3, err(r), r.scene))
+            .collect();
+        chart
+            .draw_series(
+                series
+                    .iter()
+                    .map(|&(x, y, _)| Circle::new((x, y), 5, color.filled())),
+            )?
+            .label(*number)
+            .legend(move |(x, y)| Circle::new((x, y), 5, color.filled()));
+        chart.draw_series(series.iter().map(|&(x, y, s)| {
+            Text::new(
+                s.to_string(),
+                (x, y * 1.25),
+                ("sans-serif", 11).into_font().color(&color),
+            )
+        }))?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()?;
+    // Right: Cortex-M0 instructions, where the MCU benchmark has run.
+    let m0: Vec<(f64, f64, &str, &str)> = pts
+        .iter()
+        .filter_map(|r| {
+            mcu.get(&(r.scene.to_string(), r.number.to_string(), "m0".to_string()))
+                .map(|&i| (i as f64 / 1e6, err(r), r.scene, r.number))
+        })
+        .collect();
+    let xmax = m0.iter().map(|p| p.0).fold(1.0, f64::max) * 1.1;
+    let mut chart = ChartBuilder::on(&right)
+        .caption(
+            if m0.is_empty() {
+                "Cortex-M0: run scripts/mcu-bench first"
+            } else {
+                "Cortex-M0 (QEMU, exact), M instructions per frame"
+            },
+            ("sans-serif", 16),
+        )
+        .margin(12)
+        .x_label_area_size(44)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..xmax, (ZERO_FLOOR..ymax).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc("million instructions per frame")
+        .y_desc("mean abs. error, RGB565 LSB")
+        .draw()?;
+    for (k, number) in NUMBERS.iter().enumerate() {
+        let color = palette[k % palette.len()];
+        let series: Vec<_> = m0.iter().filter(|p| p.3 == *number).collect();
+        chart.draw_series(
+            series
+                .iter()
+                .map(|p| Circle::new((p.0, p.1), 5, color.filled())),
+        )?;
+        chart.draw_series(series.iter().map(|p| {
+            Text::new(
+                p.2.to_string(),
+                (p.0, p.1 * 1.25),
+                ("sans-serif", 11).into_font().color(&color),
+            )
+        }))?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+fn fail(msg: &str) -> ! {
+    eprintln!("compare: {msg}");
+    std::process::exit(2);
+}
