@@ -106,7 +106,7 @@ pub use color::{TargetColor, TriangleId};
 pub use math::{Mat4, Vec3};
 pub use mesh::{Mesh, MeshError};
 pub use raster::DepthTest;
-pub use renderer::{Capacity, Error, NoProbe, Probe, Renderer, Stage, Stats};
+pub use renderer::{Capacity, Error, NoProbe, Probe, Renderer, Stage, Stats, StripCanvas};
 pub use scalar::{Fx, Scalar};
 pub use scene::{Object, Scene};
 pub use shade::{Light, Material, Shading};

@@ -3,8 +3,10 @@
 use core::marker::PhantomData;
 
 use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Point, Size};
+use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
+use embedded_graphics_core::pixelcolor::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
+use embedded_graphics_core::{Drawable, Pixel};
 use heapless::Vec;
 
 use crate::clip::{clip_triangle, outcode, ClipVertex, NEEDS_CLIP};
@@ -22,6 +24,44 @@ const INVALID: u16 = 1 << 7;
 const PROJECTED: u16 = 1 << 8;
 const LIT: u16 = 1 << 9;
 const NONE: u16 = u16::MAX;
+
+/// The strip being rendered, as a draw target covering the whole `W × H` screen: pixels outside
+/// the strip's rows are ignored. [`Renderer::render_overlaid`] hands it to an overlay
+/// [`Drawable`] after the 3D content of each strip is drawn and before the strip is sent, so that
+/// text or a HUD is composed into the lines instead of being drawn over the finished frame
+/// (no flicker on a display without a framebuffer).
+#[derive(Debug)]
+pub struct StripCanvas<'a, C, const W: usize> {
+    lines: &'a mut [[C; W]],
+    y0: usize,
+    height: u32,
+}
+
+impl<C, const W: usize> OriginDimensions for StripCanvas<'_, C, W> {
+    fn size(&self) -> Size {
+        Size::new(W as u32, self.height)
+    }
+}
+
+impl<C: PixelColor, const W: usize> DrawTarget for StripCanvas<'_, C, W> {
+    type Color = C;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
+        for Pixel(p, c) in pixels {
+            if p.x < 0 || p.y < self.y0 as i32 || p.x as usize >= W {
+                continue;
+            }
+            if let Some(line) = self.lines.get_mut(p.y as usize - self.y0) {
+                line[p.x as usize] = c;
+            }
+        }
+        Ok(())
+    }
+}
 
 /// Which compile-time capacity a scene exceeded.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -320,6 +360,31 @@ impl<
         D: DrawTarget<Color = C>,
     {
         self.render_probed(scene, target, &mut NoProbe)
+    }
+
+    /// [`Renderer::render`] with `overlay` (text, a HUD, any embedded-graphics [`Drawable`])
+    /// composed into every strip after the 3D content and before the strip is sent. The
+    /// overlay is drawn once per strip, clipped to it, so its cost grows with the number of
+    /// strips: keep overlays small (a line of text) or use a taller strip.
+    pub fn render_overlaid<D, O, const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        target: &mut D,
+        overlay: &O,
+    ) -> Result<Stats, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+        O: Drawable<Color = C>,
+    {
+        let mut probe = NoProbe;
+        self.geometry(scene, &mut probe)?;
+        while self
+            .strip(target, &mut probe, |canvas| {
+                let _ = overlay.draw(canvas);
+            })?
+            .is_some()
+        {}
+        Ok(self.stats)
     }
 
     /// [`Renderer::render`], reporting each stage change to `probe`.
@@ -693,6 +758,20 @@ impl<
         D: DrawTarget<Color = C>,
         P: Probe,
     {
+        self.strip(target, probe, |_| {})
+    }
+
+    fn strip<D, P, F>(
+        &mut self,
+        target: &mut D,
+        probe: &mut P,
+        mut overlay: F,
+    ) -> Result<Option<core::ops::Range<usize>>, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+        P: Probe,
+        F: FnMut(&mut StripCanvas<'_, C, W>),
+    {
         let y0 = self.next_row;
         if y0 >= H {
             return Ok(None);
@@ -735,6 +814,11 @@ impl<
             }
         }
         self.next_row = y0 + lines;
+        overlay(&mut StripCanvas {
+            lines: &mut self.color[..lines],
+            y0,
+            height: H as u32,
+        });
         let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(W as u32, lines as u32));
         probe.enter(Stage::Output);
         let result = target.fill_contiguous(&area, self.color[..lines].iter().flatten().copied());

@@ -417,3 +417,31 @@ fn dithering_stays_within_one_lsb_and_breaks_up_bands() {
     assert!(max.iter().all(|&m| m <= 1), "{max:?}");
     assert!(differ > 5000, "dithering changed only {differ} pixels");
 }
+
+fn overlay_matches_text_drawn_on_top<const LINES: usize>() {
+    use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
+    use embedded_graphics::prelude::*;
+    use embedded_graphics::text::Text;
+    let shape = demo::torus::<Q>().unwrap();
+    let objects = [demo::torus_object(&shape)];
+    let scene = Scene::new(&objects, demo::camera().unwrap(), demo::lights());
+    let style = MonoTextStyle::new(&FONT_6X10, Rgb565::WHITE);
+    // Straddles strip boundaries for every strip height.
+    let text = Text::new("60.0 fps  1024 tris", Point::new(4, 13), style);
+    let mut r: Box<Renderer<Q, Rgb565, 240, 240, 512, 512, 64, LINES>> = Box::default();
+    let mut plain = frame::<Rgb565>(240, 240);
+    r.render(&scene, &mut plain).unwrap();
+    text.draw(&mut plain).unwrap();
+    let mut overlaid = frame::<Rgb565>(240, 240);
+    r.render_overlaid(&scene, &mut overlaid, &text).unwrap();
+    overlaid.assert_each_written_once();
+    assert_eq!(overlaid.px, plain.px, "LINES = {LINES}");
+    assert!(overlaid.px.iter().filter(|&&c| c == Rgb565::WHITE).count() > 50);
+}
+
+#[test]
+fn overlay_is_composed_into_the_strips() {
+    overlay_matches_text_drawn_on_top::<1>();
+    overlay_matches_text_drawn_on_top::<4>();
+    overlay_matches_text_drawn_on_top::<7>();
+}
