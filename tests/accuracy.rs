@@ -57,3 +57,52 @@ fn fixed_i16f16_within_one_lsb_of_f64_on_same_geometry() {
 fn f32_within_one_lsb_of_f64_on_same_geometry() {
     check::<f32>();
 }
+
+/// The device path: two renderers (fixed point and f64) prepared on the same scene and drawn
+/// strip by strip, side by side, into two one-strip captures; the line-by-line metrics equal the
+/// whole-frame comparison.
+#[test]
+fn strip_by_strip_comparison_in_o_width_memory() {
+    use common::Frame;
+    use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    use scanline3d::demo;
+    use scanline3d::metrics::{Metrics, StripCapture};
+    use scanline3d::{Renderer, Scene};
+    type Q = Fx<I16F16>;
+    let sq = demo::torus::<Q>().unwrap();
+    let sf = demo::torus::<f64>().unwrap();
+    let oq = [demo::torus_object(&sq)];
+    let of = [demo::torus_object(&sf)];
+    let scene_q = Scene::new(&oq, demo::camera().unwrap(), demo::lights());
+    let scene_f = Scene::new(&of, demo::camera().unwrap(), demo::lights());
+    let mut rq: Box<Renderer<Q, Rgb565, 240, 240, 512, 512, 64, 3>> = Box::default();
+    let mut rf: Box<Renderer<f64, Rgb565, 240, 240, 512, 512, 64, 3>> = Box::default();
+    rq.prepare(&scene_q).unwrap();
+    rf.prepare(&scene_f).unwrap();
+    let mut cq = StripCapture::<Rgb565, 240, 3>::new(240, Rgb565::BLACK);
+    let mut cf = StripCapture::<Rgb565, 240, 3>::new(240, Rgb565::BLACK);
+    let mut m = Metrics::new([31, 63, 31]);
+    while let Some(rows) = rq.render_strip(&mut cq).unwrap() {
+        assert_eq!(rf.render_strip(&mut cf).unwrap(), Some(rows.clone()));
+        for k in 0..rows.len() {
+            m.add_line(cq.line(k), cf.line(k), Rgb565::BLACK);
+        }
+    }
+    assert_eq!(rf.render_strip(&mut cf).unwrap(), None);
+    // The same comparison on whole frames.
+    let mut fq = Frame::new(240, 240, Rgb565::BLACK);
+    let mut ff = Frame::new(240, 240, Rgb565::BLACK);
+    rq.render(&scene_q, &mut fq).unwrap();
+    rf.render(&scene_f, &mut ff).unwrap();
+    let mut whole = Metrics::new([31, 63, 31]);
+    for y in 0..240 {
+        whole.add_line(
+            &fq.px[y * 240..(y + 1) * 240],
+            &ff.px[y * 240..(y + 1) * 240],
+            Rgb565::BLACK,
+        );
+    }
+    assert_eq!(m, whole);
+    assert_eq!(m.pixels, 240 * 240);
+    assert!(m.max_lsb.iter().all(|&x| x <= 2), "{:?}", m.max_lsb);
+}
