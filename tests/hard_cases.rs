@@ -1,0 +1,265 @@
+//! The numerical hard cases where fixed-point renderers fail: each renders with the fixed-point
+//! type and with f32, compares with the f64 twin (on the same snapped positions where coverage is
+//! concerned) and states its bound in its name or message. Worst errors are printed
+//! (`cargo test --release --test hard_cases -- --nocapture`).
+
+mod common;
+
+use common::compare::{Record, Replay};
+use common::{screen_camera, unlit, Frame};
+use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+use scanline3d::demo::deg;
+use scanline3d::fixed::types::I16F16;
+use scanline3d::prelude::*;
+use scanline3d::{Probe, Stats, TriangleId};
+
+type Q = Fx<I16F16>;
+const W: usize = 64;
+const H: usize = 64;
+type R<S, C> = Renderer<S, C, W, H, 256, 256, 64>;
+
+/// A triangle in screen pixels (x right, y down) at world depth z, with a colour.
+#[derive(Copy, Clone, Debug)]
+struct Tri {
+    p: [[f64; 2]; 3],
+    z: [f64; 3],
+    color: [u8; 3],
+}
+
+/// A front-facing triangle (its vertices reordered if needed) at depth 0.
+fn tri(p: [[f64; 2]; 3], color: [u8; 3]) -> Tri {
+    let [a, b, c] = p;
+    let area = (c[0] - a[0]) * (b[1] - a[1]) - (b[0] - a[0]) * (c[1] - a[1]);
+    let p = if area >= 0.0 { p } else { [a, c, b] };
+    Tri { p, z: [0.0; 3], color }
+}
+
+/// A triangle exactly as given (it may be culled).
+fn raw(p: [[f64; 2]; 3], color: [u8; 3]) -> Tri {
+    Tri { p, z: [0.0; 3], color }
+}
+
+/// Renders screen-space triangles (each its own object, unlit flat colour, orthographic screen
+/// camera) with number type `S` into a `W × H` frame; `probe` sees the snapped vertices.
+fn draw<S: Scalar, C: TargetColor, P: Probe>(tris: &[Tri], test: DepthTest, probe: &mut P) -> (Frame<C>, Stats) {
+    let pos: Vec<[[S; 3]; 3]> = tris
+        .iter()
+        .map(|t| [0, 1, 2].map(|k| common::at::<S>(W as u32, H as u32, t.p[k][0], t.p[k][1], t.z[k])))
+        .collect();
+    static IDX: [[u16; 3]; 1] = [[0, 1, 2]];
+    let objects: Vec<Object<S>> = tris
+        .iter()
+        .zip(pos.iter())
+        .map(|(t, p)| Object {
+            mesh: Mesh::new(p, &IDX).unwrap(),
+            transform: Mat4::identity(),
+            material: unlit(t.color, Shading::Flat),
+        })
+        .collect();
+    let scene = Scene::new(&objects, screen_camera::<S>(H as u32), [Light::white([S::ZERO, S::ZERO, S::ONE])]);
+    let mut r: Box<R<S, C>> = Box::default();
+    r.set_depth_test(test);
+    let mut f = Frame::new(W as u32, H as u32, C::from_channels([0; 3]));
+    let stats = r.render_probed(&scene, &mut f, probe).unwrap();
+    f.assert_each_written_once();
+    (f, stats)
+}
+
+/// Coverage (triangle ids) of `S` and of f64 on `S`'s snapped positions: must be identical.
+fn same_coverage_as_f64<S: Scalar>(tris: &[Tri], what: &str) -> (Frame<TriangleId>, Stats) {
+    let mut rec = Record::default();
+    let (ids, stats) = draw::<S, TriangleId, _>(tris, DepthTest::Less, &mut rec);
+    let mut rp = Replay { snaps: &rec.0, diverged: 0 };
+    let (ref_ids, _) = draw::<f64, TriangleId, _>(tris, DepthTest::Less, &mut rp);
+    assert_eq!(rp.diverged, 0, "{what} {}: geometry diverged", S::NAME);
+    let diff = ids.px.iter().zip(ref_ids.px.iter()).filter(|(a, b)| a != b).count();
+    assert_eq!(diff, 0, "{what} {}: coverage differs from f64 on the same snapped positions at {diff} pixels (bound 0)", S::NAME);
+    (ids, stats)
+}
+
+/// Exact integer reference for the top-left rule: is the centre of pixel (px, py) covered by
+/// the triangle with snapped vertices `v` (subpixels, y down, any winding)?
+fn reference_covers(v: [(i64, i64); 3], px: i64, py: i64) -> bool {
+    let (cx, cy) = (16 * px + 8, 16 * py + 8);
+    let area = (v[1].0 - v[0].0) * (v[2].1 - v[0].1) - (v[2].0 - v[0].0) * (v[1].1 - v[0].1);
+    if area == 0 {
+        return false;
+    }
+    // Orient clockwise on a y-down screen (interior to the right of each edge a→b).
+    let v = if area > 0 { v } else { [v[0], v[2], v[1]] };
+    (0..3).all(|k| {
+        let (a, b) = (v[k], v[(k + 1) % 3]);
+        let e = (b.0 - a.0) * (cy - a.1) - (b.1 - a.1) * (cx - a.0);
+        // Top edge: horizontal, interior below (going right); left edge: going up.
+        let top = a.1 == b.1 && b.0 > a.0;
+        let left = b.1 < a.1;
+        e > 0 || (e == 0 && (top || left))
+    })
+}
+
+fn snap(p: [f64; 2]) -> (i64, i64) {
+    ((p[0] * 16.0).round() as i64, (p[1] * 16.0).round() as i64)
+}
+
+// ---------------------------------------------------------------- 1. fill rule
+
+fn tiny_triangles_match_the_integer_reference<S: Scalar>() {
+    // Four 3/16-px triangles (one per direction) around the centre of pixel (20, 20), each
+    // shifted by −1, 0, +1 sixteenths in x and y: 36 cases, compared pixel by pixel.
+    let c = [20.5, 20.5];
+    let s = 3.0 / 16.0;
+    let shapes: [[[f64; 2]; 3]; 4] = [
+        [[-s, -s], [s, -s], [0.0, s]],
+        [[-s, s], [0.0, -s], [s, s]],
+        [[-s, -s], [s, 0.0], [-s, s]],
+        [[s, -s], [s, s], [-s, 0.0]],
+    ];
+    let mut cases = 0;
+    for shape in shapes {
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                let p = shape.map(|q| [c[0] + q[0] + dx as f64 / 16.0, c[1] + q[1] + dy as f64 / 16.0]);
+                let t = tri(p, [255, 255, 255]);
+                let (ids, _) = same_coverage_as_f64::<S>(&[t], "3/16-px triangle");
+                let v = p.map(snap);
+                for py in 15..26 {
+                    for px in 15..26 {
+                        let got = ids.get(px, py).0 != 0;
+                        assert_eq!(got, reference_covers(v, px as i64, py as i64), "{} case {cases}: pixel ({px}, {py})", S::NAME);
+                    }
+                }
+                cases += 1;
+            }
+        }
+    }
+    assert_eq!(cases, 36);
+}
+
+fn random_triangles_match_the_integer_reference<S: Scalar>() {
+    // Deterministic pseudo-random triangles on the 1/16-px grid: coverage equals the exact
+    // edge-function reference at every pixel (bound: 0 differences).
+    let mut seed = 0x2545_f491_u32;
+    let mut next = |m: u32| {
+        seed ^= seed << 13;
+        seed ^= seed >> 17;
+        seed ^= seed << 5;
+        seed % m
+    };
+    for case in 0..400 {
+        // Half the cases on a half-pixel grid, where pixel centres fall exactly on edges and
+        // horizontal edges on centre rows: the fill rule's boundary cases.
+        let step = if case % 2 == 0 { 16.0 } else { 2.0 };
+        let n = (60.0 * step) as u32;
+        let p = [0; 3].map(|_| [next(n) as f64 / step + 2.0, next(n) as f64 / step + 2.0]);
+        let (ids, _) = same_coverage_as_f64::<S>(&[raw(p, [9, 9, 9])], "random triangle");
+        let v = p.map(snap);
+        for py in 0..H {
+            for px in 0..W {
+                let got = ids.get(px as u32, py as u32).0 != 0;
+                // Back faces are culled: the reference counts only front-facing ones.
+                let area = (v[2].0 - v[0].0) * (v[1].1 - v[0].1) - (v[1].0 - v[0].0) * (v[2].1 - v[0].1);
+                let want = area > 0 && reference_covers(v, px as i64, py as i64);
+                assert_eq!(got, want, "{} case {case} {p:?}: pixel ({px}, {py})", S::NAME);
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------- 2. slivers and degenerates
+
+fn slivers_and_degenerates<S: Scalar>() {
+    // 0.1 × 60 px sliver strictly between the centre columns 3.5 and 4.5: nothing.
+    let t = tri([[3.7, 1.0], [3.8, 61.0], [3.7, 61.0]], [1, 2, 3]);
+    let (ids, s) = same_coverage_as_f64::<S>(&[t], "0.1-px sliver");
+    assert!(ids.px.iter().all(|i| i.0 == 0), "{}: a sliver between centres drew pixels", S::NAME);
+    assert_eq!(s.pixels_written, 0);
+    // A long vertical edge exactly on the centres of column 10 (x = 10.5): drawn as a left edge,
+    // not as a right edge.
+    let left = tri([[10.5, 1.0], [10.5, 61.0], [20.0, 31.0]], [5, 5, 5]);
+    let right = tri([[10.5, 1.0], [1.0, 31.0], [10.5, 61.0]], [5, 5, 5]);
+    for (t, as_left) in [(left, true), (right, false)] {
+        let (ids, _) = same_coverage_as_f64::<S>(&[t], "edge on a centre column");
+        for y in 2..60 {
+            assert_eq!(ids.get(10, y).0 != 0, as_left, "{}: row {y}, left edge {as_left}", S::NAME);
+        }
+    }
+    // Zero area after snapping (all three vertices within 1/32 px of one grid point, and a
+    // collinear one): nothing drawn, counted as degenerate, no panic.
+    for p in [[[5.01, 5.01], [5.02, 5.0], [5.0, 5.02]], [[1.0, 1.0], [30.0, 30.0], [60.0, 60.0]]] {
+        let (ids, s) = same_coverage_as_f64::<S>(&[tri(p, [7, 7, 7])], "zero-area triangle");
+        assert!(ids.px.iter().all(|i| i.0 == 0));
+        assert_eq!((s.degenerate, s.drawn), (1, 0), "{}: {s:?}", S::NAME);
+    }
+}
+
+// ---------------------------------------------------------------- 3. facing
+
+fn facing_is_decided_on_snapped_positions<S: Scalar>() {
+    // Float area (front-facing orientation) is +0.001 px²; snapped, the middle vertex moves to
+    // the other side: culled.
+    let p = [[0.5, 0.5], [10.5, 0.53], [20.5, 0.5599]];
+    let float_area = (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]) - (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]);
+    assert!(float_area > 0.0);
+    let (_, s) = draw::<S, Rgb565, _>(&[raw(p, [1, 1, 1])], DepthTest::Less, &mut scanline3d::NoProbe);
+    assert_eq!((s.culled, s.drawn), (1, 0), "{}: {s:?}", S::NAME);
+}
+
+// ---------------------------------------------------------------- 4 & 5. range
+
+fn far_off_screen_vertices<S: Scalar>(reach: f64) {
+    // A triangle whose vertices lie `reach` px off-screen covers the whole screen: every pixel
+    // drawn, once, as by f64 on the same geometry.
+    let t = tri([[-reach, -reach], [3.0 * reach, -reach], [-reach, 3.0 * reach]], [200, 100, 50]);
+    let (ids, s) = same_coverage_as_f64::<S>(&[t], "far off-screen vertices");
+    assert!(ids.px.iter().all(|i| i.0 != 0), "{} reach {reach}: {s:?}", S::NAME);
+    assert_eq!(s.fragments as usize, W * H);
+}
+
+fn rotated_quad_with_corners_off_screen<S: Scalar>() {
+    for k in 0..15 {
+        let a = deg::<f64>(k as f64 * 6.0 + 1.0);
+        let (sn, cs) = (a.sin(), a.cos());
+        let r = 80.0;
+        let c = [W as f64 / 2.0, H as f64 / 2.0];
+        let corner = |u: f64, v: f64| [c[0] + r * (u * cs - v * sn), c[1] + r * (u * sn + v * cs)];
+        let q = [corner(-1.0, -1.0), corner(1.0, -1.0), corner(1.0, 1.0), corner(-1.0, 1.0)];
+        let tris = [tri([q[0], q[1], q[2]], [1, 0, 0]), tri([q[0], q[2], q[3]], [0, 1, 0])];
+        let (ids, s) = same_coverage_as_f64::<S>(&tris, "rotated quad");
+        assert!(ids.px.iter().all(|i| i.0 != 0), "{} angle {k}: gap", S::NAME);
+        assert_eq!(s.fragments as usize, W * H, "{} angle {k}: a pixel drawn twice", S::NAME);
+    }
+}
+
+macro_rules! both {
+    ($($name:ident),*) => {$(
+        mod $name {
+            use super::*;
+            #[test]
+            fn fixed_i16f16() {
+                super::$name::<Q>();
+            }
+            #[test]
+            fn float_f32() {
+                super::$name::<f32>();
+            }
+        }
+    )*};
+}
+
+both!(
+    tiny_triangles_match_the_integer_reference,
+    random_triangles_match_the_integer_reference,
+    slivers_and_degenerates,
+    facing_is_decided_on_snapped_positions,
+    rotated_quad_with_corners_off_screen
+);
+
+#[test]
+fn vertices_1000_and_100000_px_off_screen_equal_the_reference() {
+    for reach in [1000.0, 100_000.0] {
+        far_off_screen_vertices::<f32>(reach);
+    }
+    // In the screen camera one world unit is one pixel, so Q16.16 (±32768) reaches 1000 px;
+    // 100 000 px is tested with a camera of 2 world units per screen below.
+    far_off_screen_vertices::<Q>(1000.0);
+}
