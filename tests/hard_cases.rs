@@ -263,3 +263,130 @@ fn vertices_1000_and_100000_px_off_screen_equal_the_reference() {
     // 100 000 px is tested with a camera of 2 world units per screen below.
     far_off_screen_vertices::<Q>(1000.0);
 }
+
+// ---------------------------------------------------------------- world-space helpers
+
+/// Renders world-space triangles (one object, flat or Gouraud with the given per-vertex colours
+/// through an unlit material) seen by `camera`, into a `W × H` frame.
+#[allow(clippy::too_many_arguments)]
+fn draw_world<S: Scalar, C: TargetColor, P: Probe>(
+    pos: &[[f64; 3]],
+    idx: &[[u16; 3]],
+    camera: Camera<S>,
+    color: [u8; 3],
+    test: DepthTest,
+    dither: bool,
+    probe: &mut P,
+) -> (Frame<C>, Stats) {
+    let p: Vec<[S; 3]> = pos.iter().map(|v| v.map(S::from_f64)).collect();
+    let n: Vec<[S; 3]> = pos.iter().map(|_| [S::ZERO, S::ZERO, S::ONE]).collect();
+    let objects = [Object {
+        mesh: Mesh::new(&p, idx).unwrap().with_normals(&n).unwrap(),
+        transform: Mat4::identity(),
+        material: unlit(color, Shading::Gouraud),
+    }];
+    let scene = Scene::new(&objects, camera, [Light::white([S::ZERO, S::ZERO, S::ONE])]);
+    let mut r: Box<Renderer<S, C, W, H, 4096, 4096, 256>> = Box::default();
+    r.set_depth_test(test);
+    r.set_dither(dither);
+    let mut f = Frame::new(W as u32, H as u32, C::from_channels([0; 3]));
+    let stats = r.render_probed(&scene, &mut f, probe).unwrap();
+    f.assert_each_written_once();
+    (f, stats)
+}
+
+fn perspective<S: Scalar>(eye: [f64; 3], target: [f64; 3], fov_deg: f64, near: f64, far: f64) -> Camera<S> {
+    Camera::look_at(
+        eye.map(S::from_f64),
+        target.map(S::from_f64),
+        [S::ZERO, S::ONE, S::ZERO],
+        Projection::Perspective {
+            fov_y: deg(fov_deg),
+            near: S::from_f64(near),
+            far: S::from_f64(far),
+        },
+    )
+    .unwrap()
+}
+
+/// Coverage of `S` equals f64's on `S`'s snapped positions; returns both id frames' coverage
+/// count and stats.
+fn world_same_coverage<S: Scalar>(pos: &[[f64; 3]], idx: &[[u16; 3]], camera: impl Fn() -> (Camera<S>, Camera<f64>), what: &str) -> (Frame<TriangleId>, Stats) {
+    let (cs, cf) = camera();
+    let mut rec = Record::default();
+    let (ids, stats) = draw_world::<S, TriangleId, _>(pos, idx, cs, [255; 3], DepthTest::Less, false, &mut rec);
+    let mut rp = Replay { snaps: &rec.0, diverged: 0 };
+    let (ref_ids, _) = draw_world::<f64, TriangleId, _>(pos, idx, cf, [255; 3], DepthTest::Less, false, &mut rp);
+    assert_eq!(rp.diverged, 0, "{what} {}: geometry diverged", S::NAME);
+    let diff = ids.px.iter().zip(ref_ids.px.iter()).filter(|(a, b)| a != b).count();
+    assert_eq!(diff, 0, "{what} {}: coverage differs from f64 on the same snapped positions at {diff} pixels (bound 0)", S::NAME);
+    (ids, stats)
+}
+
+// ---------------------------------------------------------------- 6. near plane
+
+fn near_plane_cases<S: Scalar>() {
+    let cam = || (perspective::<S>([0.0; 3], [0.0, 0.0, -1.0], 60.0, 0.1, 100.0), perspective::<f64>([0.0; 3], [0.0, 0.0, -1.0], 60.0, 0.1, 100.0));
+    let floor = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| vec![[a[0], -1.0, a[1]], [b[0], -1.0, b[1]], [c[0], -1.0, c[1]]];
+    let idx = [[0u16, 1, 2]];
+    // (vertices as (x, z); the eye is at z = 0 looking down −z; front-facing seen from above.)
+    let cases: [(&str, Vec<[f64; 3]>, bool); 5] = [
+        ("one vertex with w < 0", floor([-5.0, -10.0], [0.0, 5.0], [5.0, -10.0]), true),
+        ("two vertices behind the eye", floor([0.0, -10.0], [-5.0, 5.0], [5.0, 5.0]), true),
+        ("all three behind", floor([0.0, 10.0], [-5.0, 5.0], [5.0, 5.0]), false),
+        ("a vertex exactly at w = 0", floor([-5.0, -10.0], [0.0, 0.0], [5.0, -10.0]), true),
+        ("a vertex exactly on the near plane", floor([-5.0, -10.0], [0.0, -0.1], [5.0, -10.0]), true),
+    ];
+    for (what, pos, visible) in cases {
+        let (ids, s) = world_same_coverage::<S>(&pos, &idx, cam, what);
+        let covered = ids.px.iter().filter(|i| i.0 != 0).count();
+        assert_eq!(covered > 0, visible, "{} {what}: {s:?}", S::NAME);
+        // Nothing above the horizon: a triangle divided by a negative w would be mirrored there.
+        for y in 0..H / 2 {
+            for x in 0..W {
+                assert_eq!(ids.get(x as u32, y as u32).0, 0, "{} {what}: pixel ({x}, {y}) above the horizon", S::NAME);
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------- 7. varying w
+
+fn varying_w_grid_has_no_overdraw_and_no_gaps<S: Scalar>() {
+    // A 12 × 12 grid that projects to a regular grid on screen while every vertex has its own
+    // depth w in [0.1, 4]: the surface never folds, so it must cover its screen rectangle
+    // exactly once.
+    let n = 12usize;
+    let mut pos = Vec::new();
+    let mut seed = 12345u32;
+    let f = 1.0 / (30f64.to_radians()).tan(); // 60° field of view
+    for j in 0..=n {
+        for i in 0..=n {
+            seed = seed.wrapping_mul(1_103_515_245).wrapping_add(12345);
+            let w = 0.1 + 3.9 * ((seed >> 8) as f64 / (1u32 << 24) as f64);
+            let (nx, ny) = (-0.8 + 1.6 * i as f64 / n as f64, 0.8 - 1.6 * j as f64 / n as f64);
+            pos.push([nx * w / f, ny * w / f, -w]);
+        }
+    }
+    let mut idx = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let v = |i: usize, j: usize| (j * (n + 1) + i) as u16;
+            idx.push([v(i, j), v(i, j + 1), v(i + 1, j)]);
+            idx.push([v(i + 1, j), v(i, j + 1), v(i + 1, j + 1)]);
+        }
+    }
+    let cam = || (perspective::<S>([0.0; 3], [0.0, 0.0, -1.0], 60.0, 0.05, 10.0), perspective::<f64>([0.0; 3], [0.0, 0.0, -1.0], 60.0, 0.05, 10.0));
+    let (ids, s) = world_same_coverage::<S>(&pos, &idx, cam, "varying w");
+    let covered = ids.px.iter().filter(|i| i.0 != 0).count();
+    assert_eq!(s.fragments as usize, covered, "{}: a pixel was drawn twice", S::NAME);
+    // The grid spans NDC ±0.8, i.e. pixels 6.4 .. 57.6: columns and rows 6..=57 have their
+    // centres inside; every one must be covered.
+    for y in 7..57 {
+        for x in 7..57 {
+            assert_ne!(ids.get(x, y).0, 0, "{}: gap at ({x}, {y})", S::NAME);
+        }
+    }
+}
+
+both!(near_plane_cases, varying_w_grid_has_no_overdraw_and_no_gaps);
