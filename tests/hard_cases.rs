@@ -390,3 +390,143 @@ fn varying_w_grid_has_no_overdraw_and_no_gaps<S: Scalar>() {
 }
 
 both!(near_plane_cases, varying_w_grid_has_no_overdraw_and_no_gaps);
+
+// ---------------------------------------------------------------- 8. Gouraud and colour
+
+/// A lit material whose vertex colours follow the normals: red × max(0, n·(0, 0, 1)).
+fn lit_red<S: Scalar>() -> Material<S> {
+    Material {
+        color: [255, 0, 0],
+        ambient: S::ZERO,
+        diffuse: S::ONE,
+        specular: S::ZERO,
+        shininess: 1,
+        shading: Shading::Gouraud,
+    }
+}
+
+/// Renders a screen-space mesh whose vertex `k` has brightness `b[k]` (normal tilted so that
+/// n·l = b) into a `WW × HH` frame.
+fn ramp_frame<S: Scalar, const WW: usize, const HH: usize>(p: &[[f64; 2]], b: &[f64], idx: &[[u16; 3]], dither: bool) -> Frame<Rgb565> {
+    let pos: Vec<[S; 3]> = p.iter().map(|q| common::at::<S>(WW as u32, HH as u32, q[0], q[1], 0.0)).collect();
+    let nor: Vec<[S; 3]> = b.iter().map(|&v| [S::from_f64((1.0 - v * v).max(0.0).sqrt()), S::ZERO, S::from_f64(v)]).collect();
+    let objects = [Object {
+        mesh: Mesh::new(&pos, idx).unwrap().with_normals(&nor).unwrap(),
+        transform: Mat4::identity(),
+        material: lit_red::<S>(),
+    }];
+    let scene = Scene::new(&objects, screen_camera::<S>(HH as u32), [Light::white([S::ZERO, S::ZERO, S::ONE])]);
+    let mut r: Box<Renderer<S, Rgb565, WW, HH, 16, 16, 8>> = Box::default();
+    r.set_dither(dither);
+    let mut f = Frame::new(WW as u32, HH as u32, Rgb565::BLACK);
+    r.render(&scene, &mut f).unwrap();
+    f.assert_each_written_once();
+    f
+}
+
+fn gouraud_ramp_and_vertex_colours<S: Scalar>() {
+    // A 320-px ramp from black to full red: monotonic along every row, within 1 LSB of the
+    // exact linear ramp, ending at ≥ 30.
+    let p = [[0.0, 0.0], [320.0, 0.0], [320.0, 8.0], [0.0, 8.0]];
+    // Counter-clockwise as the viewer sees it (clockwise on the y-down screen).
+    let idx = [[0u16, 2, 1], [0, 3, 2]];
+    let f = ramp_frame::<S, 320, 8>(&p, &[0.0, 1.0, 1.0, 0.0], &idx, false);
+    let mut worst = 0.0f64;
+    for y in 0..8 {
+        let mut last = 0;
+        for x in 0..320 {
+            let r = f.get(x, y).r();
+            assert!(r >= last, "{}: ramp not monotonic at ({x}, {y})", S::NAME);
+            last = r;
+            let exact = 31.0 * (x as f64 + 0.5) / 320.0;
+            worst = worst.max((r as f64 - exact).abs());
+        }
+        assert!(last >= 30, "{}: ramp ends at {last}", S::NAME);
+    }
+    println!("{}: 320-px ramp worst deviation {worst:.3} LSB (bound 1)", S::NAME);
+    assert!(worst <= 1.0, "{}: ramp deviates {worst} LSB", S::NAME);
+
+    // A pixel centre exactly on a vertex gets that vertex's colour (the top-left vertex of a
+    // triangle is on its top and left edges, so its pixel is covered).
+    let p = [[10.5, 10.5], [10.5, 40.5], [40.5, 10.5]];
+    for b0 in [0.3, 0.55, 0.8, 1.0] {
+        let f = ramp_frame::<S, 64, 64>(&p, &[b0, 0.1, 0.95], &[[0u16, 1, 2]], false);
+        let want = ((255.0 * b0).round() * 31.0 / 255.0).round() as u8;
+        assert_eq!(f.get(10, 10).r(), want, "{}: vertex colour for brightness {b0}", S::NAME);
+    }
+}
+
+fn dithering_keeps_tile_means<S: Scalar>() {
+    // A constant, non-representable red (100/255 → 12.157 in 5 bits): dithered, every 4 × 4
+    // tile averages to it within 1/16 LSB; undithered it rounds to 12 everywhere.
+    let p = [[0.0, 0.0], [64.0, 0.0], [64.0, 64.0], [0.0, 64.0]];
+    let idx = [[0u16, 2, 1], [0, 3, 2]];
+    let b = 100.0 / 255.0;
+    let plain = ramp_frame::<S, 64, 64>(&p, &[b; 4], &idx, false);
+    assert!(plain.px.iter().all(|c| c.r() == 12), "{}: undithered constant", S::NAME);
+    let f = ramp_frame::<S, 64, 64>(&p, &[b; 4], &idx, true);
+    let exact = (255.0 * b).round() * 31.0 / 255.0;
+    let mut worst = 0.0f64;
+    for ty in 0..16 {
+        for tx in 0..16 {
+            let mut sum = 0.0;
+            for y in 0..4 {
+                for x in 0..4 {
+                    sum += f.get(4 * tx + x, 4 * ty + y).r() as f64;
+                }
+            }
+            worst = worst.max((sum / 16.0 - exact).abs());
+        }
+    }
+    println!("{}: dithered 4×4 tile mean worst deviation {worst:.4} LSB (bound 1/16)", S::NAME);
+    assert!(worst <= 1.0 / 16.0, "{}: tile mean off by {worst}", S::NAME);
+}
+
+// ---------------------------------------------------------------- 9. depth
+
+fn depth_repeatability_and_ordering<S: Scalar>() {
+    let big = |z: f64, rotate: usize, color: [u8; 3]| {
+        let mut t = tri([[-10.0, -10.0], [200.0, -5.0], [-5.0, 200.0]], color);
+        t.z = [z, z + 0.5, z - 0.7];
+        let (p, zz) = (t.p, t.z);
+        for k in 0..3 {
+            t.p[k] = p[(k + rotate) % 3];
+            t.z[k] = zz[(k + rotate) % 3];
+        }
+        t
+    };
+    // The same triangle twice, the second with its vertices rotated: under LessEqual every
+    // fragment of the second copy passes (equal depth everywhere).
+    for rotate in 0..3 {
+        let (_, s) = draw::<S, Rgb565, _>(&[big(0.0, 0, [1, 1, 1]), big(0.0, rotate, [2, 2, 2])], DepthTest::LessEqual, &mut scanline3d::NoProbe);
+        assert_eq!(s.pixels_written, s.fragments, "{} rotation {rotate}: depth not repeatable", S::NAME);
+        assert_eq!(s.fragments as usize, 2 * W * H);
+    }
+    // Two planes 3 depth steps apart (the screen camera maps 18 world units to 65535 steps):
+    // the nearer one wins at every pixel, in either drawing order.
+    let step = 18.0 / 65535.0;
+    for order in [false, true] {
+        let near = big(3.0 * step, 0, [0, 255, 0]);
+        let far = big(0.0, 0, [255, 0, 0]);
+        let tris = if order { [near, far] } else { [far, near] };
+        let (ids, _) = draw::<S, TriangleId, _>(&tris, DepthTest::Less, &mut scanline3d::NoProbe);
+        let near_id = if order { 1 } else { 2 };
+        assert!(ids.px.iter().all(|i| i.0 == near_id), "{}: planes 3 depth steps apart misordered", S::NAME);
+    }
+    // Depth at the planes: the screen camera's near plane is world z = 9, its far plane z = −9.
+    // A triangle at the near plane beats one in the middle; one at the far plane (stored 65535,
+    // clamped, not wrapped to 0) loses to it and still passes LessEqual against the cleared line.
+    let mid = big(0.0, 0, [5, 5, 5]);
+    let mut at_near = tri([[-10.0, -10.0], [200.0, -5.0], [-5.0, 200.0]], [6, 6, 6]);
+    at_near.z = [9.0; 3];
+    let mut at_far = at_near;
+    at_far.z = [-9.0; 3];
+    let (ids, s) = draw::<S, TriangleId, _>(&[mid, at_near], DepthTest::LessEqual, &mut scanline3d::NoProbe);
+    assert!(ids.px.iter().all(|i| i.0 == 2), "{}: near-plane triangle lost: {s:?}", S::NAME);
+    let (ids, _) = draw::<S, TriangleId, _>(&[mid, at_far], DepthTest::LessEqual, &mut scanline3d::NoProbe);
+    assert!(ids.px.iter().all(|i| i.0 == 1), "{}: far-plane triangle won (depth wrapped?)", S::NAME);
+    let (ids, _) = draw::<S, TriangleId, _>(&[at_far], DepthTest::LessEqual, &mut scanline3d::NoProbe);
+    assert!(ids.px.iter().all(|i| i.0 == 1), "{}: far-plane triangle not drawn under LessEqual", S::NAME);
+}
+
+both!(gouraud_ramp_and_vertex_colours, dithering_keeps_tile_means, depth_repeatability_and_ordering);
