@@ -118,7 +118,8 @@ impl<S: Scalar> Projection<S> {
     /// clip space with `z_clip ∈ [0, w]` between the near and far planes.
     ///
     /// Perspective: `x_c = f/aspect·x`, `y_c = f·y`, `z_c = A·z + B`, `w_c = −z` with
-    /// `f = 1/tan(fov_y/2)`, `A = far/(near − far)`, `B = near·far/(near − far)`.
+    /// `f = 1/tan(fov_y/2)`, `A = far/(near − far)`, `B = near·A` (= `near·far/(near − far)`,
+    /// computed without the product `near·far`, which overflows fixed point for large scenes).
     #[must_use]
     pub fn matrix(&self, aspect: S) -> Mat4<S> {
         let z = S::ZERO;
@@ -128,7 +129,7 @@ impl<S: Scalar> Projection<S> {
             Projection::Perspective { fov_y, near, far } => {
                 let f = one / (fov_y / two).tan();
                 let a = far / (near - far);
-                let b = near * far / (near - far);
+                let b = near * a;
                 Mat4 {
                     m: [
                         [f / aspect, z, z, z],
@@ -186,6 +187,23 @@ mod tests {
         frustum_maps_near_to_0_and_far_to_w::<f64>(1e-12);
         frustum_maps_near_to_0_and_far_to_w::<f32>(1e-6);
         frustum_maps_near_to_0_and_far_to_w::<Fx<I16F16>>(8.0 / 65536.0);
+    }
+
+    #[test]
+    fn large_near_and_far_do_not_overflow_fixed_point() {
+        // near·far = 1e6 is far outside Q16.16; the matrix must still map near → 0, far → w.
+        type Q = Fx<I16F16>;
+        let p = Projection::Perspective {
+            fov_y: Q::lit(0.8),
+            near: Q::lit(100.0),
+            far: Q::lit(10000.0),
+        };
+        let m = p.matrix(Q::ONE);
+        let at = |d: f64| m.transform_point([Q::ZERO, Q::ZERO, Q::lit(-d)]);
+        let n = at(100.0);
+        assert!(n[2].to_f64().abs() < 0.01, "{n:?}");
+        let f = at(10000.0);
+        assert!((f[2].to_f64() / f[3].to_f64() - 1.0).abs() < 1e-3, "{f:?}");
     }
 
     #[test]

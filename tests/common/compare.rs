@@ -31,8 +31,9 @@ impl Probe for Record {
 }
 
 /// Replays recorded snapped positions onto another number type's frame. A vertex whose own
-/// position is more than 4 px from the recorded one (the two pipelines' vertex stores
-/// diverged, e.g. by a different clipping decision) keeps its own and is counted.
+/// position is further from the recorded one than 4 px plus 1/1024 of its distance from the
+/// origin (the two pipelines' vertex stores diverged, e.g. by a different clipping decision,
+/// rather than rounded differently) keeps its own and is counted.
 pub struct Replay<'a> {
     pub snaps: &'a [Option<(i32, i32)>],
     pub diverged: u32,
@@ -42,7 +43,14 @@ impl Probe for Replay<'_> {
     fn enter(&mut self, _: Stage) {}
     fn snap(&mut self, index: u32, x: i32, y: i32) -> (i32, i32) {
         match self.snaps.get(index as usize) {
-            Some(&Some((sx, sy))) if (sx - x).abs() <= 64 && (sy - y).abs() <= 64 => (sx, sy),
+            Some(&Some((sx, sy)))
+                if {
+                    let tol = 64 + sx.abs().max(sy.abs()) / 1024;
+                    (sx - x).abs() <= tol && (sy - y).abs() <= tol
+                } =>
+            {
+                (sx, sy)
+            }
             _ => {
                 self.diverged += 1;
                 (x, y)
