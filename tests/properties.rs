@@ -41,25 +41,38 @@ fn world() -> impl Strategy<Value = World> {
         (
             proptest::collection::vec([any_coord(), any_coord(), any_coord()], n),
             proptest::collection::vec([any_coord(), any_coord(), any_coord()], n),
-            proptest::collection::vec([0u16..(n as u16 + 2), 0u16..(n as u16 + 2), 0u16..(n as u16 + 2)], 1..40),
-            ([any_coord(), any_coord(), any_coord()], [any_coord(), any_coord(), any_coord()], [any_coord(), any_coord(), any_coord()]),
+            proptest::collection::vec(
+                [
+                    0u16..(n as u16 + 2),
+                    0u16..(n as u16 + 2),
+                    0u16..(n as u16 + 2),
+                ],
+                1..40,
+            ),
+            (
+                [any_coord(), any_coord(), any_coord()],
+                [any_coord(), any_coord(), any_coord()],
+                [any_coord(), any_coord(), any_coord()],
+            ),
             (0.001f32..3.1, 0.0001f32..10.0, 0.0f32..1000.0),
             [any_coord(), any_coord(), any_coord()],
             any::<bool>(),
         )
-            .prop_map(|(pos, nor, idx, (eye, target, up), (fov, near, far_extra), light, flat)| World {
-                pos,
-                nor,
-                idx,
-                eye,
-                target,
-                up,
-                fov,
-                near,
-                far: near + far_extra + 0.001,
-                light,
-                flat,
-            })
+            .prop_map(
+                |(pos, nor, idx, (eye, target, up), (fov, near, far_extra), light, flat)| World {
+                    pos,
+                    nor,
+                    idx,
+                    eye,
+                    target,
+                    up,
+                    fov,
+                    near,
+                    far: near + far_extra + 0.001,
+                    light,
+                    flat,
+                },
+            )
     })
 }
 
@@ -82,7 +95,11 @@ fn render_world<S: Scalar>(w: &World) {
     let mut m = Material::matte([200, 100, 50], S::from_f64(0.2), S::from_f64(0.8));
     m.specular = S::from_f64(0.5);
     m.shininess = 8;
-    m.shading = if w.flat { Shading::Flat } else { Shading::Gouraud };
+    m.shading = if w.flat {
+        Shading::Flat
+    } else {
+        Shading::Gouraud
+    };
     let objects = [Object {
         mesh: Mesh::new(&pos, &w.idx).unwrap().with_normals(&nor).unwrap(),
         transform: Mat4::rotate_y(S::from_f64(0.3)),
@@ -117,9 +134,17 @@ fn ids_of<S: Scalar>(tris: &[([[f64; 2]; 3], [f64; 3])], test: DepthTest) -> Fra
     static IDX: [[u16; 3]; 1] = [[0, 1, 2]];
     let objects: Vec<Object<S>> = pos
         .iter()
-        .map(|p| Object { mesh: Mesh::new(p, &IDX).unwrap(), transform: Mat4::identity(), material: unlit([1, 1, 1], Shading::Flat) })
+        .map(|p| Object {
+            mesh: Mesh::new(p, &IDX).unwrap(),
+            transform: Mat4::identity(),
+            material: unlit([1, 1, 1], Shading::Flat),
+        })
         .collect();
-    let scene = Scene::new(&objects, screen_camera::<S>(64), [Light::white([S::ZERO, S::ZERO, S::ONE])]);
+    let scene = Scene::new(
+        &objects,
+        screen_camera::<S>(64),
+        [Light::white([S::ZERO, S::ZERO, S::ONE])],
+    );
     let mut r: Box<Renderer<S, TriangleId, 64, 64, 256, 256, 64>> = Box::default();
     r.set_depth_test(test);
     let mut f = Frame::new(64, 64, TriangleId(0));
@@ -130,13 +155,22 @@ fn ids_of<S: Scalar>(tris: &[([[f64; 2]; 3], [f64; 3])], test: DepthTest) -> Fra
 fn tri_strategy() -> impl Strategy<Value = Vec<([[f64; 2]; 3], [f64; 3])>> {
     proptest::collection::vec(
         (
-            [[-10.0f64..74.0, -10.0f64..74.0], [-10.0f64..74.0, -10.0f64..74.0], [-10.0f64..74.0, -10.0f64..74.0]],
+            [
+                [-10.0f64..74.0, -10.0f64..74.0],
+                [-10.0f64..74.0, -10.0f64..74.0],
+                [-10.0f64..74.0, -10.0f64..74.0],
+            ],
             [-3.0f64..3.0, -3.0f64..3.0, -3.0f64..3.0],
         )
             .prop_map(|(p, z)| {
                 // Front-facing.
-                let area = (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]) - (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]);
-                if area >= 0.0 { (p, z) } else { ([p[0], p[2], p[1]], [z[0], z[2], z[1]]) }
+                let area = (p[2][0] - p[0][0]) * (p[1][1] - p[0][1])
+                    - (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]);
+                if area >= 0.0 {
+                    (p, z)
+                } else {
+                    ([p[0], p[2], p[1]], [z[0], z[2], z[1]])
+                }
             }),
         2..12,
     )
