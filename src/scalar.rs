@@ -181,7 +181,7 @@ fn bitlen64(a: u64) -> u32 {
 /// 32-bit division for a 16-bit estimate and one Newton step, so no 64-bit division — which on
 /// a Cortex-M0 is a library call of several hundred instructions.
 #[must_use]
-pub(crate) fn recip_norm(a: u64) -> (i32, u32) {
+pub fn recip_norm(a: u64) -> (i32, u32) {
     let a = a.max(1);
     let s = bitlen64(a);
     // a32 in [2^31, 2^32) carries the 32 leading bits of a: a ≈ a32 · 2^(s − 32).

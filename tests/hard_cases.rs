@@ -14,6 +14,21 @@ use scanline3d::prelude::*;
 use scanline3d::{Probe, Stats, TriangleId};
 
 type Q = Fx<I16F16>;
+
+/// Prints a measurement and appends it to `target/hard-cases.txt` (see `scripts/hard-cases`).
+fn report(line: String) {
+    use std::io::Write as _;
+    println!("{line}");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/target/hard-cases.txt");
+    if let Ok(mut f) = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(path)
+    {
+        let _ = writeln!(f, "{line}");
+    }
+}
+
 const W: usize = 64;
 const H: usize = 64;
 type R<S, C> = Renderer<S, C, W, H, 256, 256, 64>;
@@ -617,10 +632,10 @@ fn gouraud_ramp_and_vertex_colours<S: Scalar>() {
         }
         assert!(last >= 30, "{}: ramp ends at {last}", S::NAME);
     }
-    println!(
+    report(format!(
         "{}: 320-px ramp worst deviation {worst:.3} LSB (bound 1)",
         S::NAME
-    );
+    ));
     assert!(worst <= 1.0, "{}: ramp deviates {worst} LSB", S::NAME);
 
     // A pixel centre exactly on a vertex gets that vertex's colour (the top-left vertex of a
@@ -664,10 +679,10 @@ fn dithering_keeps_tile_means<S: Scalar>() {
             worst = worst.max((sum / 16.0 - exact).abs());
         }
     }
-    println!(
+    report(format!(
         "{}: dithered 4×4 tile mean worst deviation {worst:.4} LSB (bound 1/16)",
         S::NAME
-    );
+    ));
     assert!(worst <= 1.0 / 16.0, "{}: tile mean off by {worst}", S::NAME);
 }
 
@@ -849,7 +864,10 @@ fn extreme_fields_of_view<S: Scalar>() {
         };
         let (ids, s) = world_same_coverage::<S>(&pos, &idx, cam, "extreme field of view");
         let covered = ids.px.iter().filter(|i| i.0 != 0).count();
-        println!("{} fov {fov}°: {covered} pixels covered, {s:?}", S::NAME);
+        report(format!(
+            "{} fov {fov}°: {covered} pixels covered, {s:?}",
+            S::NAME
+        ));
         assert!(covered > 500, "{} fov {fov}°: {covered} pixels", S::NAME);
     }
 }
@@ -861,11 +879,11 @@ fn near_1e_minus_3_far_1e4<S: Scalar>() {
     // surfaces closer than a step apart tie, which no 16-bit depth buffer can resolve.
     let (near, far) = (1e-3, 1e4);
     for d in [1.0, 10.0, 100.0] {
-        println!(
+        report(format!(
             "{}: near {near} far {far}: one depth step ≈ {:.3e} world units at distance {d}",
             S::NAME,
             d * d / (near * 65535.0)
-        );
+        ));
     }
     let (a, ia) = cube_world(1.0);
     let mut pos: Vec<[f64; 3]> = a.iter().map(|p| [p[0], p[1], p[2] - 10.0]).collect();
@@ -931,10 +949,10 @@ fn scene_scales<S: Scalar>() {
             .zip(reference.px.iter())
             .filter(|(a, b)| (a.0 != 0) != (b.0 != 0))
             .count();
-        println!(
+        report(format!(
             "{} scale {s:e}: {diff} coverage differences against f64 at scale 1",
             S::NAME
-        );
+        ));
         assert!(
             diff <= 12,
             "{} scale {s}: {diff} pixels differ (bound 12)",
@@ -989,10 +1007,10 @@ fn long_run<S: Scalar>() {
             );
         }
     }
-    println!(
+    report(format!(
         "{}: 36 000 frames, worst relative radius error {worst:.2e} (bound 1e-4)",
         S::NAME
-    );
+    ));
     assert!(worst <= 1e-4, "{}: radius drifted {worst}", S::NAME);
 }
 
@@ -1038,7 +1056,7 @@ fn normalization_and_reciprocals<S: Scalar>() {
             worst_recip = worst_recip.max((q - exact).abs() / exact.abs().max(1e-300));
         }
     }
-    println!("{}: normalize worst error {worst_norm:.2e} (bound 2^-12 = 2.4e-4); v/w worst relative error {worst_recip:.2e}", S::NAME);
+    report(format!("{}: normalize worst error {worst_norm:.2e} (bound 2^-12 = 2.4e-4); v/w worst relative error {worst_recip:.2e}", S::NAME));
     assert!(
         worst_norm <= 2f64.powi(-12),
         "{}: normalize {worst_norm}",
@@ -1052,3 +1070,26 @@ fn normalization_and_reciprocals<S: Scalar>() {
 }
 
 both!(normalization_and_reciprocals);
+
+#[test]
+fn reciprocal_of_the_doubled_area_over_its_full_range() {
+    // Triangle setup divides once, by the doubled area in subpixels² (1 … 2^47 on screen, up
+    // to 2^62 in the guard band): 1/a = m · 2^-e from one 32-bit division and a Newton step.
+    let mut worst = 0.0f64;
+    let mut a = 1u64;
+    while a < 1 << 62 {
+        for v in [a, a + 1, a / 2 * 3 + 7, a / 4 * 5 + 3] {
+            let (m, e) = scanline3d::scalar::recip_norm(v);
+            let got = m as f64 * 2f64.powi(-(e as i32));
+            worst = worst.max((got * v as f64 - 1.0).abs());
+        }
+        a = a * 3 + 1;
+    }
+    report(format!(
+        "1/area over 1 … 2^62: worst relative error {worst:.2e} (bound 2^-28 = 3.7e-9)"
+    ));
+    assert!(
+        worst < 2f64.powi(-28),
+        "1/area worst relative error {worst}"
+    );
+}
