@@ -117,6 +117,14 @@ impl<S: Scalar> Projection<S> {
     /// The projection matrix for a viewport of `aspect` = width / height, mapping view space to
     /// clip space with `z_clip ∈ [0, w]` between the near and far planes.
     ///
+    /// Orthographic: `x_c = 2/(height·aspect)·x`, `y_c = 2/height·y`,
+    /// `z_c = (−z − near)/(far − near)`, `w_c = 1`. In fixed point the depth row's entries are
+    /// ±1/(far − near), so the stored depth of a point at view distance `z` is exact only to
+    /// about `|z| · 2⁻¹⁷/(far − near) · 65535` steps (Q16.16; about 9 steps at the far plane of
+    /// a camera with near 1, far 19). That error is the same affine map for every surface, so
+    /// depth *ordering* is unaffected; scaling the matrix to remove it would shrink the x/y
+    /// range instead.
+    ///
     /// Perspective: `x_c = f/aspect·x`, `y_c = f·y`, `z_c = A·z + B`, `w_c = −z` with
     /// `f = 1/tan(fov_y/2)`, `A = far/(near − far)`, `B = near·A` (= `near·far/(near − far)`,
     /// computed without the product `near·far`, which overflows fixed point for large scenes).

@@ -15,6 +15,12 @@
 //! The rasterizer after the perspective divide is integer code shared by all of them, so the
 //! float pipelines are twins of the fixed-point one, not second implementations.
 //!
+//! **Scene scale.** `Fx<I16F16>` renders a scene correctly (the same image as f64 within a few
+//! silhouette pixels) when its models and camera distances are between about 10⁻² and 10³
+//! world units: smaller scenes lose position precision to the 2⁻¹⁶ step, larger ones approach
+//! the ±32 768 range. Use `Fx<I12F20>` for smaller scenes and `Fx<I20F12>` for larger ones; the
+//! hard-case suite (`tests/hard_cases.rs`, `scene_scales`) checks these ranges.
+//!
 //! Fixed-point arithmetic in [`Fx`] **saturates** instead of wrapping or panicking. A vertex whose
 //! clip coordinates reach the saturation rails is reported invalid by [`Scalar::is_valid`] and
 //! its triangles are skipped and counted, never drawn as garbage.

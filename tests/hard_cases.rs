@@ -699,21 +699,38 @@ fn depth_repeatability_and_ordering<S: Scalar>() {
         }
         t
     };
-    // The same triangle twice, the second with its vertices rotated: under LessEqual every
-    // fragment of the second copy passes (equal depth everywhere).
+    // The same triangle twice, the second with its vertices rotated. Drawn in both orders under
+    // LessEqual every fragment of the later copy passes, so each copy's depth is ≤ the other's
+    // at every pixel: the depths are equal everywhere, i.e. an EQUAL test would pass everywhere.
     for rotate in 0..3 {
-        let (_, s) = draw::<S, Rgb565, _>(
-            &[big(0.0, 0, [1, 1, 1]), big(0.0, rotate, [2, 2, 2])],
-            DepthTest::LessEqual,
-            &mut scanline3d::NoProbe,
-        );
+        for swap in [false, true] {
+            let (a, b) = (big(0.0, 0, [1, 1, 1]), big(0.0, rotate, [2, 2, 2]));
+            let tris = if swap { [b, a] } else { [a, b] };
+            let (_, s) =
+                draw::<S, Rgb565, _>(&tris, DepthTest::LessEqual, &mut scanline3d::NoProbe);
+            assert_eq!(
+                s.pixels_written,
+                s.fragments,
+                "{} rotation {rotate} swapped {swap}: depth not repeatable (EQUAL would fail)",
+                S::NAME
+            );
+            assert_eq!(s.fragments as usize, 2 * W * H);
+        }
+    }
+    // And the Equal test itself, in floats: a triangle exactly at the far plane stores 65535,
+    // equal to the cleared value, at every pixel. (In Q16.16 the orthographic depth row is
+    // exact only to a few steps at the far plane; see `Projection::matrix`.)
+    if S::NAME != "I16F16" {
+        let mut at_far_plane = big(0.0, 1, [3, 3, 3]);
+        at_far_plane.z = [-9.0; 3];
+        let (_, s) =
+            draw::<S, Rgb565, _>(&[at_far_plane], DepthTest::Equal, &mut scanline3d::NoProbe);
         assert_eq!(
-            s.pixels_written,
-            s.fragments,
-            "{} rotation {rotate}: depth not repeatable",
+            s.pixels_written as usize,
+            W * H,
+            "{}: Equal against the cleared far plane",
             S::NAME
         );
-        assert_eq!(s.fragments as usize, 2 * W * H);
     }
     // Two planes 3 depth steps apart (the screen camera maps 18 world units to 65535 steps):
     // the nearer one wins at every pixel, in either drawing order.
