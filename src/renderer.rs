@@ -215,8 +215,11 @@ pub struct Renderer<
     depth: [[u16; W]; LINES],
     depth_test: DepthTest,
     dither: bool,
-    /// Next row to rasterize (`H` when no frame is prepared).
+    /// Next row to rasterize (`vh` when no frame is prepared).
     next_row: usize,
+    /// Viewport actually drawn, `vw ≤ W`, `vh ≤ H` (default `W × H`).
+    vw: usize,
+    vh: usize,
     background: C,
     stats: Stats,
     _s: PhantomData<S>,
@@ -316,6 +319,8 @@ impl<
             depth_test: DepthTest::Less,
             dither: false,
             next_row: H,
+            vw: W,
+            vh: H,
             background: black,
             stats: Stats::default(),
             _s: PhantomData,
@@ -335,6 +340,21 @@ impl<
     pub fn with_depth_test(mut self, test: DepthTest) -> Self {
         self.depth_test = test;
         self
+    }
+
+    /// Draws into a `width × height` viewport at the target's origin instead of the full
+    /// `W × H` (clamped to 1..=W and 1..=H): one renderer type for several panel sizes, or a
+    /// preview at any size. The projection's aspect ratio follows the viewport.
+    pub fn set_viewport(&mut self, width: usize, height: usize) {
+        self.vw = width.clamp(1, W);
+        self.vh = height.clamp(1, H);
+        self.next_row = self.vh;
+    }
+
+    /// The viewport size (`W × H` unless changed by [`Renderer::set_viewport`]).
+    #[must_use]
+    pub fn viewport(&self) -> (usize, usize) {
+        (self.vw, self.vh)
     }
 
     /// Sets the depth test in place.
@@ -457,7 +477,7 @@ impl<
         self.active.clear();
         self.heads = [NONE; H];
         self.starts = [0; H];
-        self.next_row = H;
+        self.next_row = self.vh;
         let mut stats = Stats::default();
         for (i, o) in scene.objects.iter().enumerate() {
             if o.material.shading == Shading::Gouraud && o.mesh.normals().is_none() {
@@ -465,8 +485,8 @@ impl<
             }
         }
         let vp = Viewport {
-            width: W as u32,
-            height: H as u32,
+            width: self.vw as u32,
+            height: self.vh as u32,
         };
         let g = S::from_i32(vp.guard_band());
         let pv = scene
@@ -721,13 +741,13 @@ impl<
             stats.empty += 1;
             return;
         }
-        if px1 <= 0 || py1 <= 0 || px0 >= W as i32 || py0 >= H as i32 {
+        if px1 <= 0 || py1 <= 0 || px0 >= self.vw as i32 || py0 >= self.vh as i32 {
             stats.outside += 1;
             return;
         }
         need.1 += 1;
         let row = py0.max(0) as usize;
-        let end = py1.min(H as i32) as usize;
+        let end = py1.min(self.vh as i32) as usize;
         let idx = self.tris.len() as u16;
         if self
             .tris
@@ -742,7 +762,7 @@ impl<
         }
         self.heads[row] = idx;
         self.starts[row] += 1;
-        if end < H {
+        if end < self.vh {
             self.starts[end] -= 1;
         }
         stats.drawn += 1;
@@ -773,14 +793,15 @@ impl<
         F: FnMut(&mut StripCanvas<'_, C, W>),
     {
         let y0 = self.next_row;
-        if y0 >= H {
+        let (vw, vh) = (self.vw, self.vh);
+        if y0 >= vh {
             return Ok(None);
         }
-        let lines = LINES.min(H - y0);
+        let lines = LINES.min(vh - y0);
         let stats = &mut self.stats;
         for l in 0..lines {
-            self.color[l].fill(self.background);
-            self.depth[l].fill(u16::MAX);
+            self.color[l][..vw].fill(self.background);
+            self.depth[l][..vw].fill(u16::MAX);
             let row = y0 + l;
             let mut t = self.heads[row];
             if t != NONE {
@@ -788,7 +809,7 @@ impl<
             }
             while t != NONE {
                 let rec = self.tris[t as usize];
-                if let Some(a) = ActiveTri::new(&rec, &self.verts, row as i32, H as i32) {
+                if let Some(a) = ActiveTri::new(&rec, &self.verts, row as i32, vh as i32) {
                     // Cannot fail: the largest number of rows' overlaps was checked.
                     let _ = self.active.push(a);
                 }
@@ -799,8 +820,8 @@ impl<
             while i < self.active.len() {
                 let (frag, written, done) = self.active[i].draw_row(
                     row as i32,
-                    &mut self.color[l],
-                    &mut self.depth[l],
+                    &mut self.color[l][..vw],
+                    &mut self.depth[l][..vw],
                     self.depth_test,
                     self.dither,
                 );
@@ -817,15 +838,21 @@ impl<
         overlay(&mut StripCanvas {
             lines: &mut self.color[..lines],
             y0,
-            height: H as u32,
+            height: vh as u32,
         });
-        let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(W as u32, lines as u32));
+        let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(vw as u32, lines as u32));
         probe.enter(Stage::Output);
-        let result = target.fill_contiguous(&area, self.color[..lines].iter().flatten().copied());
+        let result = target.fill_contiguous(
+            &area,
+            self.color[..lines]
+                .iter()
+                .flat_map(|line| line[..vw].iter())
+                .copied(),
+        );
         probe.enter(Stage::Raster);
         if let Err(e) = result {
             // The frame is abandoned: a later render_strip draws nothing.
-            self.next_row = H;
+            self.next_row = vh;
             return Err(Error::Target(e));
         }
         Ok(Some(y0..y0 + lines))

@@ -445,3 +445,20 @@ fn overlay_is_composed_into_the_strips() {
     overlay_matches_text_drawn_on_top::<4>();
     overlay_matches_text_drawn_on_top::<7>();
 }
+
+#[test]
+fn a_smaller_viewport_renders_like_a_renderer_of_that_size() {
+    let shape = demo::torus::<Q>().unwrap();
+    let objects = [demo::torus_object(&shape)];
+    let scene = Scene::new(&objects, demo::camera().unwrap(), demo::lights());
+    let mut exact: Box<Renderer<Q, Rgb565, 160, 100, 512, 512, 64>> = Box::default();
+    let mut a = frame::<Rgb565>(160, 100);
+    exact.render(&scene, &mut a).unwrap();
+    let mut big: Box<Renderer<Q, Rgb565, 240, 240, 512, 512, 64, 3>> = Box::default();
+    big.set_viewport(160, 100);
+    assert_eq!(big.viewport(), (160, 100));
+    let mut b = frame::<Rgb565>(160, 100);
+    big.render(&scene, &mut b).unwrap();
+    b.assert_each_written_once();
+    assert_eq!(a.px, b.px);
+}
