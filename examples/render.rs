@@ -1,109 +1,773 @@
-//! Renders the default scene (the benchmark torus) with the fixed-point pipeline into
-//! `scanline3d.png` and prints one summary line: triangles in / culled / clipped / drawn, pixels
-//! written, host time per frame (median), and the error against the f64 twin of the pipeline.
+//! The preview tool: renders an OBJ file or a built-in scene with the library's own pipeline, as
+//! the LCD will show it, and reports what the scene costs.
 //!
-//! `cargo run --release --example render [-- --out FILE.png]`
+//! `cargo run --release --example render` renders the default scene (the benchmark torus) to
+//! `scanline3d.png` and prints a one-line summary. `--help` lists every flag.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use clap::{Parser, ValueEnum};
+use common::compare::Timer;
+use common::obj::{bounds, load_obj, vertex_normals, ObjMesh};
 use common::Frame;
-use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
-use scanline3d::demo;
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use scanline3d::demo::{self, deg};
 use scanline3d::fixed::types::I16F16;
+use scanline3d::metrics::Metrics;
 use scanline3d::prelude::*;
-use scanline3d::Stats;
+use scanline3d::renderer::ram_formula;
+use scanline3d::{Capacity, Error, Stats};
 
-const W: usize = 240;
-const H: usize = 240;
-type R<S> = demo::TorusRenderer<S, Rgb565>;
+/// Largest preview size and capacities (host only; `--budget` prints what a device needs).
+const MAX_W: usize = 2048;
+const MAX_H: usize = 2048;
+type Big<S, C> = Renderer<S, C, MAX_W, MAX_H, 65535, 65534, 8192>;
+/// Lights the tool supports (unused ones are zero vectors, which light nothing).
+const LIGHTS: usize = 4;
 
-fn render<S: Scalar>(runs: usize) -> Result<(Frame<Rgb565>, Stats, f64), String> {
-    let shape = demo::torus::<S>().map_err(|e| format!("torus: {e:?}"))?;
-    let objects = [demo::torus_object(&shape)];
-    let camera = demo::camera::<S>().map_err(|e| format!("camera: {e:?}"))?;
-    let scene = Scene::new(&objects, camera, demo::lights());
-    let mut r: Box<R<S>> = Box::default();
-    let mut frame = Frame::new(W as u32, H as u32, Rgb565::BLACK);
-    let mut times = Vec::new();
-    let mut stats = Stats::default();
-    for _ in 0..runs.max(1) {
-        frame = Frame::new(W as u32, H as u32, Rgb565::BLACK);
-        let t = Instant::now();
-        stats = r
-            .render(&scene, &mut frame)
-            .map_err(|e| format!("render: {e:?}"))?;
-        times.push(t.elapsed().as_secs_f64());
-    }
-    times.sort_by(|a, b| a.total_cmp(b));
-    Ok((frame, stats, times[times.len() / 2]))
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum SceneArg {
+    Torus,
+    Cube,
+    Icosphere,
+    Terrain,
 }
 
-/// PSNR over all RGB565 channels, each normalized to its own range.
-fn psnr(a: &Frame<Rgb565>, b: &Frame<Rgb565>) -> f64 {
-    let mut se = 0.0;
-    for (x, y) in a.px.iter().zip(b.px.iter()) {
-        se += ((x.r() as f64 - y.r() as f64) / 31.0).powi(2);
-        se += ((x.g() as f64 - y.g() as f64) / 63.0).powi(2);
-        se += ((x.b() as f64 - y.b() as f64) / 31.0).powi(2);
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum ShadingArg {
+    Flat,
+    Gouraud,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum NormalsArg {
+    FaceAverage,
+    File,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum NumberArg {
+    Fixed,
+    F32,
+    F64,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum FormatArg {
+    Rgb565,
+    Rgb888,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum OnOff {
+    On,
+    Off,
+}
+
+fn v3(s: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("{s:?}: {e}"))?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([x, y, z]),
+        _ => Err(format!("{s:?}: expected three finite numbers x,y,z")),
     }
-    let mse = se / (3.0 * a.px.len() as f64);
-    if mse == 0.0 {
-        f64::INFINITY
+}
+
+fn rgb(s: &str) -> Result<[u8; 3], String> {
+    let v: Vec<u8> = s
+        .split(',')
+        .map(|x| x.trim().parse::<u8>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("{s:?}: {e} (channels are 0-255)"))?;
+    match v[..] {
+        [r, g, b] => Ok([r, g, b]),
+        _ => Err(format!("{s:?}: expected r,g,b")),
+    }
+}
+
+fn size(s: &str) -> Result<(usize, usize), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("{s:?}: expected WxH, e.g. 240x240"))?;
+    let (w, h) = (
+        w.parse::<usize>().map_err(|e| format!("{s:?}: {e}"))?,
+        h.parse::<usize>().map_err(|e| format!("{s:?}: {e}"))?,
+    );
+    if !(1..=MAX_W).contains(&w) || !(1..=MAX_H).contains(&h) {
+        return Err(format!("{s:?}: width and height must be 1-{MAX_W}"));
+    }
+    Ok((w, h))
+}
+
+/// Renders an OBJ file or a built-in scene as a 240×240 RGB565 LCD would show it (through the
+/// library's own pipeline), and reports what the scene costs.
+#[derive(Parser, Debug, Clone)]
+#[command(name = "render", version)]
+struct Args {
+    /// OBJ file to render (triangulated; v/vt/vn and negative indices accepted)
+    #[arg(long, value_name = "FILE", conflicts_with = "scene")]
+    obj: Option<PathBuf>,
+    /// Built-in scene [default: torus]
+    #[arg(long, value_enum)]
+    scene: Option<SceneArg>,
+    /// Centre the model and place the camera so that its bounding sphere fills the view
+    #[arg(long)]
+    fit: bool,
+    /// Image size in pixels, WxH (up to 2048x2048)
+    #[arg(long, value_parser = size, default_value = "240x240")]
+    size: (usize, usize),
+    /// Camera position, world units
+    #[arg(long, value_parser = v3, default_value = "0,1.2,3")]
+    eye: [f64; 3],
+    /// Point the camera looks at, world units
+    #[arg(long, value_parser = v3, default_value = "0,0,0")]
+    target: [f64; 3],
+    /// Camera up direction
+    #[arg(long, value_parser = v3, default_value = "0,1,0")]
+    up: [f64; 3],
+    /// Vertical field of view, degrees
+    #[arg(long = "fov-y", default_value_t = 45.0)]
+    fov_y: f64,
+    /// Near plane distance, world units
+    #[arg(long, default_value_t = 0.1)]
+    near: f64,
+    /// Far plane distance, world units
+    #[arg(long, default_value_t = 10.0)]
+    far: f64,
+    /// Parallel projection with this view height (world units) instead of perspective
+    #[arg(long, value_name = "HEIGHT")]
+    ortho: Option<f64>,
+    /// Model rotation about X, degrees (applied first)
+    #[arg(long = "rotate-x", default_value_t = 30.0)]
+    rotate_x: f64,
+    /// Model rotation about Y, degrees (applied second)
+    #[arg(long = "rotate-y", default_value_t = 20.0)]
+    rotate_y: f64,
+    /// Model rotation about Z, degrees (applied third)
+    #[arg(long = "rotate-z", default_value_t = 0.0)]
+    rotate_z: f64,
+    /// Direction toward a light, world space; repeat for up to 4 lights [default: -1,1,1]
+    #[arg(long, value_parser = v3)]
+    light: Vec<[f64; 3]>,
+    /// Ambient coefficient
+    #[arg(long, default_value_t = 0.15)]
+    ambient: f64,
+    /// Diffuse coefficient
+    #[arg(long, default_value_t = 0.85)]
+    diffuse: f64,
+    /// Specular coefficient (0 = none)
+    #[arg(long, default_value_t = 0.0)]
+    specular: f64,
+    /// Phong exponent (1-255)
+    #[arg(long, default_value_t = 16)]
+    shininess: u8,
+    /// Model colour r,g,b (0-255)
+    #[arg(long, value_parser = rgb, default_value = "255,160,64")]
+    color: [u8; 3],
+    /// Background colour r,g,b (0-255)
+    #[arg(long, value_parser = rgb, default_value = "0,0,0")]
+    background: [u8; 3],
+    /// Shading mode
+    #[arg(long, value_enum, default_value = "gouraud")]
+    shading: ShadingArg,
+    /// Vertex normals: averaged from the faces, or the OBJ's own vn [default: file when the OBJ has them]
+    #[arg(long, value_enum)]
+    normals: Option<NormalsArg>,
+    /// Number type of the geometry pipeline
+    #[arg(long, value_enum, default_value = "fixed")]
+    number: NumberArg,
+    /// Pixel format of the simulated display
+    #[arg(long, value_enum, default_value = "rgb565")]
+    format: FormatArg,
+    /// 4×4 ordered dithering of Gouraud gradients
+    #[arg(long, value_enum, default_value = "off")]
+    dither: OnOff,
+    /// Lines per strip for the RAM figures (the image is the same for every strip height)
+    #[arg(long, value_name = "LINES", default_value_t = 1)]
+    strip: usize,
+    /// Output image (.png; with --frames > 1 an animated .png or .gif)
+    #[arg(long, value_name = "FILE", default_value = "scanline3d.png")]
+    out: PathBuf,
+    /// Number of frames (an animation about the Y axis)
+    #[arg(long, default_value_t = 1)]
+    frames: usize,
+    /// Rotation about Y between frames, degrees
+    #[arg(long, default_value_t = 10.0)]
+    spin: f64,
+    /// Report what the scene needs (capacities, fixed-point headroom, RAM) over every frame,
+    /// print the renderer type for firmware, and fail if a format or capacity overflows
+    #[arg(long)]
+    budget: bool,
+}
+
+/// The model in f64, before conversion to the pipeline's number type.
+struct Model {
+    name: String,
+    positions: Vec<[f64; 3]>,
+    normals: Vec<[f64; 3]>,
+    indices: Vec<[u16; 3]>,
+}
+
+fn model(args: &Args) -> Result<Model, String> {
+    if let Some(path) = &args.obj {
+        let mesh: ObjMesh = load_obj(path)?;
+        let use_file = match args.normals {
+            Some(NormalsArg::File) => {
+                if mesh.normals.is_none() {
+                    return Err(format!(
+                        "{}: --normals file, but the OBJ has no vn for every vertex",
+                        path.display()
+                    ));
+                }
+                true
+            }
+            Some(NormalsArg::FaceAverage) => false,
+            None => mesh.normals.is_some(),
+        };
+        let normals = vertex_normals(&mesh, use_file);
+        return Ok(Model {
+            name: path.display().to_string(),
+            positions: mesh.positions,
+            normals,
+            indices: mesh.indices,
+        });
+    }
+    fn from_shape<const V: usize, const T: usize>(
+        name: &str,
+        s: Shape<f64, V, T>,
+        args: &Args,
+    ) -> Model {
+        let mesh = ObjMesh {
+            positions: s.positions.to_vec(),
+            normals: Some(s.normals.to_vec()),
+            indices: s.indices.to_vec(),
+        };
+        let use_file = args.normals != Some(NormalsArg::FaceAverage);
+        Model {
+            name: name.into(),
+            normals: vertex_normals(&mesh, use_file),
+            positions: mesh.positions,
+            indices: mesh.indices,
+        }
+    }
+    let e = |e: scanline3d::ShapeError| format!("shape: {e:?}");
+    Ok(match args.scene.unwrap_or(SceneArg::Torus) {
+        SceneArg::Torus => from_shape("torus", demo::torus::<f64>().map_err(e)?, args),
+        SceneArg::Cube => from_shape("cube", Shape::<f64, 24, 12>::cube(1.0).map_err(e)?, args),
+        SceneArg::Icosphere => from_shape(
+            "icosphere",
+            Shape::<f64, 642, 1280>::icosphere(1.0, 3).map_err(e)?,
+            args,
+        ),
+        SceneArg::Terrain => from_shape(
+            "terrain",
+            Shape::<f64, 289, 512>::terrain(4.0, 16, 0.4).map_err(e)?,
+            args,
+        ),
+    })
+}
+
+/// Camera, model placement and everything else a frame needs, in f64.
+#[derive(Clone)]
+struct Setup {
+    eye: [f64; 3],
+    target: [f64; 3],
+    up: [f64; 3],
+    projection: Projection<f64>,
+    /// Translation applied before the rotations (centres the model with --fit).
+    centre: [f64; 3],
+}
+
+fn setup(args: &Args, m: &Model) -> Result<Setup, String> {
+    let (w, h) = args.size;
+    let mut s = Setup {
+        eye: args.eye,
+        target: args.target,
+        up: args.up,
+        projection: match args.ortho {
+            Some(height) => Projection::Orthographic {
+                height,
+                near: args.near,
+                far: args.far,
+            },
+            None => Projection::Perspective {
+                fov_y: args.fov_y.to_radians(),
+                near: args.near,
+                far: args.far,
+            },
+        },
+        centre: [0.0; 3],
+    };
+    if args.fit {
+        let (_, _, c, r) = bounds(&m.positions);
+        let r = r.max(1e-9);
+        s.centre = c;
+        let dir = scanline3d::math::normalize(scanline3d::math::sub(args.eye, args.target));
+        let dir = if dir == [0.0; 3] {
+            [0.0, 0.0, 1.0]
+        } else {
+            dir
+        };
+        // The sphere fills the smaller of the two view angles.
+        let half = (args.fov_y.to_radians() / 2.0)
+            .min(((args.fov_y.to_radians() / 2.0).tan() * w as f64 / h as f64).atan());
+        let dist = match args.ortho {
+            Some(_) => 3.0 * r,
+            None => r / half.sin(),
+        };
+        s.target = [0.0; 3];
+        s.eye = dir.map(|d| d * dist);
+        let (near, far) = ((dist - 1.05 * r).max(dist * 1e-3), dist + 1.05 * r);
+        s.projection = match args.ortho {
+            Some(_) => Projection::Orthographic {
+                height: 2.1 * r * (h as f64 / w.min(h) as f64),
+                near,
+                far,
+            },
+            None => Projection::Perspective {
+                fov_y: args.fov_y.to_radians(),
+                near,
+                far,
+            },
+        };
+    }
+    Camera::look_at(s.eye, s.target, s.up, s.projection).map_err(|e| format!("camera: {e:?}"))?;
+    Ok(s)
+}
+
+fn transform<S: Scalar>(args: &Args, s: &Setup, frame: usize) -> Mat4<S> {
+    let c = s.centre.map(|v| S::from_f64(-v));
+    Mat4::translate(c)
+        .then(&Mat4::rotate_x(deg(args.rotate_x)))
+        .then(&Mat4::rotate_y(deg(args.rotate_y)))
+        .then(&Mat4::rotate_z(deg(args.rotate_z)))
+        .then(&Mat4::rotate_y(deg(args.spin * frame as f64)))
+}
+
+fn lights<S: Scalar>(args: &Args) -> [Light<S>; LIGHTS] {
+    let mut l = [Light {
+        direction: [S::ZERO; 3],
+        color: [255; 3],
+    }; LIGHTS];
+    let dirs = if args.light.is_empty() {
+        vec![[-1.0, 1.0, 1.0]]
     } else {
-        10.0 * (1.0 / mse).log10()
+        args.light.clone()
+    };
+    for (k, d) in dirs.iter().take(LIGHTS).enumerate() {
+        l[k].direction = d.map(S::from_f64);
     }
+    l
+}
+
+struct Run<C> {
+    frames: Vec<Frame<C>>,
+    stats: Vec<Stats>,
+    ns_per_frame: f64,
+}
+
+fn run<S: Scalar, C: TargetColor>(
+    args: &Args,
+    m: &Model,
+    s: &Setup,
+    timed_runs: usize,
+) -> Result<Run<C>, String> {
+    let (w, h) = args.size;
+    let pos: Vec<[S; 3]> = m.positions.iter().map(|p| p.map(S::from_f64)).collect();
+    let nor: Vec<[S; 3]> = m.normals.iter().map(|p| p.map(S::from_f64)).collect();
+    let mesh = Mesh::new(&pos, &m.indices).map_err(|e| format!("{}: {e:?}", m.name))?;
+    let mesh = mesh
+        .with_normals(&nor)
+        .map_err(|e| format!("{}: {e:?}", m.name))?;
+    let projection = match s.projection {
+        Projection::Perspective { fov_y, near, far } => Projection::Perspective {
+            fov_y: S::from_f64(fov_y),
+            near: S::from_f64(near),
+            far: S::from_f64(far),
+        },
+        Projection::Orthographic { height, near, far } => Projection::Orthographic {
+            height: S::from_f64(height),
+            near: S::from_f64(near),
+            far: S::from_f64(far),
+        },
+    };
+    let camera = Camera::look_at(
+        s.eye.map(S::from_f64),
+        s.target.map(S::from_f64),
+        s.up.map(S::from_f64),
+        projection,
+    )
+    .map_err(|e| format!("camera in {}: {e:?}", S::NAME))?;
+    let material = Material {
+        color: args.color,
+        ambient: S::from_f64(args.ambient),
+        diffuse: S::from_f64(args.diffuse),
+        specular: S::from_f64(args.specular),
+        shininess: args.shininess.max(1),
+        shading: if args.shading == ShadingArg::Flat {
+            Shading::Flat
+        } else {
+            Shading::Gouraud
+        },
+    };
+    let mut r: Box<Big<S, C>> = Box::default();
+    r.set_viewport(w, h);
+    r.set_dither(args.dither == OnOff::On);
+    let mut out = Run {
+        frames: Vec::new(),
+        stats: Vec::new(),
+        ns_per_frame: 0.0,
+    };
+    let mut times = Vec::new();
+    for k in 0..args.frames.max(1) {
+        let objects = [Object {
+            mesh,
+            transform: transform::<S>(args, s, k),
+            material,
+        }];
+        let mut scene = Scene::new(&objects, camera, lights::<S>(args));
+        scene.background = args.background;
+        let mut f = Frame::new(w as u32, h as u32, C::from_channels([0; 3]));
+        let stats = r.render(&scene, &mut f).map_err(|e| match e {
+            Error::Capacity {
+                what,
+                capacity,
+                needed,
+            } => format!(
+                "{}: needs {needed} {}, more than the preview's {capacity}",
+                m.name,
+                capacity_name(what)
+            ),
+            other => format!("{}: {other:?}", m.name),
+        })?;
+        for _ in 0..timed_runs {
+            let mut t = Timer::default();
+            let mut sink = scanline3d::hash::NullTarget::<C>::new(w as u32, h as u32);
+            let _ = r.render_probed(&scene, &mut sink, &mut t);
+            times.push(t.total.as_nanos() as f64);
+        }
+        out.frames.push(f);
+        out.stats.push(stats);
+    }
+    times.sort_by(|a, b| a.total_cmp(b));
+    out.ns_per_frame = times.get(times.len() / 2).copied().unwrap_or(0.0);
+    Ok(out)
+}
+
+fn capacity_name(c: Capacity) -> &'static str {
+    match c {
+        Capacity::Vertices => "vertices",
+        Capacity::Triangles => "triangles",
+        Capacity::ActiveTriangles => "triangles active on one row",
+        _ => "of a capacity",
+    }
+}
+
+fn rgb888<C: Into<Rgb888> + Copy>(f: &Frame<C>) -> Vec<u8> {
+    f.px.iter()
+        .flat_map(|&c| {
+            let c: Rgb888 = c.into();
+            [c.r(), c.g(), c.b()]
+        })
+        .collect()
+}
+
+/// Writes PNG, animated PNG or GIF to a temporary name, then renames: never a half-written file.
+fn write_image<C: Into<Rgb888> + Copy>(
+    path: &Path,
+    frames: &[Frame<C>],
+    delay_ms: u16,
+) -> Result<(), String> {
+    let name = path.display();
+    let tmp = path.with_extension("partial");
+    let result = (|| -> Result<(), String> {
+        let file = std::fs::File::create(&tmp).map_err(|e| format!("{name}: {e}"))?;
+        let (w, h) = (frames[0].w, frames[0].h);
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase();
+        match ext.as_str() {
+            "gif" => {
+                let mut enc = gif::Encoder::new(file, w as u16, h as u16, &[])
+                    .map_err(|e| format!("{name}: {e}"))?;
+                enc.set_repeat(gif::Repeat::Infinite)
+                    .map_err(|e| format!("{name}: {e}"))?;
+                for f in frames {
+                    let mut fr = gif::Frame::from_rgb_speed(w as u16, h as u16, &rgb888(f), 10);
+                    fr.delay = delay_ms / 10;
+                    enc.write_frame(&fr).map_err(|e| format!("{name}: {e}"))?;
+                }
+            }
+            "png" => {
+                let mut enc = png::Encoder::new(std::io::BufWriter::new(file), w, h);
+                enc.set_color(png::ColorType::Rgb);
+                enc.set_depth(png::BitDepth::Eight);
+                if frames.len() > 1 {
+                    enc.set_animated(frames.len() as u32, 0)
+                        .map_err(|e| format!("{name}: {e}"))?;
+                    enc.set_frame_delay(delay_ms, 1000)
+                        .map_err(|e| format!("{name}: {e}"))?;
+                }
+                let mut wr = enc.write_header().map_err(|e| format!("{name}: {e}"))?;
+                for f in frames {
+                    wr.write_image_data(&rgb888(f))
+                        .map_err(|e| format!("{name}: {e}"))?;
+                }
+                wr.finish().map_err(|e| format!("{name}: {e}"))?;
+            }
+            _ => return Err(format!("{name}: the output must end in .png or .gif")),
+        }
+        Ok(())
+    })();
+    match result {
+        Ok(()) => std::fs::rename(&tmp, path).map_err(|e| format!("{name}: {e}")),
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            Err(e)
+        }
+    }
+}
+
+fn compare<C: RgbColor>(a: &[Frame<C>], b: &[Frame<C>], background: C) -> Metrics {
+    let mut m = Metrics::new([C::MAX_R, C::MAX_G, C::MAX_B]);
+    for (fa, fb) in a.iter().zip(b.iter()) {
+        for y in 0..fa.h as usize {
+            let r = y * fa.w as usize..(y + 1) * fa.w as usize;
+            m.add_line(&fa.px[r.clone()], &fb.px[r], background);
+        }
+    }
+    m
 }
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let mut out = "scanline3d.png".to_string();
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        match a.as_str() {
-            "--out" => match it.next() {
-                Some(f) => out = f.clone(),
-                None => fail("--out needs a file name"),
-            },
-            "--help" | "-h" => {
-                println!("usage: render [--out FILE.png]   (default: scanline3d.png)");
-                return;
-            }
-            other => fail(&format!("unknown argument {other:?} (see --help)")),
+    let args = Args::parse();
+    // The preview renderer is large (it accepts any OBJ up to 65 536 vertices): give it room.
+    let worker = std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn(move || main2(args));
+    let code = match worker.map(|h| h.join()) {
+        Ok(Ok(Ok(()))) => 0,
+        Ok(Ok(Err((msg, code)))) => {
+            eprintln!("render: {msg}");
+            code
         }
-    }
-    let (frame, stats, secs) = render::<Fx<I16F16>>(21).unwrap_or_else(|e| fail(&e));
-    let (reference, _, _) = render::<f64>(1).unwrap_or_else(|e| fail(&e));
-    let (max, differ, coverage) = common::compare565(&frame, &reference, Rgb565::BLACK);
-    let bytes = common::png_bytes(&frame);
-    // Write to a temporary name first so a failure never leaves a half-written image.
-    let tmp = format!("{out}.tmp");
-    if let Err(e) = std::fs::write(&tmp, &bytes).and_then(|_| std::fs::rename(&tmp, &out)) {
-        let _ = std::fs::remove_file(&tmp);
-        fail(&format!("{out}: {e}"));
-    }
-    println!(
-        "{out}: {W}x{H} I16F16 | triangles in {} / culled {} / clipped {} / drawn {} | pixels written {} | {:.3} ms/frame (host, median of 21) | vs f64: max LSB r{} g{} b{}, PSNR {:.1} dB, {} pixels differ, {} coverage mismatches | max active {} | renderer RAM {} B (W={W} H={H} LINES=1 VERTS=512 TRIS=512 ACTIVE=64)",
-        stats.triangles_in,
-        stats.culled,
-        stats.clipped,
-        stats.drawn,
-        stats.pixels_written,
-        secs * 1e3,
-        max[0],
-        max[1],
-        max[2],
-        psnr(&frame, &reference),
-        differ,
-        coverage,
-        stats.max_active,
-        R::<Fx<I16F16>>::RAM_BYTES,
-    );
+        _ => {
+            eprintln!("render: internal error");
+            3
+        }
+    };
+    std::process::exit(code);
 }
 
-fn fail(msg: &str) -> ! {
-    eprintln!("render: {msg}");
-    std::process::exit(2);
+fn main2(args: Args) -> Result<(), (String, i32)> {
+    if !(1..=LIGHTS).contains(&args.light.len().max(1)) {
+        return Err((format!("at most {LIGHTS} --light flags"), 2));
+    }
+    if args.strip == 0 {
+        return Err(("--strip must be at least 1".into(), 2));
+    }
+    let m = model(&args).map_err(|e| (e, 2))?;
+    let s = setup(&args, &m).map_err(|e| (e, 2))?;
+    match args.format {
+        FormatArg::Rgb565 => go::<Rgb565>(&args, &m, &s),
+        FormatArg::Rgb888 => go::<Rgb888>(&args, &m, &s),
+    }
+}
+
+fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
+    args: &Args,
+    m: &Model,
+    s: &Setup,
+) -> Result<(), (String, i32)> {
+    let timed = if args.budget {
+        0
+    } else {
+        21.min(2 + 60 / args.frames.max(1))
+    };
+    let t0 = Instant::now();
+    let tested = match args.number {
+        NumberArg::Fixed => run::<Fx<I16F16>, C>(args, m, s, timed),
+        NumberArg::F32 => run::<f32, C>(args, m, s, timed),
+        NumberArg::F64 => run::<f64, C>(args, m, s, timed),
+    }
+    .map_err(|e| (e, 1))?;
+    let name = match args.number {
+        NumberArg::Fixed => "I16F16",
+        NumberArg::F32 => "f32",
+        NumberArg::F64 => "f64",
+    };
+    if args.budget {
+        return budget::<C>(args, m, s, &tested, name);
+    }
+    let reference = run::<f64, C>(args, m, s, 0).map_err(|e| (e, 1))?;
+    let metrics = compare(
+        &tested.frames,
+        &reference.frames,
+        scanline3d::color::quantize::<C>(args.background),
+    );
+    write_image(&args.out, &tested.frames, 40).map_err(|e| (e, 1))?;
+    let st = tested.stats[0];
+    let (w, h) = args.size;
+    let need = |f: fn(&Stats) -> u32| tested.stats.iter().map(f).max().unwrap_or(0) as usize;
+    let ram = ram_formula(
+        w,
+        h,
+        core::mem::size_of::<C>(),
+        args.strip,
+        need(|s| s.vertices),
+        need(|s| s.drawn),
+        need(|s| s.max_active),
+    );
+    println!(
+        "{}: {w}x{h} {name} {}{} | triangles in {} / culled {} / clipped {} / drawn {} | pixels written {} | {:.3} ms/frame (host, median) | vs f64: max LSB r{} g{} b{}, PSNR {} | renderer RAM {} B for this scene ({} lines) | {:.1} s",
+        args.out.display(),
+        m.name,
+        if tested.frames.len() > 1 { format!(", {} frames", tested.frames.len()) } else { String::new() },
+        st.triangles_in,
+        st.culled,
+        st.clipped,
+        st.drawn,
+        st.pixels_written,
+        tested.ns_per_frame / 1e6,
+        metrics.max_lsb[0],
+        metrics.max_lsb[1],
+        metrics.max_lsb[2],
+        if metrics.psnr_db().is_finite() { format!("{:.1} dB", metrics.psnr_db()) } else { "∞ (identical)".into() },
+        ram,
+        args.strip,
+        t0.elapsed().as_secs_f64(),
+    );
+    Ok(())
+}
+
+/// `--budget`: what the scene needs over every frame.
+fn budget<C: TargetColor>(
+    args: &Args,
+    m: &Model,
+    s: &Setup,
+    run: &Run<C>,
+    number: &str,
+) -> Result<(), (String, i32)> {
+    let (w, h) = args.size;
+    let max = |f: fn(&Stats) -> u32| run.stats.iter().map(f).max().unwrap_or(0) as usize;
+    let (verts, tris, active) = (max(|s| s.vertices), max(|s| s.drawn), max(|s| s.max_active));
+    let invalid = max(|s| s.invalid);
+    // Fixed-point headroom: the largest magnitudes each stage reaches, in f64, against Q16.16.
+    let cam = Camera::look_at(s.eye, s.target, s.up, s.projection)
+        .map_err(|e| (format!("camera: {e:?}"), 2))?;
+    let pv = cam.projection.matrix(w as f64 / h as f64).mul(&cam.view);
+    let (mut model_max, mut world_max, mut clip_max) = (0.0f64, 0.0f64, 0.0f64);
+    for k in 0..args.frames.max(1) {
+        let t = transform::<f64>(args, s, k);
+        let mvp = pv.mul(&t);
+        for p in &m.positions {
+            model_max = model_max.max(p.iter().fold(0.0, |a, v| a.max(v.abs())));
+            world_max = world_max.max(
+                t.transform_point(*p)
+                    .iter()
+                    .take(3)
+                    .fold(0.0, |a, v| a.max(v.abs())),
+            );
+            clip_max = clip_max.max(
+                mvp.transform_point(*p)
+                    .iter()
+                    .fold(0.0, |a, v| a.max(v.abs())),
+            );
+        }
+    }
+    let matrix_max = pv.m.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
+    let range = 32768.0;
+    let lines = args.strip;
+    let ram = ram_formula(w, h, core::mem::size_of::<C>(), lines, verts, tris, active);
+    let color = if core::mem::size_of::<C>() == 2 {
+        "Rgb565"
+    } else {
+        "Rgb888"
+    };
+    println!(
+        "budget for {} over {} frame(s) at {w}x{h} ({number}):",
+        m.name,
+        run.stats.len()
+    );
+    println!("  vertices stored (mesh + clipping): {verts}");
+    println!(
+        "  triangles after culling and clipping: {tris} (of {} in the mesh)",
+        m.indices.len()
+    );
+    println!("  triangles active on one row (max): {active}");
+    println!("  invalid triangles skipped: {invalid}");
+    println!("  fixed-point headroom (Q16.16 range ±32768; margin = range / largest magnitude):");
+    for (stage, v) in [
+        ("model positions", model_max),
+        ("world positions", world_max),
+        ("view-projection matrix", matrix_max),
+        ("clip coordinates", clip_max),
+    ] {
+        println!(
+            "    {stage:24} largest {v:>12.4}  margin {:>10.1}x",
+            range / v.max(1e-30)
+        );
+    }
+    println!("  renderer RAM: {ram} bytes = {lines}·{w}·({} + 2) + 20·{verts} + 16·{tris} + 164·{active} + 4·{h} (+ ≤ 128 state)", core::mem::size_of::<C>());
+    println!("  renderer type: Renderer<Fx<I16F16>, {color}, {w}, {h}, {verts}, {tris}, {active}, {lines}>");
+    // Work the scene does not need.
+    let closed_convex = is_closed_convex(m);
+    if closed_convex {
+        println!("  hint: one closed convex object: after back-face culling nothing overlaps, so no depth comparisons are needed: set DepthTest::Always");
+    }
+    if args.shading == ShadingArg::Flat {
+        println!("  hint: flat shading lights faces, not vertices: the mesh needs no vertex normals (saves {} bytes of flash)", 12 * m.positions.len());
+    }
+    let overflow = [model_max, world_max, matrix_max, clip_max]
+        .iter()
+        .any(|&v| v >= range);
+    if overflow || invalid > 0 {
+        return Err((format!("{}: the scene overflows Q16.16 (see the margins above); scale it down or use Fx<I20F12>", m.name), 1));
+    }
+    Ok(())
+}
+
+/// Every edge shared by exactly two triangles (vertices welded by position, since OBJ corners
+/// with different texture coordinates or normals are separate vertices), and every vertex on or
+/// behind every face's plane.
+fn is_closed_convex(m: &Model) -> bool {
+    use std::collections::HashMap;
+    let mut weld: HashMap<[u64; 3], u32> = HashMap::new();
+    let id: Vec<u32> = m
+        .positions
+        .iter()
+        .map(|p| {
+            let n = weld.len() as u32;
+            *weld.entry(p.map(f64::to_bits)).or_insert(n)
+        })
+        .collect();
+    let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in &m.indices {
+        for k in 0..3 {
+            let (a, b) = (id[t[k] as usize], id[t[(k + 1) % 3] as usize]);
+            *edges.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    if edges.values().any(|&n| n != 2) {
+        return false;
+    }
+    let (_, _, _, r) = bounds(&m.positions);
+    m.indices.iter().all(|t| {
+        let [a, b, c] = t.map(|i| m.positions[i as usize]);
+        let n = scanline3d::math::cross(scanline3d::math::sub(b, a), scanline3d::math::sub(c, a));
+        let len = scanline3d::math::length(n);
+        len == 0.0
+            || m.positions.iter().all(|p| {
+                scanline3d::math::dot(n, scanline3d::math::sub(*p, a)) / len <= 1e-9 * r.max(1.0)
+            })
+    })
 }
