@@ -20,6 +20,8 @@ pub struct ObjMesh {
 pub fn load_obj(path: &Path) -> Result<ObjMesh, String> {
     let name = path.display();
     let text = std::fs::read_to_string(path).map_err(|e| format!("{name}: cannot read: {e}"))?;
+    // The remaining options exist only with some tobj features: keep the update.
+    #[allow(clippy::needless_update)]
     let opts = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
