@@ -124,13 +124,13 @@ struct Args {
     #[arg(long, value_parser = size, default_value = "240x240")]
     size: (usize, usize),
     /// Camera position, world units
-    #[arg(long, value_parser = v3, default_value = "0,1.2,3")]
+    #[arg(long, allow_hyphen_values = true, value_parser = v3, default_value = "0,1.2,3")]
     eye: [f64; 3],
     /// Point the camera looks at, world units
-    #[arg(long, value_parser = v3, default_value = "0,0,0")]
+    #[arg(long, allow_hyphen_values = true, value_parser = v3, default_value = "0,0,0")]
     target: [f64; 3],
     /// Camera up direction
-    #[arg(long, value_parser = v3, default_value = "0,1,0")]
+    #[arg(long, allow_hyphen_values = true, value_parser = v3, default_value = "0,1,0")]
     up: [f64; 3],
     /// Vertical field of view, degrees
     #[arg(long = "fov-y", default_value_t = 45.0)]
@@ -154,7 +154,7 @@ struct Args {
     #[arg(long = "rotate-z", default_value_t = 0.0)]
     rotate_z: f64,
     /// Direction toward a light, world space; repeat for up to 4 lights [default: -1,1,1]
-    #[arg(long, value_parser = v3)]
+    #[arg(long, allow_hyphen_values = true, value_parser = v3)]
     light: Vec<[f64; 3]>,
     /// Ambient coefficient
     #[arg(long, default_value_t = 0.15)]
@@ -628,7 +628,7 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
         need(|s| s.max_active),
     );
     println!(
-        "{}: {w}x{h} {name} {}{} | triangles in {} / culled {} / clipped {} / drawn {} | pixels written {} | {:.3} ms/frame (host, median) | vs f64: max LSB r{} g{} b{}, PSNR {} | renderer RAM {} B for this scene ({} lines) | {:.1} s",
+        "{}: {w}x{h} {name} {}{} | triangles in {} / culled {} / clipped {} / drawn {} | pixels written {} | {:.3} ms/frame (host, median) | vs f64: max LSB r{} g{} b{}, PSNR {}, {} coverage mismatches | renderer RAM {} B for this scene ({} lines) | {:.1} s",
         args.out.display(),
         m.name,
         if tested.frames.len() > 1 { format!(", {} frames", tested.frames.len()) } else { String::new() },
@@ -642,6 +642,7 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
         metrics.max_lsb[1],
         metrics.max_lsb[2],
         if metrics.psnr_db().is_finite() { format!("{:.1} dB", metrics.psnr_db()) } else { "∞ (identical)".into() },
+        metrics.coverage_mismatch,
         ram,
         args.strip,
         t0.elapsed().as_secs_f64(),
