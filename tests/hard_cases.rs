@@ -98,6 +98,23 @@ fn draw<S: Scalar, C: TargetColor, P: Probe>(
     (f, stats)
 }
 
+/// Asserts that `S`'s triangle ids equal f64's rendered on `S`'s snapped positions.
+fn assert_same_ids<S: Scalar>(
+    ids: &Frame<TriangleId>,
+    ref_ids: &Frame<TriangleId>,
+    diverged: u32,
+    what: &str,
+) {
+    assert_eq!(diverged, 0, "{what} {}: geometry diverged", S::NAME);
+    let diff = ids
+        .px
+        .iter()
+        .zip(ref_ids.px.iter())
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(diff, 0, "{what} {}: coverage differs from f64 on the same snapped positions at {diff} pixels (bound 0)", S::NAME);
+}
+
 /// Coverage (triangle ids) of `S` and of f64 on `S`'s snapped positions: must be identical.
 fn same_coverage_as_f64<S: Scalar>(tris: &[Tri], what: &str) -> (Frame<TriangleId>, Stats) {
     let mut rec = Record::default();
@@ -107,14 +124,7 @@ fn same_coverage_as_f64<S: Scalar>(tris: &[Tri], what: &str) -> (Frame<TriangleI
         diverged: 0,
     };
     let (ref_ids, _) = draw::<f64, TriangleId, _>(tris, DepthTest::Less, &mut rp);
-    assert_eq!(rp.diverged, 0, "{what} {}: geometry diverged", S::NAME);
-    let diff = ids
-        .px
-        .iter()
-        .zip(ref_ids.px.iter())
-        .filter(|(a, b)| a != b)
-        .count();
-    assert_eq!(diff, 0, "{what} {}: coverage differs from f64 on the same snapped positions at {diff} pixels (bound 0)", S::NAME);
+    assert_same_ids::<S>(&ids, &ref_ids, rp.diverged, what);
     (ids, stats)
 }
 
@@ -435,14 +445,7 @@ fn world_same_coverage<S: Scalar>(
     };
     let (ref_ids, _) =
         draw_world::<f64, TriangleId, _>(pos, idx, cf, [255; 3], DepthTest::Less, false, &mut rp);
-    assert_eq!(rp.diverged, 0, "{what} {}: geometry diverged", S::NAME);
-    let diff = ids
-        .px
-        .iter()
-        .zip(ref_ids.px.iter())
-        .filter(|(a, b)| a != b)
-        .count();
-    assert_eq!(diff, 0, "{what} {}: coverage differs from f64 on the same snapped positions at {diff} pixels (bound 0)", S::NAME);
+    assert_same_ids::<S>(&ids, &ref_ids, rp.diverged, what);
     (ids, stats)
 }
 
