@@ -237,6 +237,63 @@ fn main() {
 /// Errors of exactly zero are drawn at this floor of the log axis.
 const ZERO_FLOOR: f64 = 1e-5;
 
+/// One point: (x, error, scene, number type).
+type Point<'a> = (f64, f64, &'a str, &'a str);
+
+/// One scatter panel: error (log scale) against `x`, a colour per number type, scene labels.
+fn panel(
+    area: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    caption: &str,
+    x_desc: &str,
+    points: &[Point<'_>],
+    ymax: f64,
+    legend: bool,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let palette = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
+    let xmax = points.iter().map(|p| p.0).fold(1.0, f64::max) * 1.1;
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 16))
+        .margin(12)
+        .x_label_area_size(44)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..xmax, (ZERO_FLOOR..ymax).log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc("mean abs. error, RGB565 LSB (0 drawn at 1e-5)")
+        .draw()?;
+    for (k, number) in NUMBERS.iter().enumerate() {
+        let color = palette[k % palette.len()];
+        let series: Vec<&Point<'_>> = points.iter().filter(|p| p.3 == *number).collect();
+        let drawn = chart.draw_series(
+            series
+                .iter()
+                .map(|p| Circle::new((p.0, p.1), 5, color.filled())),
+        )?;
+        if legend {
+            drawn
+                .label(*number)
+                .legend(move |(x, y)| Circle::new((x, y), 5, color.filled()));
+        }
+        chart.draw_series(series.iter().map(|p| {
+            Text::new(
+                p.2.to_string(),
+                (p.0, p.1 * 1.25),
+                ("sans-serif", 11).into_font().color(&color),
+            )
+        }))?;
+    }
+    if legend {
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()?;
+    }
+    Ok(())
+}
+
 fn plot(
     rows: &[Row],
     mcu: &BTreeMap<(String, String, String), u64>,
@@ -253,96 +310,38 @@ fn plot(
         ("sans-serif", 20),
     )?;
     let (left, right) = body.split_horizontally(640);
-    let palette = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
-    // Left: host time.
-    let xmax = pts
+    let host: Vec<Point<'_>> = pts
         .iter()
-        .map(|r| r.host_ns_per_frame / 1e3)
-        .fold(1.0, f64::max)
-        * 1.1;
-    let mut chart = ChartBuilder::on(&left)
-        .caption("host (x86-64), median µs per frame", ("sans-serif", 16))
-        .margin(12)
-        .x_label_area_size(44)
-        .y_label_area_size(70)
-        .build_cartesian_2d(0.0..xmax, (ZERO_FLOOR..ymax).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("µs per frame")
-        .y_desc("mean abs. error, RGB565 LSB (0 drawn at 1e-5)")
-        .draw()?;
-    for (k, number) in NUMBERS.iter().enumerate() {
-        let color = palette[k % palette.len()];
-        let series: Vec<(f64, f64, &str)> = pts
-            .iter()
-            .filter(|r| r.number == *number)
-            .map(|r| (r.host_ns_per_frame / 1e3, err(r), r.scene))
-            .collect();
-        chart
-            .draw_series(
-                series
-                    .iter()
-                    .map(|&(x, y, _)| Circle::new((x, y), 5, color.filled())),
-            )?
-            .label(*number)
-            .legend(move |(x, y)| Circle::new((x, y), 5, color.filled()));
-        chart.draw_series(series.iter().map(|&(x, y, s)| {
-            Text::new(
-                s.to_string(),
-                (x, y * 1.25),
-                ("sans-serif", 11).into_font().color(&color),
-            )
-        }))?;
-    }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()?;
-    // Right: Cortex-M0 instructions, where the MCU benchmark has run.
-    let m0: Vec<(f64, f64, &str, &str)> = pts
+        .map(|r| (r.host_ns_per_frame / 1e3, err(r), r.scene, r.number))
+        .collect();
+    panel(
+        &left,
+        "host (x86-64), median µs per frame",
+        "µs per frame",
+        &host,
+        ymax,
+        true,
+    )?;
+    let m0: Vec<Point<'_>> = pts
         .iter()
         .filter_map(|r| {
             mcu.get(&(r.scene.to_string(), r.number.to_string(), "m0".to_string()))
                 .map(|&i| (i as f64 / 1e6, err(r), r.scene, r.number))
         })
         .collect();
-    let xmax = m0.iter().map(|p| p.0).fold(1.0, f64::max) * 1.1;
-    let mut chart = ChartBuilder::on(&right)
-        .caption(
-            if m0.is_empty() {
-                "Cortex-M0: run scripts/mcu-bench first"
-            } else {
-                "Cortex-M0 (QEMU, exact), M instructions per frame"
-            },
-            ("sans-serif", 16),
-        )
-        .margin(12)
-        .x_label_area_size(44)
-        .y_label_area_size(70)
-        .build_cartesian_2d(0.0..xmax, (ZERO_FLOOR..ymax).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("million instructions per frame")
-        .y_desc("mean abs. error, RGB565 LSB")
-        .draw()?;
-    for (k, number) in NUMBERS.iter().enumerate() {
-        let color = palette[k % palette.len()];
-        let series: Vec<_> = m0.iter().filter(|p| p.3 == *number).collect();
-        chart.draw_series(
-            series
-                .iter()
-                .map(|p| Circle::new((p.0, p.1), 5, color.filled())),
-        )?;
-        chart.draw_series(series.iter().map(|p| {
-            Text::new(
-                p.2.to_string(),
-                (p.0, p.1 * 1.25),
-                ("sans-serif", 11).into_font().color(&color),
-            )
-        }))?;
-    }
+    let caption = if m0.is_empty() {
+        "Cortex-M0: run scripts/mcu-bench first"
+    } else {
+        "Cortex-M0 (QEMU, exact), M instructions per frame"
+    };
+    panel(
+        &right,
+        caption,
+        "million instructions per frame",
+        &m0,
+        ymax,
+        false,
+    )?;
     root.present()?;
     Ok(())
 }
