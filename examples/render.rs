@@ -718,7 +718,7 @@ fn budget<C: TargetColor>(
             range / v.max(1e-30)
         );
     }
-    println!("  renderer RAM: {ram} bytes = {lines}·{w}·({} + 2) + 20·{verts} + 16·{tris} + 164·{active} + 4·{h} (+ ≤ 128 state)", core::mem::size_of::<C>());
+    println!("  renderer RAM: {ram} bytes = {lines}·{w}·({} + 2) + 20·{verts} + 14·{tris} + 124·{active} + 4·{h} (+ ≤ 128 state)", core::mem::size_of::<C>());
     println!("  renderer type: Renderer<Fx<I16F16>, {color}, {w}, {h}, {verts}, {tris}, {active}, {lines}>");
     // Work the scene does not need.
     let closed_convex = is_closed_convex(m);

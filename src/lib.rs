@@ -47,11 +47,11 @@
 //!
 //! Renderer RAM in bytes ([`Renderer::RAM_BYTES`] gives the exact value):
 //!
-//! `LINES·W·(size_of::<C>() + 2) + 20·VERTS + 16·TRIS + 164·ACTIVE + 4·H` (+ at most 128 bytes of
+//! `LINES·W·(size_of::<C>() + 2) + 20·VERTS + 14·TRIS + 124·ACTIVE + 4·H` (+ at most 128 bytes of
 //! state and padding; a unit test checks the formula against `size_of`).
 //!
 //! The lines hold colour and 16-bit depth; `VERTS` projected vertices of 20 bytes, `TRIS`
-//! bucketed triangles of 16 bytes and `ACTIVE` triangles being scanned of 164 bytes are the
+//! bucketed triangles of 14 bytes and `ACTIVE` triangles being scanned of 124 bytes are the
 //! capacities a scene needs; `4·H` is the per-row bucket heads and active-count sweep. For the
 //! default torus scene at 240 × 240 RGB565 ([`demo::TorusRenderer`]),
 //! `cargo run --release --example render` prints the value — tens of kilobytes, against 230 KB

@@ -149,13 +149,17 @@ impl Edge {
     }
 }
 
-/// A triangle as stored between geometry and rasterization (16 bytes).
+/// [`TriRecord::flat`] value for a Gouraud-shaded triangle (no channel value reaches it).
+pub(crate) const GOURAUD: [u16; 3] = [u16::MAX; 3];
+
+/// A triangle as stored between geometry and rasterization (14 bytes).
 #[derive(Copy, Clone, Debug)]
 pub(crate) struct TriRecord {
     /// Indices into the renderer's vertex store.
     pub v: [u16; 3],
-    /// Flat colour (channel units, 8.8) or `None` for Gouraud.
-    pub flat: Option<[u16; 3]>,
+    /// Flat colour (channel units, 8.8, at most 65280), or [`GOURAUD`] for Gouraud shading
+    /// (a sentinel instead of an `Option` saves 2 bytes per triangle).
+    pub flat: [u16; 3],
     /// Next triangle in the same first-row bucket, or `u16::MAX`.
     pub next: u16,
 }
@@ -178,15 +182,12 @@ pub(crate) struct ActiveTri {
     mid_left: bool,
     /// Number of attributes: 1 (depth; flat) or 4 (depth, r, g, b).
     n_attrs: u8,
-    /// Sorted (top to bottom) vertices, kept for the switch at `row_mid`.
-    v0: (i32, i32),
+    /// The middle and bottom vertices (sorted by y), kept for the switch at `row_mid`.
     v1: (i32, i32),
     v2: (i32, i32),
-    /// Attribute values at v0 (depth 16.12; colour channel units with 20 fraction bits).
-    a0: [i32; 4],
-    /// Per-pixel gradients, |g| ≤ 2³⁰.
+    /// Per-pixel x gradients, |g| ≤ 2³⁰. (The y gradient lives on in `inc`, and the values
+    /// at the first vertex in `row`, so neither is stored.)
     gx: [i32; 4],
-    gy: [i32; 4],
     /// Values at the centre of the current row's first pixel (column `left.c`).
     row: [i32; 4],
     /// Change of `row` when the left edge moves by `sq` columns: `gy + gx·sq`.
@@ -277,7 +278,12 @@ impl ActiveTri {
             g.clamp(-GRAD_LIMIT, GRAD_LIMIT) as i32
         };
 
-        let n_attrs = if t.flat.is_some() { 1 } else { 4 };
+        let flat = if t.flat == GOURAUD {
+            None
+        } else {
+            Some(t.flat)
+        };
+        let n_attrs = if flat.is_some() { 1 } else { 4 };
         let val = |v: &ScreenVertex, k: usize| -> i32 {
             if k == 0 {
                 v.z
@@ -295,38 +301,30 @@ impl ActiveTri {
             gx[k] = scale(mul_wide(da1, bx1) - mul_wide(da2, bx2));
             gy[k] = scale(mul_wide(da2, by1) - mul_wide(da1, by2));
         }
-        let mut tri = ActiveTri {
+        // Evaluate every attribute plane at the centre of pixel (left.c, row).
+        let dx = SUBPIXELS * left.c + SUBPIXELS / 2 - a.x;
+        let dy = SUBPIXELS * row + SUBPIXELS / 2 - a.y;
+        let mut row_v = [0i32; 4];
+        let mut inc = [0i32; 4];
+        for k in 0..n_attrs {
+            let d = (mul_wide(gx[k], dx) + mul_wide(gy[k], dy)) >> crate::project::SUBPIXEL_BITS;
+            row_v[k] = a0[k].wrapping_add(d as i32);
+            inc[k] = gy[k].wrapping_add(gx[k].wrapping_mul(left.sq));
+        }
+        Some(ActiveTri {
             left,
             right,
             row_mid,
             row_end,
             mid_left,
             n_attrs: n_attrs as u8,
-            v0: (a.x, a.y),
             v1: (b.x, b.y),
             v2: (c.x, c.y),
-            a0,
             gx,
-            gy,
-            row: [0; 4],
-            inc: [0; 4],
-            flat: t.flat,
-        };
-        tri.anchor_attrs(row);
-        Some(tri)
-    }
-
-    /// Evaluates every attribute plane at the centre of pixel (`left.c`, `row`).
-    fn anchor_attrs(&mut self, row: i32) {
-        let dx = SUBPIXELS * self.left.c + SUBPIXELS / 2 - self.v0.0;
-        let dy = SUBPIXELS * row + SUBPIXELS / 2 - self.v0.1;
-        let sq = self.left.sq;
-        for k in 0..self.n_attrs as usize {
-            let (gx, gy) = (self.gx[k], self.gy[k]);
-            let d = (mul_wide(gx, dx) + mul_wide(gy, dy)) >> crate::project::SUBPIXEL_BITS;
-            self.row[k] = self.a0[k].wrapping_add(d as i32);
-            self.inc[k] = gy.wrapping_add(gx.wrapping_mul(sq));
-        }
+            row: row_v,
+            inc,
+            flat,
+        })
     }
 
     /// Moves to `next_row` (the row after the one just drawn).
@@ -339,11 +337,26 @@ impl ActiveTri {
         };
         let long_carry = long.step();
         if next_row == self.row_mid {
-            *short = Edge::new(self.v1.0, self.v1.1, self.v2.0, self.v2.1, next_row);
+            let new_short = Edge::new(self.v1.0, self.v1.1, self.v2.0, self.v2.1, next_row);
             if self.mid_left {
-                self.anchor_attrs(next_row);
+                // Carry the attribute rows over exactly: step along the old left edge's line
+                // to the new row, then move by whole pixels to the new edge's first column,
+                // and change the row increment for the new edge's slope.
+                let carry = short.step();
+                let (dc, dsq) = (
+                    new_short.c.wrapping_sub(short.c),
+                    new_short.sq.wrapping_sub(short.sq),
+                );
+                *short = new_short;
+                self.step_attrs(carry);
+                for k in 0..self.n_attrs as usize {
+                    let g = self.gx[k];
+                    self.row[k] = self.row[k].wrapping_add(g.wrapping_mul(dc));
+                    self.inc[k] = self.inc[k].wrapping_add(g.wrapping_mul(dsq));
+                }
                 return;
             }
+            *short = new_short;
             self.step_attrs(long_carry);
         } else {
             let short_carry = short.step();

@@ -15,7 +15,7 @@ use crate::cull::{facing, Facing};
 use crate::math::{normalize, sub, Mat4, Vec3};
 use crate::mesh::face_normal;
 use crate::project::{ScreenVertex, Viewport, MAX_SCREEN};
-use crate::raster::{first_pixel, ActiveTri, DepthTest, TriRecord};
+use crate::raster::{first_pixel, ActiveTri, DepthTest, TriRecord, GOURAUD};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::{lit_color, PreparedLight, Shading};
@@ -192,7 +192,7 @@ pub struct Stats {
 /// # RAM
 ///
 /// `size_of::<Renderer>()` ≈ `LINES·W·(size_of::<C>() + 2)` (colour and depth lines)
-/// `+ 20·VERTS + 16·TRIS + 164·ACTIVE` (vertex store, triangle list, active list)
+/// `+ 20·VERTS + 14·TRIS + 124·ACTIVE` (vertex store, triangle list, active list)
 /// `+ 4·H` (row buckets and the active-count sweep) plus a few words; [`Renderer::RAM_BYTES`]
 /// is the exact figure for a given instantiation. No framebuffer, no full-screen depth buffer.
 #[derive(Debug)]
@@ -753,7 +753,7 @@ impl<
             .tris
             .push(TriRecord {
                 v,
-                flat,
+                flat: flat.unwrap_or(GOURAUD),
                 next: self.heads[row],
             })
             .is_err()
@@ -887,7 +887,7 @@ pub const fn ram_formula(
     tris: usize,
     active: usize,
 ) -> usize {
-    lines * w * (color_bytes + 2) + 20 * verts + 16 * tris + 164 * active + 4 * h
+    lines * w * (color_bytes + 2) + 20 * verts + 14 * tris + 124 * active + 4 * h
 }
 
 #[cfg(test)]
