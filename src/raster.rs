@@ -182,6 +182,10 @@ pub(crate) struct ActiveTri {
     mid_left: bool,
     /// Number of attributes: 1 (depth; flat) or 4 (depth, r, g, b).
     n_attrs: u8,
+    /// Width + height of the bounding box ≤ 1024 px: the rounding drift of the attribute rows
+    /// (≤ ½ unit per pixel of distance from the anchor) stays far inside the depth bias and the
+    /// colour fields' headroom, so span starts need no clamping.
+    small: bool,
     /// The middle and bottom vertices (sorted by y), kept for the switch at `row_mid`.
     v1: (i32, i32),
     v2: (i32, i32),
@@ -311,6 +315,9 @@ impl ActiveTri {
             row_v[k] = a0[k].wrapping_add(d as i32);
             inc[k] = gy[k].wrapping_add(gx[k].wrapping_mul(left.sq));
         }
+        let (x_lo, x_hi) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+        let small =
+            (x_hi as i64 - x_lo as i64) + (c.y as i64 - a.y as i64) <= 1024 * SUBPIXELS as i64;
         Some(ActiveTri {
             left,
             right,
@@ -318,6 +325,7 @@ impl ActiveTri {
             row_end,
             mid_left,
             n_attrs: n_attrs as u8,
+            small,
             v1: (b.x, b.y),
             v2: (c.x, c.y),
             gx,
@@ -393,7 +401,51 @@ impl ActiveTri {
         let xs = self.left.c.max(0);
         let xe = self.right.c.min(width);
         let mut counts = (0, 0);
-        if xs < xe {
+        let packable = C::CHANNEL_MAX[0] <= 63 && C::CHANNEL_MAX[2] <= 63 && C::CHANNEL_MAX[0] > 0;
+        if xs < xe
+            && self.small
+            && xs == self.left.c
+            && test == DepthTest::Less
+            && !(dither && C::can_dither())
+            && (packable || self.flat.is_some())
+        {
+            // The common case, without clamps, dispatch or a span record.
+            let (x0, x1) = (xs as usize, xe as usize);
+            let z = self.row[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
+            let written = match self.flat {
+                Some(rgb) => span_flat::<C, LESS>(
+                    &mut depth[x0..x1],
+                    &mut colors[x0..x1],
+                    z,
+                    self.gx[0],
+                    C::vertex_channels_done(rgb),
+                ),
+                None => {
+                    let (fr, fb) = (
+                        16 - channel_bits(C::CHANNEL_MAX[0]),
+                        16 - channel_bits(C::CHANNEL_MAX[2]),
+                    );
+                    let (sr, sb) = (COLOR_FRAC_BITS - fr, COLOR_FRAC_BITS - fb);
+                    let conv = |v: i32, s: u32| (v.wrapping_add(1 << (s - 1))) >> s;
+                    let r0 = conv(self.row[1], sr).wrapping_add(1 << (fr - 1));
+                    let b0 = conv(self.row[3], sb).wrapping_add(1 << (fb - 1));
+                    let rb = ((r0 as u32) << 16).wrapping_add(b0 as u32);
+                    let grb = ((conv(self.gx[1], sr) as u32) << 16)
+                        .wrapping_add(conv(self.gx[3], sb) as u32);
+                    let g = self.row[2].wrapping_add(1 << (COLOR_FRAC_BITS - 1));
+                    span_packed::<C, LESS>(
+                        &mut depth[x0..x1],
+                        &mut colors[x0..x1],
+                        [z, self.gx[0]],
+                        [rb, grb],
+                        [g, self.gx[2]],
+                        fr,
+                        fb,
+                    )
+                }
+            };
+            counts = ((xe - xs) as u32, written);
+        } else if xs < xe {
             let skip = xs - self.left.c;
             let mut start = [0i32; 4];
             for k in 0..self.n_attrs as usize {
@@ -443,6 +495,63 @@ impl ActiveTri {
         self.advance(next);
         (counts.0, counts.1, false)
     }
+}
+
+/// Flat span: depth test `T`, constant colour. `z` carries the half-step rounding bias.
+// A function of its own: inlined into the row loop, the pixel loop inherits that loop's
+// register pressure and spills its accumulators on a Cortex-M0.
+#[inline(never)]
+fn span_flat<C: TargetColor, const T: u8>(
+    zs: &mut [u16],
+    cs: &mut [C],
+    mut z: i32,
+    gz: i32,
+    color: C,
+) -> u32 {
+    let mut written = 0;
+    for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
+        let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+        if passes::<T>(z16, *zb) {
+            *zb = z16;
+            *cb = color;
+            written += 1;
+        }
+        z = z.wrapping_add(gz);
+    }
+    written
+}
+
+/// Gouraud span with red and blue packed in one accumulator (see
+/// [`Span::fill_gouraud_packed`] for why that is exact), depth test `T`: `z`, `rb`, `g` are
+/// `[start, per-pixel step]` with their rounding biases already added.
+#[inline(never)]
+fn span_packed<C: TargetColor, const T: u8>(
+    zs: &mut [u16],
+    cs: &mut [C],
+    z: [i32; 2],
+    rb: [u32; 2],
+    g: [i32; 2],
+    fr: u32,
+    fb: u32,
+) -> u32 {
+    let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
+    let mut written = 0;
+    for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
+        let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+        if passes::<T>(z16, *zb) {
+            *zb = z16;
+            *cb = C::from_channels([
+                (rb >> (16 + fr)) as u8,
+                (g >> COLOR_FRAC_BITS) as u8,
+                ((rb & 0xffff) >> fb) as u8,
+            ]);
+            written += 1;
+        }
+        z = z.wrapping_add(gz);
+        rb = rb.wrapping_add(grb);
+        g = g.wrapping_add(gg);
+    }
+    written
 }
 
 /// Extension used by the span loop: a flat colour (channel units, 8.8) rounded to a pixel.
@@ -497,29 +606,19 @@ impl Span {
         self.start[0] + (1 << (DEPTH_FRAC_BITS - 1))
     }
 
-    // A function of its own: inlined into the row loop, the span loop inherits that loop's
-    // register pressure and spills its accumulators on a Cortex-M0.
-    #[inline(never)]
     fn fill_flat<C: TargetColor, const T: u8>(
         &self,
         colors: &mut [C],
         depth: &mut [u16],
         color: C,
     ) -> u32 {
-        let mut z = self.z_start();
-        let gz = self.gx[0];
-        let mut written = 0;
-        let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
-        for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
-            let z16 = (z >> DEPTH_FRAC_BITS) as u16;
-            if passes::<T>(z16, *zb) {
-                *zb = z16;
-                *cb = color;
-                written += 1;
-            }
-            z = z.wrapping_add(gz);
-        }
-        written
+        span_flat::<C, T>(
+            &mut depth[self.x0..self.x1],
+            &mut colors[self.x0..self.x1],
+            self.z_start(),
+            self.gx[0],
+            color,
+        )
     }
 
     fn fill_gouraud<C: TargetColor, const T: u8>(
@@ -547,7 +646,6 @@ impl Span {
     /// Cortex-M0.
     // A function of its own: inlined into the row loop, the span loop inherits that loop's
     // register pressure and spills its accumulators on a Cortex-M0.
-    #[inline(never)]
     fn fill_gouraud_packed<C: TargetColor, const T: u8>(
         &self,
         colors: &mut [C],
@@ -562,30 +660,19 @@ impl Span {
         let conv = |v: i32, s: u32| (v + (1 << (s - 1))) >> s;
         let r0 = conv(self.start[1], sr) + (1 << (fr - 1));
         let b0 = conv(self.start[3], sb) + (1 << (fb - 1));
-        let mut rb = ((r0 as u32) << 16).wrapping_add(b0 as u32);
+        let rb = ((r0 as u32) << 16).wrapping_add(b0 as u32);
         let grb = ((conv(self.gx[1], sr) as u32) << 16).wrapping_add(conv(self.gx[3], sb) as u32);
-        let mut g = self.start[2] + (1 << (COLOR_FRAC_BITS - 1));
-        let gg = self.gx[2];
-        let mut z = self.z_start();
-        let gz = self.gx[0];
-        let mut written = 0;
+        let g = self.start[2] + (1 << (COLOR_FRAC_BITS - 1));
         let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
-        for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
-            let z16 = (z >> DEPTH_FRAC_BITS) as u16;
-            if passes::<T>(z16, *zb) {
-                *zb = z16;
-                *cb = C::from_channels([
-                    (rb >> (16 + fr)) as u8,
-                    (g >> COLOR_FRAC_BITS) as u8,
-                    ((rb & 0xffff) >> fb) as u8,
-                ]);
-                written += 1;
-            }
-            z = z.wrapping_add(gz);
-            rb = rb.wrapping_add(grb);
-            g = g.wrapping_add(gg);
-        }
-        written
+        span_packed::<C, T>(
+            zs,
+            cs,
+            [self.z_start(), self.gx[0]],
+            [rb, grb],
+            [g, self.gx[2]],
+            fr,
+            fb,
+        )
     }
 
     /// Gouraud span, rounding to nearest: the half is folded into the start values.
