@@ -14,7 +14,7 @@ use clap::{Parser, ValueEnum};
 use common::compare::Timer;
 use common::obj::{bounds, load_obj, vertex_normals, ObjMesh};
 use common::Frame;
-use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use embedded_graphics::pixelcolor::{PixelColor, Rgb565, Rgb888, RgbColor};
 use scanline3d::demo::{self, deg};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::metrics::Metrics;
@@ -470,17 +470,8 @@ fn capacity_name(c: Capacity) -> &'static str {
     }
 }
 
-fn rgb888<C: Into<Rgb888> + Copy>(f: &Frame<C>) -> Vec<u8> {
-    f.px.iter()
-        .flat_map(|&c| {
-            let c: Rgb888 = c.into();
-            [c.r(), c.g(), c.b()]
-        })
-        .collect()
-}
-
 /// Writes PNG, animated PNG or GIF to a temporary name, then renames: never a half-written file.
-fn write_image<C: Into<Rgb888> + Copy>(
+fn write_image<C: PixelColor + Into<Rgb888>>(
     path: &Path,
     frames: &[Frame<C>],
     delay_ms: u16,
@@ -502,7 +493,8 @@ fn write_image<C: Into<Rgb888> + Copy>(
                 enc.set_repeat(gif::Repeat::Infinite)
                     .map_err(|e| format!("{name}: {e}"))?;
                 for f in frames {
-                    let mut fr = gif::Frame::from_rgb_speed(w as u16, h as u16, &rgb888(f), 10);
+                    let mut fr =
+                        gif::Frame::from_rgb_speed(w as u16, h as u16, &f.rgb888_bytes(), 10);
                     fr.delay = delay_ms / 10;
                     enc.write_frame(&fr).map_err(|e| format!("{name}: {e}"))?;
                 }
@@ -519,7 +511,7 @@ fn write_image<C: Into<Rgb888> + Copy>(
                 }
                 let mut wr = enc.write_header().map_err(|e| format!("{name}: {e}"))?;
                 for f in frames {
-                    wr.write_image_data(&rgb888(f))
+                    wr.write_image_data(&f.rgb888_bytes())
                         .map_err(|e| format!("{name}: {e}"))?;
                 }
                 wr.finish().map_err(|e| format!("{name}: {e}"))?;

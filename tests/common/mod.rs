@@ -47,6 +47,20 @@ impl<C: PixelColor> Frame<C> {
     }
 }
 
+impl<C: PixelColor + Into<Rgb888>> Frame<C> {
+    /// The pixels as packed 8-bit RGB bytes, row by row (embedded-graphics' rounding
+    /// conversion from the frame's colour type).
+    pub fn rgb888_bytes(&self) -> Vec<u8> {
+        self.px
+            .iter()
+            .flat_map(|&c| {
+                let c: Rgb888 = c.into();
+                [c.r(), c.g(), c.b()]
+            })
+            .collect()
+    }
+}
+
 impl<C: PixelColor> OriginDimensions for Frame<C> {
     fn size(&self) -> Size {
         Size::new(self.w, self.h)
@@ -83,14 +97,7 @@ pub fn png_bytes<C: PixelColor + Into<Rgb888>>(f: &Frame<C>) -> Vec<u8> {
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         let mut w = enc.write_header().unwrap();
-        let data: Vec<u8> =
-            f.px.iter()
-                .flat_map(|&c| {
-                    let c: Rgb888 = c.into();
-                    [c.r(), c.g(), c.b()]
-                })
-                .collect();
-        w.write_image_data(&data).unwrap();
+        w.write_image_data(&f.rgb888_bytes()).unwrap();
     }
     out
 }
@@ -123,13 +130,7 @@ pub fn check_golden<C: PixelColor + Into<Rgb888>>(name: &str, f: &Frame<C>) {
         )
     });
     assert_eq!((w, h), (f.w, f.h), "{name}: size");
-    let got: Vec<u8> =
-        f.px.iter()
-            .flat_map(|&c| {
-                let c: Rgb888 = c.into();
-                [c.r(), c.g(), c.b()]
-            })
-            .collect();
+    let got = f.rgb888_bytes();
     let diff = got
         .chunks(3)
         .zip(want.chunks(3))
