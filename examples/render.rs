@@ -23,9 +23,9 @@ use scanline3d::renderer::ram_formula;
 use scanline3d::{Capacity, Error, Stats};
 
 /// Largest preview size and capacities (host only; `--budget` prints what a device needs).
-const MAX_W: usize = 2048;
-const MAX_H: usize = 2048;
-type Big<S, C> = Renderer<S, C, MAX_W, MAX_H, 65535, 65534, 8192>;
+const MAX_W: usize = 1024;
+const MAX_H: usize = 1024;
+type Big<S, C> = Renderer<S, C, MAX_W, MAX_H, 32768, 32767, 8192>;
 /// Lights the tool supports (unused ones are zero vectors, which light nothing).
 const LIGHTS: usize = 4;
 
@@ -120,7 +120,7 @@ struct Args {
     /// Centre the model and place the camera so that its bounding sphere fills the view
     #[arg(long)]
     fit: bool,
-    /// Image size in pixels, WxH (up to 2048x2048)
+    /// Image size in pixels, WxH (up to 1024x1024)
     #[arg(long, value_parser = size, default_value = "240x240")]
     size: (usize, usize),
     /// Camera position, world units
@@ -710,7 +710,13 @@ fn budget<C: TargetColor>(
             range / v.max(1e-30)
         );
     }
-    println!("  renderer RAM: {ram} bytes = {lines}·{w}·({} + 2) + 20·{verts} + 14·{tris} + 124·{active} + 4·{h} (+ ≤ 128 state)", core::mem::size_of::<C>());
+    println!(
+        "  renderer RAM: {ram} bytes = {lines}·{w}·({} + 2) + {}·{verts} + {}·{tris} + {}·{active} + 4·{h} (+ ≤ 128 state)",
+        core::mem::size_of::<C>(),
+        scanline3d::renderer::VERTEX_BYTES,
+        scanline3d::renderer::TRIANGLE_BYTES,
+        scanline3d::renderer::ACTIVE_BYTES
+    );
     println!("  renderer type: Renderer<Fx<I16F16>, {color}, {w}, {h}, {verts}, {tris}, {active}, {lines}>");
     // Work the scene does not need.
     let closed_convex = is_closed_convex(m);

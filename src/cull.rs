@@ -20,8 +20,11 @@ pub enum Facing {
 /// (counter-clockwise as the viewer sees them, which is clockwise in y-down screen space).
 #[must_use]
 pub fn signed_area2(a: &ScreenVertex, b: &ScreenVertex, c: &ScreenVertex) -> i64 {
-    let (x0, y0) = (a.x as i64, a.y as i64);
-    (c.x as i64 - x0) * (b.y as i64 - y0) - (b.x as i64 - x0) * (c.y as i64 - y0)
+    // Coordinates within ±COORD_LIMIT (2¹⁴ − 1): differences ≤ 32 766 and 2·32 766² < 2³¹,
+    // so 32-bit arithmetic is exact (two single-instruction multiplies on a Cortex-M0).
+    let (x0, y0) = (a.x as i32, a.y as i32);
+    let area = (c.x as i32 - x0) * (b.y as i32 - y0) - (b.x as i32 - x0) * (c.y as i32 - y0);
+    area as i64
 }
 
 /// Classifies a snapped triangle.
@@ -40,7 +43,7 @@ mod tests {
 
     #[test]
     fn facing_sign() {
-        let v = |x: i32, y: i32| ScreenVertex {
+        let v = |x: i16, y: i16| ScreenVertex {
             x,
             y,
             ..Default::default()

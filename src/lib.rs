@@ -36,8 +36,9 @@
 //! .unwrap();
 //! let scene = Scene::new(&objects, camera, [Light::white([-Q::ONE, Q::ONE, Q::ONE])]);
 //!
-//! // 64×64 pixels, up to 24 vertices, 12 triangles, 12 active per row, one-line strip.
-//! let mut renderer = Renderer::<Q, Rgb565, 64, 64, 24, 12, 12>::new();
+//! // 64×64 pixels, up to 32 vertices (24 + one face-colour vertex per drawn flat triangle),
+//! // 12 triangles, 12 active per row, one-line strip.
+//! let mut renderer = Renderer::<Q, Rgb565, 64, 64, 32, 12, 12>::new();
 //! let mut display = MockDisplay::<Rgb565>::new(); // panics if a pixel is drawn twice
 //! let stats = renderer.render(&scene, &mut display).unwrap();
 //! assert_eq!(stats.culled, 6); // the back half of the cube
@@ -47,15 +48,17 @@
 //!
 //! Renderer RAM in bytes ([`Renderer::RAM_BYTES`] gives the exact value):
 //!
-//! `LINES·W·(size_of::<C>() + 2) + 20·VERTS + 14·TRIS + 124·ACTIVE + 4·H` (+ at most 128 bytes of
+//! `LINES·W·(size_of::<C>() + 2) + 12·VERTS + 6·TRIS + 88·ACTIVE + 4·H` (+ at most 128 bytes of
 //! state and padding; a unit test checks the formula against `size_of`).
 //!
-//! The lines hold colour and 16-bit depth; `VERTS` projected vertices of 20 bytes, `TRIS`
-//! bucketed triangles of 14 bytes and `ACTIVE` triangles being scanned of 124 bytes are the
-//! capacities a scene needs; `4·H` is the per-row bucket heads and active-count sweep. For the
-//! default torus scene at 240 × 240 RGB565 ([`demo::TorusRenderer`]),
-//! `cargo run --release --example render` prints the value — tens of kilobytes, against 230 KB
-//! for a 240 × 240 RGB565 framebuffer plus a 16-bit depth buffer.
+//! The lines hold colour and 16-bit depth; `VERTS` projected vertices of 12 bytes, `TRIS`
+//! triangles of 6 bytes (three vertex indices, sorted by first row after the geometry stage)
+//! and `ACTIVE` triangles being scanned of 88 bytes are the capacities a scene needs; `4·H` is
+//! the per-row bucket starts and the active-count sweep. A flat-shaded triangle takes one more
+//! vertex (a copy of a corner that carries the face colour). For the default torus scene at
+//! 240 × 240 RGB565, `cargo run --release --example render` prints the value for the
+//! capacities that frame needs — under 16 KB, against 230 KB for a 240 × 240 RGB565
+//! framebuffer plus a 16-bit depth buffer.
 //!
 //! ## Number formats per stage
 //!
@@ -64,9 +67,9 @@
 //! | positions, matrices, normals, lighting, clip coordinates | `S` (e.g. Q16.16) | one type keeps the pipeline generic; 2⁻¹⁶ is far below the 1/255 colour step and 1/16 px |
 //! | 1/w | `S::Recip` (Q16.16: 31-bit normalized mantissa + shift) | Q16.16 would leave 1/w with ~6 significant bits at w = 1000 |
 //! | x/w, y/w, z/w | signed Q31.32 in `i64` | exact enough for any `S`; shared integer viewport |
-//! | screen x, y | signed 28.4 in `i32` (1/16 px), ±2²² | 4 subpixel bits; all edge setup fits in 32 bits |
-//! | depth | 16.12 interpolated, `u16` stored (0 = near) | |
-//! | colour | channel units with 8 (vertices) / 20 (spans) fraction bits | rounding to RGB565 happens once, per pixel, by a shift |
+//! | screen x, y | signed 12.4 in `i16` (1/16 px), ±16 383 (guard band G = 7 at 240 px) | 4 subpixel bits; edge and area setup in 32-bit integers |
+//! | depth | 16.8 at vertices, 16.12 interpolated, `u16` stored (0 = near) | |
+//! | colour | channel units, 10-bit at vertices (RGB565: 5.5 / 6.4), 20 fraction bits in spans | rounding to RGB565 happens once, per pixel, by a shift |
 //!
 //! ## Crate features
 //!

@@ -18,28 +18,128 @@ pub const SUBPIXELS: i32 = 1 << SUBPIXEL_BITS;
 pub const DEPTH_FRAC_BITS: u32 = 12;
 /// Largest stored depth (the far plane).
 pub const DEPTH_MAX: i32 = 65535;
-/// Largest magnitude of a snapped screen coordinate, in subpixels (2²² = 262 144 px): the guard
-/// band is chosen so that every projected vertex stays within it, which keeps all edge setup in
-/// 32-bit integers.
-pub const COORD_LIMIT: i32 = 1 << 22;
+/// Largest magnitude of a snapped screen coordinate, in subpixels (16 383 = 1024 px − 1/16):
+/// the guard band is chosen so that every projected vertex stays within it. Coordinates then
+/// fit an `i16`, and every product and sum of the edge and area setup fits 32 bits
+/// (|Δ| ≤ 32 766, and 2·32 766² < 2³¹).
+pub const COORD_LIMIT: i32 = (1 << 14) - 1;
 /// Largest supported screen width or height in pixels.
-pub const MAX_SCREEN: usize = 2048;
+pub const MAX_SCREEN: usize = 1024;
 
 /// A vertex after projection: snapped position, depth and colour.
 ///
-/// Size: 20 bytes.
+/// Size: 12 bytes (the vertex store is the largest part of a renderer's RAM).
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub struct ScreenVertex {
-    /// x in subpixels (signed 28.4 fixed point; |x| ≤ [`COORD_LIMIT`]).
-    pub x: i32,
-    /// y in subpixels, downwards (signed 28.4; |y| ≤ [`COORD_LIMIT`]).
-    pub y: i32,
-    /// Depth, unsigned 16.12 in an `i32`: 0 at the near plane, 65535·2¹² at the far plane.
-    pub z: i32,
-    /// Colour channels in the target's channel units, unsigned 8.8 (0..=65280, step 1/256).
-    pub rgb: [u16; 3],
-    /// Renderer bookkeeping (outcode and state bits).
+    /// x in subpixels (signed 12.4 fixed point; |x| ≤ [`COORD_LIMIT`]).
+    pub x: i16,
+    /// y in subpixels, downwards (signed 12.4; |y| ≤ [`COORD_LIMIT`]).
+    pub y: i16,
+    /// Depth, integer part (0 at the near plane, 65535 at the far plane); with [`Self::zf`]
+    /// unsigned 16.8, step 2⁻⁸ of a depth step.
+    pub z: u16,
+    /// Depth, 8 fraction bits.
+    pub zf: u8,
+    /// Colour: the upper 8 of the 10-bit channels (see [`ScreenVertex::color`]).
+    pub(crate) rgb_hi: [u8; 3],
+    /// Renderer bookkeeping: outcode and state bits in bits 0..=9; bits 10..=15 hold the
+    /// lowest 2 bits of each 10-bit colour channel.
     pub(crate) flags: u16,
+}
+
+/// Mask of [`ScreenVertex::flags`] bits that belong to the renderer (the rest is colour).
+pub(crate) const FLAG_MASK: u16 = (1 << 10) - 1;
+
+impl ScreenVertex {
+    /// Colour channels in the target's channel units with `10 − bits` fraction bits for a
+    /// channel of `bits` bits (RGB565: red and blue 5.5, green 6.4; 8-bit channels 8.2;
+    /// 0..=1023, step 1/32 LSB for RGB565; see [`pack_channels`]).
+    #[inline]
+    #[must_use]
+    pub fn color(&self) -> [u16; 3] {
+        let lo = self.flags >> 10;
+        [
+            (self.rgb_hi[0] as u16) << 2 | (lo & 3),
+            (self.rgb_hi[1] as u16) << 2 | (lo >> 2 & 3),
+            (self.rgb_hi[2] as u16) << 2 | (lo >> 4 & 3),
+        ]
+    }
+
+    /// Sets the colour (10-bit channels, see [`ScreenVertex::color`]).
+    #[inline]
+    pub fn set_color(&mut self, c: [u16; 3]) {
+        self.rgb_hi = c.map(|v| (v >> 2) as u8);
+        let lo = (c[0] & 3) | (c[1] & 3) << 2 | (c[2] & 3) << 4;
+        self.flags = (self.flags & FLAG_MASK) | lo << 10;
+    }
+
+    /// Depth as unsigned 16.12 in an `i32` (0..=65535·2¹², the rasterizer's depth format).
+    #[inline]
+    #[must_use]
+    pub fn depth(&self) -> i32 {
+        ((self.z as i32) << DEPTH_FRAC_BITS) | ((self.zf as i32) << (DEPTH_FRAC_BITS - 8))
+    }
+}
+
+/// Significant bits of a channel maximum (31 → 5, 63 → 6, 255 → 8, 0 → 0).
+#[must_use]
+pub const fn channel_bits(max: u8) -> u32 {
+    8 - max.leading_zeros()
+}
+
+/// Fraction bits a channel with maximum `max` keeps in a vertex's 10-bit channel:
+/// `10 − bits` (≤ 9; a channel of 0 bits is always 0).
+#[must_use]
+pub const fn vertex_frac_bits(max: u8) -> u32 {
+    let b = channel_bits(max);
+    if b == 0 {
+        9
+    } else {
+        10 - b
+    }
+}
+
+/// Channels in channel units, 8.8 (0..=`max`·256), to the vertex's 10-bit format (see
+/// [`ScreenVertex::color`]), rounding to nearest: the result is at most
+/// `max`·2^(10 − bits) ≤ 1020.
+#[must_use]
+pub fn pack_channels(rgb: [u16; 3], max: [u8; 3]) -> [u16; 3] {
+    let mut out = [0u16; 3];
+    for k in 0..3 {
+        if max[k] == 0 {
+            continue;
+        }
+        let s = channel_bits(max[k]) - 2; // 8.8 → 10 − bits fraction bits
+        let limit = (max[k] as u32) << (10 - channel_bits(max[k]));
+        let v = (rgb[k] as u32 + (1 << s >> 1)) >> s;
+        out[k] = v.min(limit) as u16;
+    }
+    out
+}
+
+/// A flat (face) colour in channel units, 8.8, rounded to whole channel values and stored in
+/// the vertex byte format, so that the rasterizer's rounding of the byte gives back exactly
+/// the face colour rounded once.
+#[must_use]
+pub fn pack_flat_channels(rgb: [u16; 3], max: [u8; 3]) -> [u16; 3] {
+    let mut out = [0u16; 3];
+    for k in 0..3 {
+        let whole = ((rgb[k] as u32 + 128) >> 8).min(max[k] as u32);
+        out[k] = (whole << vertex_frac_bits(max[k])) as u16;
+    }
+    out
+}
+
+/// The inverse of [`pack_channels`]: vertex bytes back to channel units, 8.8 (exact).
+#[must_use]
+pub fn unpack_channels(rgb: [u16; 3], max: [u8; 3]) -> [u16; 3] {
+    let mut out = [0u16; 3];
+    for k in 0..3 {
+        if max[k] != 0 {
+            out[k] = rgb[k] << (channel_bits(max[k]) - 2);
+        }
+    }
+    out
 }
 
 /// The viewport: screen size and the guard band that follows from it.
@@ -52,12 +152,13 @@ pub struct Viewport {
 }
 
 impl Viewport {
-    /// The guard band factor G: vertices with `|x|, |y| ≤ G·w` project inside
-    /// ±[`COORD_LIMIT`] subpixels. For 240×240, G = 2183.
+    /// The guard band factor G ≥ 1: vertices with `|x|, |y| ≤ G·w` project inside
+    /// ±[`COORD_LIMIT`] subpixels. For 240×240, G = 7 (the band reaches 7 half-screens to each
+    /// side of the centre; farther vertices are clipped). At 1024 px, G = 1.
     #[must_use]
     pub fn guard_band(&self) -> i32 {
         let m = self.width.max(self.height).max(1) as i32;
-        COORD_LIMIT / (8 * m) - 1
+        (COORD_LIMIT / (8 * m) - 1).max(1)
     }
 
     /// Width / height.
@@ -80,18 +181,23 @@ impl Viewport {
         let nx = S::ndc(x, r);
         let ny = S::ndc(y, r);
         let nz = S::ndc(z, r);
-        let lim = COORD_LIMIT as i64 + sx.max(sy);
+        let lim = COORD_LIMIT as i64;
         let px = mul_q32(nx, sx as u32) + sx;
         let py = mul_q32(-ny, sy as u32) + sy;
         let dz = (DEPTH_MAX as i64) << DEPTH_FRAC_BITS;
         let pz = mul_q32(nz.clamp(0, 1 << NDC_FRAC_BITS), dz as u32);
-        Some(ScreenVertex {
-            x: px.clamp(-lim, lim) as i32,
-            y: py.clamp(-lim, lim) as i32,
-            z: pz.clamp(0, dz) as i32,
-            rgb,
+        // 16.12 to 16.8, rounded (at most 65535·2⁸).
+        let z = (pz.clamp(0, dz) + 8) >> 4;
+        let mut v = ScreenVertex {
+            x: px.clamp(-lim, lim) as i16,
+            y: py.clamp(-lim, lim) as i16,
+            z: (z >> 8) as u16,
+            zf: z as u8,
+            rgb_hi: [0; 3],
             flags: 0,
-        })
+        };
+        v.set_color(rgb);
+        Some(v)
     }
 }
 
@@ -111,14 +217,14 @@ mod tests {
             .project([o, o, S::from_f64(0.5), S::ONE], [0; 3])
             .unwrap();
         assert_eq!((v.x, v.y), (120 * 16, 80 * 16));
-        assert_eq!(v.z, 65535 << 11);
+        assert_eq!(v.depth(), 65535 << 11);
         // Top-left corner of the view volume is (0, 0); +y is up in clip space, down on screen.
         let v = vp.project([-S::ONE, S::ONE, o, S::ONE], [0; 3]).unwrap();
-        assert_eq!((v.x, v.y, v.z), (0, 0, 0));
+        assert_eq!((v.x, v.y, v.depth()), (0, 0, 0));
         let v = vp
             .project([S::ONE, -S::ONE, S::ONE, S::ONE], [0; 3])
             .unwrap();
-        assert_eq!((v.x, v.y, v.z), (240 * 16, 160 * 16, 65535 << 12));
+        assert_eq!((v.x, v.y, v.depth()), (240 * 16, 160 * 16, 65535 << 12));
         assert!(vp.project([o, o, o, -S::ONE], [0; 3]).is_none());
     }
 
@@ -136,8 +242,39 @@ mod tests {
             height: 240,
         };
         let g = vp.guard_band() as f64;
-        assert_eq!(g, 2183.0);
+        assert_eq!(g, 7.0);
         let v = vp.project([g, -g, 0.0, 1.0f64], [0; 3]).unwrap();
-        assert!(v.x.abs() <= COORD_LIMIT && v.y.abs() <= COORD_LIMIT);
+        assert!(v.x as i32 <= COORD_LIMIT && v.y as i32 >= -COORD_LIMIT);
+        assert_eq!((v.x, v.y), (8 * 8 * 240, 8 * 8 * 240));
+        // The largest screen still has a guard band of one screen.
+        let big = Viewport {
+            width: 1024,
+            height: 1024,
+        };
+        assert_eq!(big.guard_band(), 1);
+        let v = big.project([-1.0, -1.0, 0.0, 1.0f64], [0; 3]).unwrap();
+        assert_eq!((v.x, v.y), (0, COORD_LIMIT as i16));
+        assert_eq!(core::mem::size_of::<ScreenVertex>(), 12);
+    }
+
+    #[test]
+    fn channel_bytes_round_trip() {
+        let max = [31, 63, 255];
+        for v in [0u16, 1, 127, 128, 4000, 31 * 256] {
+            let p = pack_channels([v, v.min(63 * 256), v.min(255 * 256)], max);
+            let u = unpack_channels(p, max);
+            assert!((u[0] as i32 - v as i32).abs() <= 4, "{v} {p:?} {u:?}");
+        }
+        assert_eq!(
+            pack_channels([31 * 256, 63 * 256, 255 * 256], max),
+            [992, 1008, 1020]
+        );
+        assert_eq!(pack_channels([65535; 3], max), [992, 1008, 1020]);
+        let mut v = ScreenVertex {
+            flags: 0x3ff,
+            ..Default::default()
+        };
+        v.set_color([1023, 2, 513]);
+        assert_eq!((v.color(), v.flags & FLAG_MASK), ([1023, 2, 513], 0x3ff));
     }
 }

@@ -19,15 +19,14 @@
 //! per attribute. Per pixel: one addition per attribute, a shift, a compare and stores.
 
 use crate::color::{TargetColor, BAYER};
-use crate::project::{ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS};
+use crate::project::{
+    channel_bits, vertex_frac_bits, ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS,
+};
 use crate::scalar::{mul_wide, recip_norm};
 
 /// Fraction bits of interpolated colour channels (channel units, so 0..=255·2²⁰ < 2²⁸ fits an
 /// `i32`; step 2⁻²⁰ of a channel unit).
 pub const COLOR_FRAC_BITS: u32 = 20;
-/// Vertex colours are stored with 8 fraction bits; this shift brings them to
-/// [`COLOR_FRAC_BITS`].
-const COLOR_SHIFT: u32 = COLOR_FRAC_BITS - 8;
 /// Largest magnitude of a gradient (per pixel), to keep spans in `i32`.
 const GRAD_LIMIT: i64 = 1 << 30;
 
@@ -99,49 +98,61 @@ fn div_floor(n: i64, d: i32) -> (i32, i32) {
     }
 }
 
+/// `16 · max(1, yb − ya)`: the denominator of an edge's DDA (≤ 16·32 766 < 2¹⁹).
+#[inline(always)]
+fn edge_den(ya: i32, yb: i32) -> i32 {
+    SUBPIXELS * (yb - ya).max(1)
+}
+
 /// One edge from its upper vertex `a` to its lower vertex `b`, positioned on a pixel row:
 /// `c` is the first pixel whose centre is at or right of the edge; the exact crossing is
-/// `c − e/d` (in pixels, relative to centres), with `0 ≤ e < d`.
+/// `c − e/d` (in pixels, relative to centres), with `0 ≤ e < d` and `d = 16·(yb − ya)`
+/// ([`edge_den`], not stored: the active triangle recomputes it from its vertices).
+///
+/// Size: 12 bytes.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Edge {
-    /// Current pixel boundary (column index).
-    pub c: i32,
+    /// Current pixel boundary (column index; |c| ≤ 1025 on every row the edge is used).
+    pub c: i16,
+    /// Whole pixels the boundary moves per row (floor; |sq| ≤ 32 766).
+    pub sq: i16,
     /// Remainder, `0 ≤ e < d`.
     e: i32,
-    /// Whole pixels the boundary moves per row (floor).
-    pub sq: i32,
     /// Remainder of the move per row, `0 ≤ sr < d`.
     sr: i32,
-    /// `16 · (yb − ya)`, ≤ 2²⁷.
-    d: i32,
 }
 
 impl Edge {
-    /// The edge `a → b` (`a.y < b.y`) at pixel row `row`. Coordinates must be within
-    /// ±[`crate::project::COORD_LIMIT`] subpixels (plus the screen), so that every quantity but
-    /// the start numerator fits in 32 bits.
+    /// The edge `a → b` (`a.y < b.y`) at pixel row `row` (on the screen, 0..=1024), for
+    /// coordinates within ±[`crate::project::COORD_LIMIT`]: every product below is under 2³⁰
+    /// and the sum under 2³¹, so the setup is 32-bit (two divisions).
     pub(crate) fn new(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> Edge {
         let dy = (yb - ya).max(1);
         let dx = xb - xa;
         let d = SUBPIXELS * dy;
         let ys = SUBPIXELS * row + SUBPIXELS / 2;
-        // (x − 8) at the sample row, times dy: |n| < 2^47.
-        let n = mul_wide(xa - SUBPIXELS / 2, dy) + mul_wide(ys - ya, dx);
+        // (x − 8) at the sample row, times dy.
+        let n = (xa - SUBPIXELS / 2) * dy + (ys - ya) * dx;
         // c = ceil(n/d), e = c·d − n.
-        let (q, r) = div_floor(n, d);
+        let (q, r) = div_floor(n as i64, d);
         let (c, e) = if r == 0 { (q, 0) } else { (q + 1, d - r) };
         let (sq, sr) = div_floor((SUBPIXELS * dx) as i64, d);
-        Edge { c, e, sq, sr, d }
+        Edge {
+            c: c as i16,
+            sq: sq as i16,
+            e,
+            sr,
+        }
     }
 
     /// Moves to the next row; returns true when the boundary moved by `sq + 1` instead of `sq`.
     #[inline(always)]
-    pub(crate) fn step(&mut self) -> bool {
+    pub(crate) fn step(&mut self, d: i32) -> bool {
         self.e -= self.sr;
-        self.c += self.sq;
+        self.c = self.c.wrapping_add(self.sq);
         if self.e < 0 {
-            self.e += self.d;
-            self.c += 1;
+            self.e += d;
+            self.c = self.c.wrapping_add(1);
             true
         } else {
             false
@@ -149,22 +160,41 @@ impl Edge {
     }
 }
 
-/// [`TriRecord::flat`] value for a Gouraud-shaded triangle (no channel value reaches it).
-pub(crate) const GOURAUD: [u16; 3] = [u16::MAX; 3];
+/// Bit of [`TriRecord::v`]`[0]` that marks a flat-shaded triangle: its colour is the colour of
+/// vertex `v[0] & !FLAT_BIT` (the renderer stores a copy of a vertex with the face colour).
+pub(crate) const FLAT_BIT: u16 = 1 << 15;
 
-/// A triangle as stored between geometry and rasterization (14 bytes).
+/// A triangle as stored between geometry and rasterization (6 bytes): three indices into the
+/// vertex store, the first one carrying [`FLAT_BIT`]. Records are sorted by first covered row
+/// after the geometry stage, so no list link is stored.
 #[derive(Copy, Clone, Debug)]
 pub(crate) struct TriRecord {
-    /// Indices into the renderer's vertex store.
+    /// Indices into the renderer's vertex store (below 2¹⁵); [`FLAT_BIT`] in `v[0]`.
     pub v: [u16; 3],
-    /// Flat colour (channel units, 8.8, at most 65280), or [`GOURAUD`] for Gouraud shading
-    /// (a sentinel instead of an `Option` saves 2 bytes per triangle).
-    pub flat: [u16; 3],
-    /// Next triangle in the same first-row bucket, or `u16::MAX`.
-    pub next: u16,
 }
 
-/// A triangle on the active list.
+impl TriRecord {
+    /// The three vertex indices without the flag.
+    #[inline(always)]
+    pub(crate) fn indices(&self) -> [usize; 3] {
+        [
+            (self.v[0] & !FLAT_BIT) as usize,
+            self.v[1] as usize,
+            self.v[2] as usize,
+        ]
+    }
+}
+
+/// [`ActiveTri::flags`]: the middle vertex is left of the long edge.
+const MID_LEFT: u8 = 1;
+/// [`ActiveTri::flags`]: flat shaded (one attribute; `gx[1]` holds the colour).
+const FLAT: u8 = 2;
+/// [`ActiveTri::flags`]: width + height of the bounding box ≤ 1024 px, so the rounding drift
+/// of the attribute rows (≤ ½ unit per pixel of distance from the anchor) stays far inside the
+/// depth bias and the colour fields' headroom, and span starts need no clamping.
+const SMALL: u8 = 4;
+
+/// A triangle on the active list (88 bytes).
 ///
 /// Attribute values are 32-bit and updated with wrapping arithmetic: every value that is
 /// *used* is the plane at a pixel centre inside the triangle, which lies within the attribute's
@@ -174,45 +204,43 @@ pub(crate) struct TriRecord {
 pub(crate) struct ActiveTri {
     left: Edge,
     right: Edge,
-    /// Row where the short edge changes from v0→v1 to v1→v2.
-    row_mid: i32,
-    /// First row not covered.
-    row_end: i32,
-    /// v1 is left of the long edge.
-    mid_left: bool,
-    /// Number of attributes: 1 (depth; flat) or 4 (depth, r, g, b).
-    n_attrs: u8,
-    /// Width + height of the bounding box ≤ 1024 px: the rounding drift of the attribute rows
-    /// (≤ ½ unit per pixel of distance from the anchor) stays far inside the depth bias and the
-    /// colour fields' headroom, so span starts need no clamping.
-    small: bool,
-    /// The middle and bottom vertices (sorted by y), kept for the switch at `row_mid`.
-    v1: (i32, i32),
-    v2: (i32, i32),
-    /// Per-pixel x gradients, |g| ≤ 2³⁰. (The y gradient lives on in `inc`, and the values
-    /// at the first vertex in `row`, so neither is stored.)
+    /// Row where the short edge changes from a→b to b→c (|·| ≤ 1025).
+    row_mid: i16,
+    /// First row not covered (≤ 1024).
+    row_end: i16,
+    /// y of the top vertex, x and y of the middle and bottom ones (sorted by y), in subpixels
+    /// (12.4): the edges' denominators and the short edge's switch come from them.
+    ay: i16,
+    bx: i16,
+    by: i16,
+    cx: i16,
+    cy: i16,
+    /// [`MID_LEFT`], [`FLAT`], [`SMALL`].
+    flags: u8,
+    /// Per-pixel x gradients, |g| ≤ 2³⁰: depth (16.12 per pixel) and r, g, b (channel units,
+    /// 20 fraction bits per pixel). Flat triangles keep their final channel bytes in `gx[1]`.
+    /// (The y gradient lives on in `inc`, and the values at the first vertex in `row`, so
+    /// neither is stored.)
     gx: [i32; 4],
-    /// Values at the centre of the current row's first pixel (column `left.c`).
+    /// Values at the centre of the current row's first pixel (column `left.c`), same formats.
     row: [i32; 4],
     /// Change of `row` when the left edge moves by `sq` columns: `gy + gx·sq`.
     inc: [i32; 4],
-    flat: Option<[u16; 3]>,
 }
 
 impl ActiveTri {
     /// Sets up triangle `t` starting at `row` (its first covered row, clamped to the screen).
     /// Returns `None` if it covers no row from `row` on.
-    pub(crate) fn new(
+    pub(crate) fn new<C: TargetColor>(
         t: &TriRecord,
         verts: &[ScreenVertex],
         row: i32,
         height: i32,
     ) -> Option<Self> {
-        let mut p = [
-            verts[t.v[0] as usize],
-            verts[t.v[1] as usize],
-            verts[t.v[2] as usize],
-        ];
+        let [i0, i1, i2] = t.indices();
+        let flat = t.v[0] & FLAT_BIT != 0;
+        let flat_rgb = verts[i0].color();
+        let mut p = [verts[i0], verts[i1], verts[i2]];
         // Sort by y (for equal y the order does not matter: horizontal edges are unused).
         if p[1].y < p[0].y {
             p.swap(0, 1);
@@ -224,23 +252,27 @@ impl ActiveTri {
             p.swap(0, 1);
         }
         let [a, b, c] = p;
-        let row_end = first_pixel(c.y).min(height);
-        let row_mid = first_pixel(b.y);
+        let (ax, ay, bx, by, cx, cy) = (
+            a.x as i32, a.y as i32, b.x as i32, b.y as i32, c.x as i32, c.y as i32,
+        );
+        let row_end = first_pixel(cy).min(height);
+        let row_mid = first_pixel(by);
         if row >= row_end {
             return None;
         }
-        let (dx1, dy1) = (b.x - a.x, b.y - a.y);
-        let (dx2, dy2) = (c.x - a.x, c.y - a.y);
-        let det = mul_wide(dx1, dy2) - mul_wide(dx2, dy1);
+        let (dx1, dy1) = (bx - ax, by - ay);
+        let (dx2, dy2) = (cx - ax, cy - ay);
+        // |d| ≤ 32 766 each: 2·32 766² < 2³¹.
+        let det = dx1 * dy2 - dx2 * dy1;
         if det == 0 {
             return None;
         }
         let mid_left = det < 0;
-        let long = Edge::new(a.x, a.y, c.x, c.y, row);
+        let long = Edge::new(ax, ay, cx, cy, row);
         let short = if row < row_mid {
-            Edge::new(a.x, a.y, b.x, b.y, row)
+            Edge::new(ax, ay, bx, by, row)
         } else {
-            Edge::new(b.x, b.y, c.x, c.y, row)
+            Edge::new(bx, by, cx, cy, row)
         };
         let (left, right) = if mid_left {
             (short, long)
@@ -250,13 +282,13 @@ impl ActiveTri {
 
         // Barycentric gradient coefficients, 16·(dy2, dy1, dx2, dx1)/det, with a shared
         // exponent: gx = da1·bx1 − da2·bx2, gy = da2·by1 − da1·by2.
-        let inv = Reciprocal::new(det);
+        let inv = Reciprocal::new(det as i64);
         let vmax = dy2
             .unsigned_abs()
             .max(dy1.unsigned_abs())
             .max(dx1.unsigned_abs())
             .max(dx2.unsigned_abs());
-        let l = 32 - vmax.leading_zeros(); // ≤ 24
+        let l = 32 - vmax.leading_zeros(); // ≤ 16
         let coef = |v: i32| -> i32 {
             // |16·v·m| < 2^(l + 34); keep 30 bits.
             let q = (mul_wide(v, inv.m) << 4) >> (l + 4);
@@ -282,82 +314,113 @@ impl ActiveTri {
             g.clamp(-GRAD_LIMIT, GRAD_LIMIT) as i32
         };
 
-        let flat = if t.flat == GOURAUD {
-            None
-        } else {
-            Some(t.flat)
-        };
-        let n_attrs = if flat.is_some() { 1 } else { 4 };
-        let val = |v: &ScreenVertex, k: usize| -> i32 {
+        let n_attrs = if flat { 1 } else { 4 };
+        let (ca, cb, cc) = (a.color(), b.color(), c.color());
+        let val = |v: &ScreenVertex, rgb: &[u16; 3], k: usize| -> i32 {
             if k == 0 {
-                v.z
+                v.depth()
             } else {
-                (v.rgb[k - 1] as i32) << COLOR_SHIFT
+                (rgb[k - 1] as i32) << (COLOR_FRAC_BITS - vertex_frac_bits(C::CHANNEL_MAX[k - 1]))
             }
         };
         let mut a0 = [0i32; 4];
         let mut gx = [0i32; 4];
         let mut gy = [0i32; 4];
         for k in 0..n_attrs {
-            let (v0, v1, v2) = (val(&a, k), val(&b, k), val(&c, k));
-            let (da1, da2) = (v1 - v0, v2 - v0); // |da| < 2^29
+            let (v0, v1, v2) = (val(&a, &ca, k), val(&b, &cb, k), val(&c, &cc, k));
+            let (da1, da2) = (v1 - v0, v2 - v0); // |da| < 2^28
             a0[k] = v0;
             gx[k] = scale(mul_wide(da1, bx1) - mul_wide(da2, bx2));
             gy[k] = scale(mul_wide(da2, by1) - mul_wide(da1, by2));
         }
         // Evaluate every attribute plane at the centre of pixel (left.c, row).
-        let dx = SUBPIXELS * left.c + SUBPIXELS / 2 - a.x;
-        let dy = SUBPIXELS * row + SUBPIXELS / 2 - a.y;
+        let dx = SUBPIXELS * left.c as i32 + SUBPIXELS / 2 - ax;
+        let dy = SUBPIXELS * row + SUBPIXELS / 2 - ay;
         let mut row_v = [0i32; 4];
         let mut inc = [0i32; 4];
         for k in 0..n_attrs {
             let d = (mul_wide(gx[k], dx) + mul_wide(gy[k], dy)) >> crate::project::SUBPIXEL_BITS;
             row_v[k] = a0[k].wrapping_add(d as i32);
-            inc[k] = gy[k].wrapping_add(gx[k].wrapping_mul(left.sq));
+            inc[k] = gy[k].wrapping_add(gx[k].wrapping_mul(left.sq as i32));
         }
-        let (x_lo, x_hi) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
-        let small =
-            (x_hi as i64 - x_lo as i64) + (c.y as i64 - a.y as i64) <= 1024 * SUBPIXELS as i64;
+        if flat {
+            // Final channel values, rounded from the vertex bytes.
+            let mut ch = [0u8; 3];
+            for k in 0..3 {
+                let f = vertex_frac_bits(C::CHANNEL_MAX[k]);
+                ch[k] = ((flat_rgb[k] as u32 + (1 << (f - 1))) >> f) as u8;
+            }
+            gx[1] = i32::from_le_bytes([ch[0], ch[1], ch[2], 0]);
+        }
+        let (x_lo, x_hi) = (ax.min(bx).min(cx), ax.max(bx).max(cx));
+        let small = (x_hi - x_lo) + (cy - ay) <= 1024 * SUBPIXELS;
+        let flags = (mid_left as u8 * MID_LEFT) | (flat as u8 * FLAT) | (small as u8 * SMALL);
         Some(ActiveTri {
             left,
             right,
-            row_mid,
-            row_end,
-            mid_left,
-            n_attrs: n_attrs as u8,
-            small,
-            v1: (b.x, b.y),
-            v2: (c.x, c.y),
+            row_mid: row_mid as i16,
+            row_end: row_end as i16,
+            ay: ay as i16,
+            bx: bx as i16,
+            by: by as i16,
+            cx: cx as i16,
+            cy: cy as i16,
+            flags,
             gx,
             row: row_v,
             inc,
-            flat,
         })
+    }
+
+    #[inline(always)]
+    fn n_attrs(&self) -> usize {
+        if self.flags & FLAT != 0 {
+            1
+        } else {
+            4
+        }
+    }
+
+    /// The final channel bytes of a flat triangle.
+    #[inline(always)]
+    fn flat_channels(&self) -> [u8; 3] {
+        let b = self.gx[1].to_le_bytes();
+        [b[0], b[1], b[2]]
     }
 
     /// Moves to `next_row` (the row after the one just drawn).
     #[inline]
     fn advance(&mut self, next_row: i32) {
-        let (long, short) = if self.mid_left {
+        let mid_left = self.flags & MID_LEFT != 0;
+        let (ay, bx, by, cx, cy) = (
+            self.ay as i32,
+            self.bx as i32,
+            self.by as i32,
+            self.cx as i32,
+            self.cy as i32,
+        );
+        let row_mid = self.row_mid as i32;
+        let d_long = edge_den(ay, cy);
+        let (long, short) = if mid_left {
             (&mut self.right, &mut self.left)
         } else {
             (&mut self.left, &mut self.right)
         };
-        let long_carry = long.step();
-        if next_row == self.row_mid {
-            let new_short = Edge::new(self.v1.0, self.v1.1, self.v2.0, self.v2.1, next_row);
-            if self.mid_left {
+        let long_carry = long.step(d_long);
+        if next_row == row_mid {
+            let new_short = Edge::new(bx, by, cx, cy, next_row);
+            if mid_left {
                 // Carry the attribute rows over exactly: step along the old left edge's line
-                // to the new row, then move by whole pixels to the new edge's first column,
-                // and change the row increment for the new edge's slope.
-                let carry = short.step();
-                let (dc, dsq) = (
-                    new_short.c.wrapping_sub(short.c),
-                    new_short.sq.wrapping_sub(short.sq),
-                );
+                // to the new row (in 32 bits: extrapolated past its lower end, that column may
+                // leave the i16 range), then move by whole pixels to the new edge's first
+                // column, and change the row increment for the new edge's slope.
+                let carry = short.e - short.sr < 0;
+                let c_old = short.c as i32 + short.sq as i32 + carry as i32;
+                let dc = new_short.c as i32 - c_old;
+                let dsq = new_short.sq as i32 - short.sq as i32;
                 *short = new_short;
                 self.step_attrs(carry);
-                for k in 0..self.n_attrs as usize {
+                for k in 0..self.n_attrs() {
                     let g = self.gx[k];
                     self.row[k] = self.row[k].wrapping_add(g.wrapping_mul(dc));
                     self.inc[k] = self.inc[k].wrapping_add(g.wrapping_mul(dsq));
@@ -367,18 +430,19 @@ impl ActiveTri {
             *short = new_short;
             self.step_attrs(long_carry);
         } else {
-            let short_carry = short.step();
-            self.step_attrs(if self.mid_left {
-                short_carry
+            let d_short = if next_row <= row_mid {
+                edge_den(ay, by)
             } else {
-                long_carry
-            });
+                edge_den(by, cy)
+            };
+            let short_carry = short.step(d_short);
+            self.step_attrs(if mid_left { short_carry } else { long_carry });
         }
     }
 
     #[inline(always)]
     fn step_attrs(&mut self, carry: bool) {
-        for k in 0..self.n_attrs as usize {
+        for k in 0..self.n_attrs() {
             let mut v = self.row[k].wrapping_add(self.inc[k]);
             if carry {
                 v = v.wrapping_add(self.gx[k]);
@@ -398,57 +462,58 @@ impl ActiveTri {
         dither: bool,
     ) -> (u32, u32, bool) {
         let width = colors.len().min(depth.len()) as i32;
-        let xs = self.left.c.max(0);
-        let xe = self.right.c.min(width);
+        let (lc, rc) = (self.left.c as i32, self.right.c as i32);
+        let xs = lc.max(0);
+        let xe = rc.min(width);
+        let flat = self.flags & FLAT != 0;
         let mut counts = (0, 0);
         let packable = C::CHANNEL_MAX[0] <= 63 && C::CHANNEL_MAX[2] <= 63 && C::CHANNEL_MAX[0] > 0;
         if xs < xe
-            && self.small
-            && xs == self.left.c
+            && self.flags & SMALL != 0
+            && xs == lc
             && test == DepthTest::Less
             && !(dither && C::can_dither())
-            && (packable || self.flat.is_some())
+            && (packable || flat)
         {
             // The common case, without clamps, dispatch or a span record.
             let (x0, x1) = (xs as usize, xe as usize);
             let z = self.row[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
-            let written = match self.flat {
-                Some(rgb) => span_flat::<C, LESS>(
+            let written = if flat {
+                span_flat::<C, LESS>(
                     &mut depth[x0..x1],
                     &mut colors[x0..x1],
                     z,
                     self.gx[0],
-                    C::vertex_channels_done(rgb),
-                ),
-                None => {
-                    let (fr, fb) = (
-                        16 - channel_bits(C::CHANNEL_MAX[0]),
-                        16 - channel_bits(C::CHANNEL_MAX[2]),
-                    );
-                    let (sr, sb) = (COLOR_FRAC_BITS - fr, COLOR_FRAC_BITS - fb);
-                    let conv = |v: i32, s: u32| (v.wrapping_add(1 << (s - 1))) >> s;
-                    let r0 = conv(self.row[1], sr).wrapping_add(1 << (fr - 1));
-                    let b0 = conv(self.row[3], sb).wrapping_add(1 << (fb - 1));
-                    let rb = ((r0 as u32) << 16).wrapping_add(b0 as u32);
-                    let grb = ((conv(self.gx[1], sr) as u32) << 16)
-                        .wrapping_add(conv(self.gx[3], sb) as u32);
-                    let g = self.row[2].wrapping_add(1 << (COLOR_FRAC_BITS - 1));
-                    span_packed::<C, LESS>(
-                        &mut depth[x0..x1],
-                        &mut colors[x0..x1],
-                        [z, self.gx[0]],
-                        [rb, grb],
-                        [g, self.gx[2]],
-                        fr,
-                        fb,
-                    )
-                }
+                    C::from_channels(self.flat_channels()),
+                )
+            } else {
+                let (fr, fb) = (
+                    16 - channel_bits(C::CHANNEL_MAX[0]),
+                    16 - channel_bits(C::CHANNEL_MAX[2]),
+                );
+                let (sr, sb) = (COLOR_FRAC_BITS - fr, COLOR_FRAC_BITS - fb);
+                let conv = |v: i32, s: u32| (v.wrapping_add(1 << (s - 1))) >> s;
+                let r0 = conv(self.row[1], sr).wrapping_add(1 << (fr - 1));
+                let b0 = conv(self.row[3], sb).wrapping_add(1 << (fb - 1));
+                let rb = ((r0 as u32) << 16).wrapping_add(b0 as u32);
+                let grb =
+                    ((conv(self.gx[1], sr) as u32) << 16).wrapping_add(conv(self.gx[3], sb) as u32);
+                let g = self.row[2].wrapping_add(1 << (COLOR_FRAC_BITS - 1));
+                span_packed::<C, LESS>(
+                    &mut depth[x0..x1],
+                    &mut colors[x0..x1],
+                    [z, self.gx[0]],
+                    [rb, grb],
+                    [g, self.gx[2]],
+                    fr,
+                    fb,
+                )
             };
             counts = ((xe - xs) as u32, written);
         } else if xs < xe {
-            let skip = xs - self.left.c;
+            let skip = xs - lc;
             let mut start = [0i32; 4];
-            for k in 0..self.n_attrs as usize {
+            for k in 0..self.n_attrs() {
                 let max = if k == 0 {
                     DEPTH_MAX << DEPTH_FRAC_BITS
                 } else {
@@ -469,27 +534,28 @@ impl ActiveTri {
                 gx: self.gx,
             };
             let dither = dither && C::can_dither();
-            let written = match (self.flat, test) {
-                (Some(rgb), t) => {
-                    let c = C::vertex_channels_done(rgb);
-                    match t {
-                        DepthTest::Less => span.fill_flat::<C, LESS>(colors, depth, c),
-                        DepthTest::LessEqual => span.fill_flat::<C, LESS_EQUAL>(colors, depth, c),
-                        DepthTest::Equal => span.fill_flat::<C, EQUAL>(colors, depth, c),
-                        DepthTest::Always => span.fill_flat::<C, ALWAYS>(colors, depth, c),
+            let written = if flat {
+                let c = C::from_channels(self.flat_channels());
+                match test {
+                    DepthTest::Less => span.fill_flat::<C, LESS>(colors, depth, c),
+                    DepthTest::LessEqual => span.fill_flat::<C, LESS_EQUAL>(colors, depth, c),
+                    DepthTest::Equal => span.fill_flat::<C, EQUAL>(colors, depth, c),
+                    DepthTest::Always => span.fill_flat::<C, ALWAYS>(colors, depth, c),
+                }
+            } else {
+                match test {
+                    DepthTest::Less => span.fill_gouraud::<C, LESS>(colors, depth, dither),
+                    DepthTest::LessEqual => {
+                        span.fill_gouraud::<C, LESS_EQUAL>(colors, depth, dither)
                     }
+                    DepthTest::Equal => span.fill_gouraud::<C, EQUAL>(colors, depth, dither),
+                    DepthTest::Always => span.fill_gouraud::<C, ALWAYS>(colors, depth, dither),
                 }
-                (None, DepthTest::Less) => span.fill_gouraud::<C, LESS>(colors, depth, dither),
-                (None, DepthTest::LessEqual) => {
-                    span.fill_gouraud::<C, LESS_EQUAL>(colors, depth, dither)
-                }
-                (None, DepthTest::Equal) => span.fill_gouraud::<C, EQUAL>(colors, depth, dither),
-                (None, DepthTest::Always) => span.fill_gouraud::<C, ALWAYS>(colors, depth, dither),
             };
             counts = ((xe - xs) as u32, written);
         }
         let next = row + 1;
-        if next >= self.row_end {
+        if next >= self.row_end as i32 {
             return (counts.0, counts.1, true);
         }
         self.advance(next);
@@ -554,18 +620,6 @@ fn span_packed<C: TargetColor, const T: u8>(
     written
 }
 
-/// Extension used by the span loop: a flat colour (channel units, 8.8) rounded to a pixel.
-trait FlatPixel: TargetColor {
-    fn vertex_channels_done(rgb: [u16; 3]) -> Self {
-        Self::from_channels([
-            ((rgb[0] as u32 + 128) >> 8) as u8,
-            ((rgb[1] as u32 + 128) >> 8) as u8,
-            ((rgb[2] as u32 + 128) >> 8) as u8,
-        ])
-    }
-}
-impl<C: TargetColor> FlatPixel for C {}
-
 /// One span: pixels `x0..x1` of a row, with attribute values at `x0` and per-pixel gradients.
 struct Span {
     x0: usize,
@@ -590,11 +644,6 @@ fn passes<const T: u8>(z: u16, stored: u16) -> bool {
         EQUAL => z == stored,
         _ => true,
     }
-}
-
-/// Significant bits of a channel maximum (31 → 5, 63 → 6).
-const fn channel_bits(max: u8) -> u32 {
-    8 - max.leading_zeros()
 }
 
 impl Span {
@@ -772,7 +821,9 @@ mod tests {
             (8, 8, 8, 400),
             (-3000, -20, 4000, 3),
             (123, 17, 124, 1000),
-            (-(1 << 21), -(1 << 21), 1 << 21, 1 << 21),
+            (-16383, -16383, 16383, 16383),
+            (16383, -16383, -16383, 16383),
+            (-16383, 100, 16383, 101),
         ];
         for (xa, ya, xb, yb) in cases {
             let first = first_pixel(ya);
@@ -780,16 +831,16 @@ mod tests {
             let mut e = Edge::new(xa, ya, xb, yb, first);
             for row in first..end.min(first + 3000) {
                 assert_eq!(
-                    e.c,
+                    e.c as i32,
                     reference(xa, ya, xb, yb, row),
                     "edge {xa},{ya}->{xb},{yb} row {row}"
                 );
-                e.step();
+                e.step(16 * (yb - ya).max(1));
             }
             // Starting anywhere gives the same value.
             let mid = (first + end) / 2;
             assert_eq!(
-                Edge::new(xa, ya, xb, yb, mid).c,
+                Edge::new(xa, ya, xb, yb, mid).c as i32,
                 reference(xa, ya, xb, yb, mid)
             );
         }

@@ -355,7 +355,7 @@ fn watertight_sphere<S: Scalar>() {
     )
     .unwrap();
     let scene = Scene::new(&objects, camera, [Light::white([S::ONE, S::ONE, S::ONE])]);
-    let mut r: Box<Renderer<S, Rgb565, 128, 128, 700, 1300, 128>> = Box::default();
+    let mut r: Box<Renderer<S, Rgb565, 128, 128, 1400, 1300, 128>> = Box::default();
     r.set_depth_test(DepthTest::Always);
     let mut f = frame(128, 128);
     let stats = r.render(&scene, &mut f).unwrap();
