@@ -48,12 +48,12 @@
 //!
 //! Renderer RAM in bytes ([`Renderer::RAM_BYTES`] gives the exact value):
 //!
-//! `LINES·W·(size_of::<C>() + 2) + 12·VERTS + 6·TRIS + 88·ACTIVE + 4·H` (+ at most 128 bytes of
+//! `LINES·W·(size_of::<C>() + 2) + 12·VERTS + 6·TRIS + 84·ACTIVE + 4·H` (+ at most 128 bytes of
 //! state and padding; a unit test checks the formula against `size_of`).
 //!
 //! The lines hold colour and 16-bit depth; `VERTS` projected vertices of 12 bytes, `TRIS`
 //! triangles of 6 bytes (three vertex indices, sorted by first row after the geometry stage)
-//! and `ACTIVE` triangles being scanned of 88 bytes are the capacities a scene needs; `4·H` is
+//! and `ACTIVE` triangles being scanned of 84 bytes are the capacities a scene needs; `4·H` is
 //! the per-row bucket starts and the active-count sweep. A flat-shaded triangle takes one more
 //! vertex (a copy of a corner that carries the face colour). For the default torus scene at
 //! 240 × 240 RGB565, `cargo run --release --example render` prints the value for the

@@ -98,28 +98,26 @@ fn div_floor(n: i64, d: i32) -> (i32, i32) {
     }
 }
 
-/// `16 · max(1, yb − ya)`: the denominator of an edge's DDA (≤ 16·32 766 < 2¹⁹).
-#[inline(always)]
-fn edge_den(ya: i32, yb: i32) -> i32 {
-    SUBPIXELS * (yb - ya).max(1)
-}
-
 /// One edge from its upper vertex `a` to its lower vertex `b`, positioned on a pixel row:
 /// `c` is the first pixel whose centre is at or right of the edge; the exact crossing is
-/// `c − e/d` (in pixels, relative to centres), with `0 ≤ e < d` and `d = 16·(yb − ya)`
-/// ([`edge_den`], not stored: the active triangle recomputes it from its vertices).
+/// `c − (16·e + k)/(16·dy)` pixels (relative to centres) with `0 ≤ e < dy` and a constant
+/// `0 ≤ k < 16`. Every row step changes the numerator by a multiple of 16, so the DDA keeps
+/// `e = floor(numerator / 16)` exactly and the test `numerator < 0` is `e < 0`: all five
+/// fields fit 16 bits.
 ///
-/// Size: 12 bytes.
+/// Size: 10 bytes.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Edge {
     /// Current pixel boundary (column index; |c| ≤ 1025 on every row the edge is used).
     pub c: i16,
     /// Whole pixels the boundary moves per row (floor; |sq| ≤ 32 766).
     pub sq: i16,
-    /// Remainder, `0 ≤ e < d`.
-    e: i32,
-    /// Remainder of the move per row, `0 ≤ sr < d`.
-    sr: i32,
+    /// Remainder in sixteenths, `0 ≤ e < dy`.
+    e: i16,
+    /// Remainder of the move per row in sixteenths, `0 ≤ sr < dy`.
+    sr: u16,
+    /// `max(1, yb − ya)` in subpixels (≤ 32 766).
+    dy: u16,
 }
 
 impl Edge {
@@ -136,27 +134,37 @@ impl Edge {
         // c = ceil(n/d), e = c·d − n.
         let (q, r) = div_floor(n as i64, d);
         let (c, e) = if r == 0 { (q, 0) } else { (q + 1, d - r) };
-        let (sq, sr) = div_floor((SUBPIXELS * dx) as i64, d);
+        // 16·dx = sq·16·dy + sr with sr a multiple of 16.
+        let (sq, sr) = div_floor(dx as i64, dy);
         Edge {
             c: c as i16,
             sq: sq as i16,
-            e,
-            sr,
+            e: (e >> 4) as i16,
+            sr: sr as u16,
+            dy: dy as u16,
         }
     }
 
     /// Moves to the next row; returns true when the boundary moved by `sq + 1` instead of `sq`.
     #[inline(always)]
-    pub(crate) fn step(&mut self, d: i32) -> bool {
-        self.e -= self.sr;
+    pub(crate) fn step(&mut self) -> bool {
+        let e = self.e as i32 - self.sr as i32;
         self.c = self.c.wrapping_add(self.sq);
-        if self.e < 0 {
-            self.e += d;
+        if e < 0 {
+            self.e = (e + self.dy as i32) as i16;
             self.c = self.c.wrapping_add(1);
             true
         } else {
+            self.e = e as i16;
             false
         }
+    }
+
+    /// The column and carry [`Edge::step`] would give, in 32 bits, without moving.
+    #[inline(always)]
+    fn peek(&self) -> (i32, bool) {
+        let carry = (self.e as i32) < self.sr as i32;
+        (self.c as i32 + self.sq as i32 + carry as i32, carry)
     }
 }
 
@@ -194,7 +202,7 @@ const FLAT: u8 = 2;
 /// depth bias and the colour fields' headroom, and span starts need no clamping.
 const SMALL: u8 = 4;
 
-/// A triangle on the active list (88 bytes).
+/// A triangle on the active list (84 bytes).
 ///
 /// Attribute values are 32-bit and updated with wrapping arithmetic: every value that is
 /// *used* is the plane at a pixel centre inside the triangle, which lies within the attribute's
@@ -208,9 +216,8 @@ pub(crate) struct ActiveTri {
     row_mid: i16,
     /// First row not covered (≤ 1024).
     row_end: i16,
-    /// y of the top vertex, x and y of the middle and bottom ones (sorted by y), in subpixels
-    /// (12.4): the edges' denominators and the short edge's switch come from them.
-    ay: i16,
+    /// x and y of the middle and bottom vertices (sorted by y), in subpixels (12.4), for the
+    /// short edge's switch.
     bx: i16,
     by: i16,
     cx: i16,
@@ -360,7 +367,6 @@ impl ActiveTri {
             right,
             row_mid: row_mid as i16,
             row_end: row_end as i16,
-            ay: ay as i16,
             bx: bx as i16,
             by: by as i16,
             cx: cx as i16,
@@ -392,30 +398,26 @@ impl ActiveTri {
     #[inline]
     fn advance(&mut self, next_row: i32) {
         let mid_left = self.flags & MID_LEFT != 0;
-        let (ay, bx, by, cx, cy) = (
-            self.ay as i32,
-            self.bx as i32,
-            self.by as i32,
-            self.cx as i32,
-            self.cy as i32,
-        );
-        let row_mid = self.row_mid as i32;
-        let d_long = edge_den(ay, cy);
         let (long, short) = if mid_left {
             (&mut self.right, &mut self.left)
         } else {
             (&mut self.left, &mut self.right)
         };
-        let long_carry = long.step(d_long);
-        if next_row == row_mid {
-            let new_short = Edge::new(bx, by, cx, cy, next_row);
+        let long_carry = long.step();
+        if next_row == self.row_mid as i32 {
+            let new_short = Edge::new(
+                self.bx as i32,
+                self.by as i32,
+                self.cx as i32,
+                self.cy as i32,
+                next_row,
+            );
             if mid_left {
                 // Carry the attribute rows over exactly: step along the old left edge's line
                 // to the new row (in 32 bits: extrapolated past its lower end, that column may
                 // leave the i16 range), then move by whole pixels to the new edge's first
                 // column, and change the row increment for the new edge's slope.
-                let carry = short.e - short.sr < 0;
-                let c_old = short.c as i32 + short.sq as i32 + carry as i32;
+                let (c_old, carry) = short.peek();
                 let dc = new_short.c as i32 - c_old;
                 let dsq = new_short.sq as i32 - short.sq as i32;
                 *short = new_short;
@@ -430,19 +432,24 @@ impl ActiveTri {
             *short = new_short;
             self.step_attrs(long_carry);
         } else {
-            let d_short = if next_row <= row_mid {
-                edge_den(ay, by)
-            } else {
-                edge_den(by, cy)
-            };
-            let short_carry = short.step(d_short);
+            let short_carry = short.step();
             self.step_attrs(if mid_left { short_carry } else { long_carry });
         }
     }
 
     #[inline(always)]
     fn step_attrs(&mut self, carry: bool) {
-        for k in 0..self.n_attrs() {
+        // Unrolled for the two attribute counts.
+        if self.flags & FLAT != 0 {
+            self.step_first::<1>(carry);
+        } else {
+            self.step_first::<4>(carry);
+        }
+    }
+
+    #[inline(always)]
+    fn step_first<const N: usize>(&mut self, carry: bool) {
+        for k in 0..N {
             let mut v = self.row[k].wrapping_add(self.inc[k]);
             if carry {
                 v = v.wrapping_add(self.gx[k]);
@@ -505,8 +512,6 @@ impl ActiveTri {
                     [z, self.gx[0]],
                     [rb, grb],
                     [g, self.gx[2]],
-                    fr,
-                    fb,
                 )
             };
             counts = ((xe - xs) as u32, written);
@@ -597,9 +602,12 @@ fn span_packed<C: TargetColor, const T: u8>(
     z: [i32; 2],
     rb: [u32; 2],
     g: [i32; 2],
-    fr: u32,
-    fb: u32,
 ) -> u32 {
+    // Compile-time constants of the colour type: shifts by immediates, two registers fewer.
+    let (fr, fb) = (
+        16 - channel_bits(C::CHANNEL_MAX[0]),
+        16 - channel_bits(C::CHANNEL_MAX[2]),
+    );
     let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
     let mut written = 0;
     for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
@@ -719,8 +727,6 @@ impl Span {
             [self.z_start(), self.gx[0]],
             [rb, grb],
             [g, self.gx[2]],
-            fr,
-            fb,
         )
     }
 
@@ -835,7 +841,7 @@ mod tests {
                     reference(xa, ya, xb, yb, row),
                     "edge {xa},{ya}->{xb},{yb} row {row}"
                 );
-                e.step(16 * (yb - ya).max(1));
+                e.step();
             }
             // Starting anywhere gives the same value.
             let mid = (first + end) / 2;
