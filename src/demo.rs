@@ -166,6 +166,43 @@ fn persp<S: Scalar>(fov_deg: f64, near: f64, far: f64) -> Projection<S> {
     }
 }
 
+/// The 16 KB part's torus frame: side in pixels, triangle and active capacities. 80 × 80 is
+/// the largest multiple of 8 that runs on QEMU's `microbit` (nRF51, 16 KB RAM) with the mesh in
+/// flash: the renderer takes 14 472 B (its vertex store, triangle list and active list —
+/// 13 816 B — do not shrink with the frame) and the stack's high-water mark reaches 16 320 B.
+pub const SMALL_PART_TORUS: (usize, usize, usize) = (80, 456, 58);
+
+/// The default torus frame (spin 0) at `W × W` pixels from a given copy of the torus mesh
+/// (for example one baked into flash), with a renderer of capacities `(512, T, A)` — what the
+/// smallest parts use, where neither the 18 KB mesh nor a 240 × 240 renderer fits in RAM. The
+/// frame (viewport) is square, so the image is the benchmark frame scaled.
+pub fn render_torus_sized<S, C, D, P, const W: usize, const T: usize, const A: usize>(
+    mesh: crate::Mesh<'_, S>,
+    target: &mut D,
+    probe: &mut P,
+) -> Result<BenchFrame, BenchError<D::Error>>
+where
+    S: Scalar,
+    C: crate::TargetColor,
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+    P: crate::Probe,
+{
+    let objects = [Object {
+        mesh,
+        transform: torus_transform(0.0),
+        material: torus_material(),
+    }];
+    let scene = crate::Scene::new(&objects, camera().map_err(|_| BenchError::Scene)?, lights());
+    let mut r = crate::Renderer::<S, C, W, W, 512, T, A>::new();
+    let stats = r
+        .render_probed(&scene, target, probe)
+        .map_err(BenchError::Render)?;
+    Ok(BenchFrame {
+        stats,
+        renderer_ram_bytes: core::mem::size_of_val(&r),
+    })
+}
+
 /// Renders one frame of benchmark scene `bench` at 240 × 240 into `target`, with `dither`,
 /// reporting stages to `probe`. Meshes are generated on the stack; each scene has its own
 /// renderer sized for it (see [`BenchFrame::renderer_ram_bytes`]).
