@@ -302,7 +302,9 @@ fn markdown(
     if let Some((i, ram, ok)) = budget {
         let _ = writeln!(
             s,
-            "\n**Budget** for the default torus, I16F16, on `m0`: ≤ {BUDGET_INSTRUCTIONS} renderer instructions and ≤ {BUDGET_RAM} B renderer RAM. Measured: {i} instructions, {ram} B — {}.",
+            "\n**Budget** for the default torus, I16F16, on `m0`: ≤ {BUDGET_INSTRUCTIONS} renderer instructions and ≤ {BUDGET_RAM} B renderer RAM. Measured: {i} instructions ({}), {ram} B ({}) — {}.",
+            if i <= BUDGET_INSTRUCTIONS { "met" } else { "not met" },
+            if ram <= BUDGET_RAM { "met" } else { "not met" },
             if ok { "met" } else { "**not met**" }
         );
     }
