@@ -555,10 +555,10 @@ impl<
         Ok(stats)
     }
 
-    /// The first row of a stored triangle, as bucketed by [`Self::push_tri`].
+    /// The bucket of a stored triangle (see [`bucket_row`]).
     fn first_row(&self, t: &TriRecord) -> usize {
         let [a, b, c] = t.indices().map(|i| self.verts[i].y as i32);
-        first_pixel(a.min(b).min(c)).max(0) as usize
+        bucket_row(a.min(b).min(c))
     }
 
     /// Sorts the triangles by first row in place (an American-flag bucket sort: every record
@@ -840,7 +840,7 @@ impl<
             return false;
         }
         need.1 += 1;
-        let row = py0.max(0) as usize;
+        let row = bucket_row(y0);
         let end = py1.min(self.vh as i32) as usize;
         if self.tris.push(t).is_err() {
             return true;
@@ -958,6 +958,13 @@ impl<
     fn default() -> Self {
         Self::new()
     }
+}
+
+/// The row bucket of a triangle whose topmost vertex is at `y_min` subpixels: its first covered
+/// row, clamped to the screen. [`Renderer::push_tri`] counts by it and the bucket sort places
+/// by it, so both must agree.
+fn bucket_row(y_min: i32) -> usize {
+    first_pixel(y_min).max(0) as usize
 }
 
 /// The snapped position of a projected vertex, as the probe wants it, within the coordinate
