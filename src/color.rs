@@ -20,6 +20,12 @@ pub trait TargetColor: PixelColor + From<Rgb888> {
     /// The largest value of each channel (R, G, B) in this colour's own units.
     const CHANNEL_MAX: [u8; 3] = [255, 255, 255];
 
+    /// Whether a pixel of this type is one 16-bit word `r << 11 | g << 5 | b` (5-6-5 bits, as
+    /// embedded-graphics' `Rgb565`). On Cortex-M the Gouraud span loop then writes those words
+    /// from assembly; the renderer also checks the size and the bit positions itself, so a
+    /// wrong `true` only costs the fast path. Default `false`.
+    const RGB565_WORD: bool = false;
+
     /// Builds a pixel from channels already in this colour's units (≤ [`Self::CHANNEL_MAX`]).
     #[must_use]
     fn from_channels(c: [u8; 3]) -> Self {
@@ -76,7 +82,16 @@ macro_rules! rgb_target {
         }
     )*};
 }
-rgb_target!(Rgb555, Bgr555, Rgb565, Bgr565, Rgb666, Bgr666, Rgb888, Bgr888);
+rgb_target!(Rgb555, Bgr555, Bgr565, Rgb666, Bgr666, Rgb888, Bgr888);
+
+impl TargetColor for Rgb565 {
+    const CHANNEL_MAX: [u8; 3] = [Rgb565::MAX_R, Rgb565::MAX_G, Rgb565::MAX_B];
+    const RGB565_WORD: bool = true;
+    #[inline(always)]
+    fn from_channels(c: [u8; 3]) -> Self {
+        Rgb565::new(c[0], c[1], c[2])
+    }
+}
 
 macro_rules! gray_target {
     ($($t:ident = $max:expr),*) => {$(

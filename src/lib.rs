@@ -101,6 +101,8 @@ pub mod scalar;
 pub mod scene;
 pub mod shade;
 pub mod shapes;
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+mod span_thumb;
 
 pub use fixed;
 

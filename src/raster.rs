@@ -608,6 +608,10 @@ fn span_packed<C: TargetColor, const T: u8>(
         16 - channel_bits(C::CHANNEL_MAX[0]),
         16 - channel_bits(C::CHANNEL_MAX[2]),
     );
+    #[cfg(all(target_arch = "arm", target_os = "none"))]
+    if T == LESS && crate::span_thumb::rgb565_words::<C>() {
+        return crate::span_thumb::span565_less(zs, cs, z, rb, g);
+    }
     let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
     let mut written = 0;
     for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
