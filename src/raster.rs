@@ -107,6 +107,7 @@ fn div_floor(n: i64, d: i32) -> (i32, i32) {
 ///
 /// Size: 10 bytes.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[repr(C)] // field offsets are used by the Cortex-M row loop (`span_thumb`)
 pub(crate) struct Edge {
     /// Current pixel boundary (column index; |c| ≤ 1025 on every row the edge is used).
     pub c: i16,
@@ -197,10 +198,43 @@ impl TriRecord {
 const MID_LEFT: u8 = 1;
 /// [`ActiveTri::flags`]: flat shaded (one attribute; `gx[1]` holds the colour).
 const FLAT: u8 = 2;
-/// [`ActiveTri::flags`]: width + height of the bounding box ≤ 1024 px, so the rounding drift
-/// of the attribute rows (≤ ½ unit per pixel of distance from the anchor) stays far inside the
-/// depth bias and the colour fields' headroom, and span starts need no clamping.
-const SMALL: u8 = 4;
+/// [`ActiveTri::flags`]: drawn by the fast span loops. The width + height of the bounding box
+/// is ≤ 1024 px, so the rounding drift of the attribute rows (≤ ½ unit per pixel of distance
+/// from the anchor) stays far inside the depth bias and the colour fields' headroom and span
+/// starts need no clamping; the depth test is [`DepthTest::Less`] and, for Gouraud triangles,
+/// the colour has channels of at most 6 bits without dithering. A fast Gouraud triangle keeps
+/// its rows *packed* (see [`ActiveTri::row`]), ready for [`span_packed`].
+const FAST: u8 = 4;
+
+/// Which fast span loops a strip may use, decided once per strip from the colour type, the
+/// depth test and dithering (see [`FAST`]).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct SpanMode {
+    /// Flat triangles: the depth test is [`DepthTest::Less`].
+    pub fast_flat: bool,
+    /// Gouraud triangles: also channels of at most 6 bits, and no dithering that changes them.
+    pub fast_gouraud: bool,
+}
+
+impl SpanMode {
+    pub(crate) fn new<C: TargetColor>(test: DepthTest, dither: bool) -> Self {
+        let less = test == DepthTest::Less;
+        let packable = C::CHANNEL_MAX[0] <= 63 && C::CHANNEL_MAX[2] <= 63 && C::CHANNEL_MAX[0] > 0;
+        SpanMode {
+            fast_flat: less,
+            fast_gouraud: less && packable && !(dither && C::can_dither()),
+        }
+    }
+}
+
+/// Fraction bits of red and blue in a packed red-blue word: `16 − bits` of each channel.
+#[inline(always)]
+fn packed_frac_bits<C: TargetColor>() -> (u32, u32) {
+    (
+        16 - channel_bits(C::CHANNEL_MAX[0]),
+        16 - channel_bits(C::CHANNEL_MAX[2]),
+    )
+}
 
 /// A triangle on the active list (84 bytes).
 ///
@@ -209,6 +243,7 @@ const SMALL: u8 = 4;
 /// range, and two's-complement arithmetic is exact modulo 2³², so intermediate wrap-arounds
 /// (far outside the triangle) cannot change it.
 #[derive(Clone, Debug)]
+#[repr(C)] // field offsets are used by the Cortex-M row loop (`span_thumb`)
 pub(crate) struct ActiveTri {
     left: Edge,
     right: Edge,
@@ -222,7 +257,7 @@ pub(crate) struct ActiveTri {
     by: i16,
     cx: i16,
     cy: i16,
-    /// [`MID_LEFT`], [`FLAT`], [`SMALL`].
+    /// [`MID_LEFT`], [`FLAT`], [`FAST`].
     flags: u8,
     /// Per-pixel x gradients, |g| ≤ 2³⁰: depth (16.12 per pixel) and r, g, b (channel units,
     /// 20 fraction bits per pixel). Flat triangles keep their final channel bytes in `gx[1]`.
@@ -230,19 +265,47 @@ pub(crate) struct ActiveTri {
     /// neither is stored.)
     gx: [i32; 4],
     /// Values at the centre of the current row's first pixel (column `left.c`), same formats.
+    /// A [`FAST`] Gouraud triangle keeps three *packed* values here, in `gx` and in `inc`
+    /// instead: depth with its ½-step rounding bias (16.12); red and blue in one word, red in
+    /// the high half and blue in the low half, each with `16 − bits` fraction bits, rounded
+    /// from the 20-bit values at setup, plus ½ unit each; green (20 fraction bits) plus ½
+    /// unit. All steps are wrapping additions, so the packed word is exactly
+    /// `R·2¹⁶ + B (mod 2³²)` of the stepped red and blue, and its halves read back as the
+    /// channels whenever `B` is in `0..2¹⁶`, which holds at every pixel centre inside the
+    /// triangle (the ½-unit bias leaves ½ unit of headroom at both ends, and the stepping of
+    /// values rounded to `16 − bits` fraction bits drifts by under 2⁻¹² unit per row and per
+    /// pixel).
     row: [i32; 4],
     /// Change of `row` when the left edge moves by `sq` columns: `gy + gx·sq`.
     inc: [i32; 4],
 }
 
+/// Byte offsets of the fields the Cortex-M row loop reads and writes.
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+pub(crate) mod offsets {
+    use super::{ActiveTri, Edge};
+    use core::mem::offset_of;
+    pub const LEFT: usize = offset_of!(ActiveTri, left);
+    pub const RIGHT: usize = offset_of!(ActiveTri, right);
+    pub const C: usize = offset_of!(Edge, c);
+    pub const SQ: usize = offset_of!(Edge, sq);
+    pub const E: usize = offset_of!(Edge, e);
+    pub const SR: usize = offset_of!(Edge, sr);
+    pub const DY: usize = offset_of!(Edge, dy);
+    pub const GX: usize = offset_of!(ActiveTri, gx);
+    pub const ROW: usize = offset_of!(ActiveTri, row);
+    pub const INC: usize = offset_of!(ActiveTri, inc);
+}
+
 impl ActiveTri {
     /// Sets up triangle `t` starting at `row` (its first covered row, clamped to the screen).
-    /// Returns `None` if it covers no row from `row` on.
+    /// `mode` is the strip's [`SpanMode`]. Returns `None` if it covers no row from `row` on.
     pub(crate) fn new<C: TargetColor>(
         t: &TriRecord,
         verts: &[ScreenVertex],
         row: i32,
         height: i32,
+        mode: SpanMode,
     ) -> Option<Self> {
         let [i0, i1, i2] = t.indices();
         let flat = t.v[0] & FLAT_BIT != 0;
@@ -361,7 +424,33 @@ impl ActiveTri {
         }
         let (x_lo, x_hi) = (ax.min(bx).min(cx), ax.max(bx).max(cx));
         let small = (x_hi - x_lo) + (cy - ay) <= 1024 * SUBPIXELS;
-        let flags = (mid_left as u8 * MID_LEFT) | (flat as u8 * FLAT) | (small as u8 * SMALL);
+        let fast = small
+            && if flat {
+                mode.fast_flat
+            } else {
+                mode.fast_gouraud
+            };
+        if fast && !flat {
+            // Pack once here, so that rows and spans step three words and convert nothing.
+            let (fr, fb) = packed_frac_bits::<C>();
+            let (sr, sb) = (COLOR_FRAC_BITS - fr, COLOR_FRAC_BITS - fb);
+            let conv = |v: i32, s: u32| v.wrapping_add(1 << (s - 1)) >> s;
+            let pack = |r: i32, b: i32| {
+                ((conv(r, sr) as u32) << 16).wrapping_add(conv(b, sb) as u32) as i32
+            };
+            let rb_bias = ((1u32 << (fr - 1)) << 16) as i32 + (1 << (fb - 1));
+            row_v = [
+                row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1)),
+                pack(row_v[1], row_v[3]).wrapping_add(rb_bias),
+                row_v[2].wrapping_add(1 << (COLOR_FRAC_BITS - 1)),
+                0,
+            ];
+            gx = [gx[0], pack(gx[1], gx[3]), gx[2], 0];
+            inc = [inc[0], pack(inc[1], inc[3]), inc[2], 0];
+        } else if fast {
+            row_v[0] = row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
+        }
+        let flags = (mid_left as u8 * MID_LEFT) | (flat as u8 * FLAT) | (fast as u8 * FAST);
         Some(ActiveTri {
             left,
             right,
@@ -382,6 +471,8 @@ impl ActiveTri {
     fn n_attrs(&self) -> usize {
         if self.flags & FLAT != 0 {
             1
+        } else if self.flags & FAST != 0 {
+            3
         } else {
             4
         }
@@ -439,9 +530,11 @@ impl ActiveTri {
 
     #[inline(always)]
     fn step_attrs(&mut self, carry: bool) {
-        // Unrolled for the two attribute counts.
+        // Unrolled for the three attribute counts.
         if self.flags & FLAT != 0 {
             self.step_first::<1>(carry);
+        } else if self.flags & FAST != 0 {
+            self.step_first::<3>(carry);
         } else {
             self.step_first::<4>(carry);
         }
@@ -458,8 +551,31 @@ impl ActiveTri {
         }
     }
 
+    /// [`ActiveTri::draw_row`] for the rows that make up most of a frame on Cortex-M: a fast
+    /// Gouraud triangle with its left edge on screen, on a row that neither ends it nor
+    /// switches its short edge, drawn into RGB565 words — the span and the row step in one
+    /// assembly routine. Returns `None` (having done nothing) for every other case.
+    #[cfg(all(target_arch = "arm", target_os = "none"))]
+    #[inline(always)]
+    pub(crate) fn draw_row_565<C: TargetColor>(
+        &mut self,
+        next_row: i32,
+        colors: &mut [C],
+        depth: &mut [u16],
+    ) -> Option<(u32, u32)> {
+        if self.flags & (FAST | FLAT) != FAST
+            || self.left.c < 0
+            || next_row >= self.row_end as i32
+            || next_row == self.row_mid as i32
+        {
+            return None;
+        }
+        crate::span_thumb::row565::<C>(self, colors, depth)
+    }
+
     /// Draws this triangle's span on `row` into one line of the strip and moves to the next
     /// row. Returns `(fragments tested, pixels written, finished)`.
+    #[inline(never)]
     pub(crate) fn draw_row<C: TargetColor>(
         &mut self,
         row: i32,
@@ -474,47 +590,32 @@ impl ActiveTri {
         let xe = rc.min(width);
         let flat = self.flags & FLAT != 0;
         let mut counts = (0, 0);
-        let packable = C::CHANNEL_MAX[0] <= 63 && C::CHANNEL_MAX[2] <= 63 && C::CHANNEL_MAX[0] > 0;
-        if xs < xe
-            && self.flags & SMALL != 0
-            && xs == lc
-            && test == DepthTest::Less
-            && !(dither && C::can_dither())
-            && (packable || flat)
-        {
-            // The common case, without clamps, dispatch or a span record.
-            let (x0, x1) = (xs as usize, xe as usize);
-            let z = self.row[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
-            let written = if flat {
-                span_flat::<C, LESS>(
-                    &mut depth[x0..x1],
-                    &mut colors[x0..x1],
-                    z,
-                    self.gx[0],
-                    C::from_channels(self.flat_channels()),
-                )
-            } else {
-                let (fr, fb) = (
-                    16 - channel_bits(C::CHANNEL_MAX[0]),
-                    16 - channel_bits(C::CHANNEL_MAX[2]),
-                );
-                let (sr, sb) = (COLOR_FRAC_BITS - fr, COLOR_FRAC_BITS - fb);
-                let conv = |v: i32, s: u32| (v.wrapping_add(1 << (s - 1))) >> s;
-                let r0 = conv(self.row[1], sr).wrapping_add(1 << (fr - 1));
-                let b0 = conv(self.row[3], sb).wrapping_add(1 << (fb - 1));
-                let rb = ((r0 as u32) << 16).wrapping_add(b0 as u32);
-                let grb =
-                    ((conv(self.gx[1], sr) as u32) << 16).wrapping_add(conv(self.gx[3], sb) as u32);
-                let g = self.row[2].wrapping_add(1 << (COLOR_FRAC_BITS - 1));
-                span_packed::<C, LESS>(
-                    &mut depth[x0..x1],
-                    &mut colors[x0..x1],
-                    [z, self.gx[0]],
-                    [rb, grb],
-                    [g, self.gx[2]],
-                )
-            };
-            counts = ((xe - xs) as u32, written);
+        if self.flags & FAST != 0 {
+            if xs < xe {
+                // The common case, without clamps, dispatch or a span record.
+                let (x0, x1) = (xs as usize, xe as usize);
+                let skip = xs - lc;
+                let mut v = [self.row[0], self.row[1], self.row[2]];
+                if skip != 0 {
+                    for k in 0..3 {
+                        v[k] = v[k].wrapping_add(self.gx[k].wrapping_mul(skip));
+                    }
+                }
+                let (zs, cs) = (&mut depth[x0..x1], &mut colors[x0..x1]);
+                let written = if flat {
+                    let c = C::from_channels(self.flat_channels());
+                    span_flat::<C, LESS>(zs, cs, v[0], self.gx[0], c)
+                } else {
+                    span_packed::<C, LESS>(
+                        zs,
+                        cs,
+                        [v[0], self.gx[0]],
+                        [v[1] as u32, self.gx[1] as u32],
+                        [v[2], self.gx[2]],
+                    )
+                };
+                counts = ((xe - xs) as u32, written);
+            }
         } else if xs < xe {
             let skip = xs - lc;
             let mut start = [0i32; 4];
@@ -604,10 +705,7 @@ fn span_packed<C: TargetColor, const T: u8>(
     g: [i32; 2],
 ) -> u32 {
     // Compile-time constants of the colour type: shifts by immediates, two registers fewer.
-    let (fr, fb) = (
-        16 - channel_bits(C::CHANNEL_MAX[0]),
-        16 - channel_bits(C::CHANNEL_MAX[2]),
-    );
+    let (fr, fb) = packed_frac_bits::<C>();
     #[cfg(all(target_arch = "arm", target_os = "none"))]
     if T == LESS && crate::span_thumb::rgb565_words::<C>() {
         return crate::span_thumb::span565_less(zs, cs, z, rb, g);
@@ -712,10 +810,7 @@ impl Span {
         colors: &mut [C],
         depth: &mut [u16],
     ) -> u32 {
-        let (fr, fb) = (
-            16 - channel_bits(C::CHANNEL_MAX[0]),
-            16 - channel_bits(C::CHANNEL_MAX[2]),
-        );
+        let (fr, fb) = packed_frac_bits::<C>();
         let (sr, sb) = (COLOR_FRAC_BITS - fr, COLOR_FRAC_BITS - fb);
         // Rounded conversions from 20 to `f` fraction bits.
         let conv = |v: i32, s: u32| (v + (1 << (s - 1))) >> s;

@@ -18,7 +18,7 @@ use crate::project::{
     pack_channels, pack_flat_channels, unpack_channels, ScreenVertex, Viewport, COORD_LIMIT,
     MAX_SCREEN,
 };
-use crate::raster::{first_pixel, ActiveTri, DepthTest, TriRecord, FLAT_BIT};
+use crate::raster::{first_pixel, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::{lit_color, PreparedLight, Shading};
@@ -884,6 +884,7 @@ impl<
             return Ok(None);
         }
         let lines = LINES.min(vh - y0);
+        let mode = SpanMode::new::<C>(self.depth_test, self.dither);
         for l in 0..lines {
             self.color[l][..vw].fill(self.background);
             self.depth[l][..vw].fill(u16::MAX);
@@ -894,7 +895,8 @@ impl<
             }
             for t in bucket {
                 let rec = self.tris[t];
-                if let Some(a) = ActiveTri::new::<C>(&rec, &self.verts, row as i32, vh as i32) {
+                if let Some(a) = ActiveTri::new::<C>(&rec, &self.verts, row as i32, vh as i32, mode)
+                {
                     // Cannot fail: the largest number of rows' overlaps was checked.
                     let _ = self.active.push(a);
                 }
@@ -902,6 +904,18 @@ impl<
             probe.enter(Stage::Raster);
             let mut i = 0;
             while i < self.active.len() {
+                #[cfg(all(target_arch = "arm", target_os = "none"))]
+                if let Some((frag, written)) = self.active[i].draw_row_565(
+                    row as i32 + 1,
+                    &mut self.color[l][..vw],
+                    &mut self.depth[l][..vw],
+                ) {
+                    let stats = &mut self.stats;
+                    stats.fragments = stats.fragments.saturating_add(frag);
+                    stats.pixels_written = stats.pixels_written.saturating_add(written);
+                    i += 1;
+                    continue;
+                }
                 let (frag, written, done) = self.active[i].draw_row(
                     row as i32,
                     &mut self.color[l][..vw],

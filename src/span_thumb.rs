@@ -17,6 +17,43 @@
 #![allow(unsafe_code)]
 
 use crate::color::TargetColor;
+use crate::raster::{offsets as o, ActiveTri};
+
+/// The pixel loop shared by both routines. In: r0 = depth pointer, r1 = colour pointer −
+/// depth pointer (bytes), r2 = z (16.12 + ½ bias), r3 = rb (red << 16 + blue, 11 fraction bits
+/// each, + ½ bias), r4 = g (20 fraction bits + ½ bias), r8, r9, r10 = their per-pixel steps,
+/// r11 = end of the depth run (> r0), r7 = count of pixels written so far. Uses r5, r6.
+macro_rules! pixel_loop {
+    () => {
+        concat!(
+            "1:\n",
+            "ldrh r5, [r0]\n",
+            "lsrs r6, r2, #12\n",
+            "uxth r6, r6\n",
+            "cmp r6, r5\n",
+            "bhs 2f\n",
+            "strh r6, [r0]\n",
+            "lsrs r5, r3, #27\n",
+            "lsls r5, r5, #11\n",
+            "lsls r6, r4, #6\n",
+            "lsrs r6, r6, #26\n",
+            "lsls r6, r6, #5\n",
+            "orrs r5, r6\n",
+            "lsls r6, r3, #16\n",
+            "lsrs r6, r6, #27\n",
+            "orrs r5, r6\n",
+            "strh r5, [r0, r1]\n",
+            "adds r7, #1\n",
+            "2:\n",
+            "add r2, r8\n",
+            "add r3, r9\n",
+            "add r4, r10\n",
+            "adds r0, #2\n",
+            "cmp r0, r11\n",
+            "bne 1b\n",
+        )
+    };
+}
 
 core::arch::global_asm!(
     ".syntax unified",
@@ -48,31 +85,7 @@ core::arch::global_asm!(
     "movs r7, #0",
     // r2 = z (16.12 + ½ bias), r3 = rb (red << 16 + blue, 11 fraction bits each, + ½ bias),
     // r4 = g (20 fraction bits + ½ bias); r8, r9, r10 = their per-pixel steps.
-    "1:",
-    "ldrh r5, [r0]",
-    "lsrs r6, r2, #12",
-    "uxth r6, r6",
-    "cmp r6, r5",
-    "bhs 2f",
-    "strh r6, [r0]",
-    "lsrs r5, r3, #27",
-    "lsls r5, r5, #11",
-    "lsls r6, r4, #6",
-    "lsrs r6, r6, #26",
-    "lsls r6, r6, #5",
-    "orrs r5, r6",
-    "lsls r6, r3, #16",
-    "lsrs r6, r6, #27",
-    "orrs r5, r6",
-    "strh r5, [r0, r1]",
-    "adds r7, #1",
-    "2:",
-    "add r2, r8",
-    "add r3, r9",
-    "add r4, r10",
-    "adds r0, #2",
-    "cmp r0, r11",
-    "bne 1b",
+    pixel_loop!(),
     "mov r0, r7",
     "pop {{r4, r5, r6, r7}}",
     "mov r8, r4",
@@ -83,7 +96,161 @@ core::arch::global_asm!(
     ".size scanline3d_span565_less, . - scanline3d_span565_less",
 );
 
+core::arch::global_asm!(
+    ".syntax unified",
+    ".thumb",
+    ".section .text.scanline3d_row565,\"ax\",%progbits",
+    ".global scanline3d_row565",
+    ".type scanline3d_row565,%function",
+    ".p2align 2",
+    ".thumb_func",
+    // r0 = active triangle, r1 = depth line, r2 = colour line − depth line (bytes),
+    // r3 = line width. Returns fragments << 16 | pixels written.
+    "scanline3d_row565:",
+    "push {{r4, r5, r6, r7, lr}}",
+    "mov r4, r8",
+    "mov r5, r9",
+    "mov r6, r10",
+    "mov r7, r11",
+    "push {{r4, r5, r6, r7}}",
+    "mov r12, r0",
+    "movs r7, #0",
+    // xs = left.c (≥ 0, checked by the caller), xe = min(right.c, width).
+    "ldrh r4, [r0, #{lc}]",
+    "ldrh r5, [r0, #{rc}]",
+    "sxth r5, r5",
+    "cmp r5, r3",
+    "ble 3f",
+    "mov r5, r3",
+    "3:",
+    "subs r6, r5, r4",
+    "ble 5f",
+    "push {{r6}}",
+    "lsls r4, r4, #1",
+    "adds r4, r1, r4",
+    "lsls r5, r5, #1",
+    "adds r5, r1, r5",
+    "mov r11, r5",
+    "mov r1, r2",
+    "mov r5, r0",
+    "mov r0, r4",
+    "ldr r2, [r5, #{row0}]",
+    "ldr r3, [r5, #{row1}]",
+    "ldr r4, [r5, #{row2}]",
+    "ldr r6, [r5, #{gx0}]",
+    "mov r8, r6",
+    "ldr r6, [r5, #{gx1}]",
+    "mov r9, r6",
+    "ldr r6, [r5, #{gx2}]",
+    "mov r10, r6",
+    pixel_loop!(),
+    "pop {{r6}}",
+    "b 6f",
+    "5:",
+    "movs r6, #0",
+    "6:",
+    "lsls r6, r6, #16",
+    "orrs r7, r6",
+    "mov r0, r12",
+    // Left edge: c += sq, e -= sr; on e < 0: e += dy, c += 1, and the attributes carry.
+    "ldrh r2, [r0, #{lc}]",
+    "ldrh r3, [r0, #{lsq}]",
+    "adds r2, r2, r3",
+    "ldrh r1, [r0, #{le}]",
+    "ldrh r3, [r0, #{lsr}]",
+    "movs r6, #0",
+    "subs r1, r1, r3",
+    "bpl 7f",
+    "ldrh r3, [r0, #{ldy}]",
+    "adds r1, r1, r3",
+    "adds r2, #1",
+    "movs r6, #1",
+    "7:",
+    "strh r1, [r0, #{le}]",
+    "strh r2, [r0, #{lc}]",
+    // Right edge, the same without the carry.
+    "ldrh r2, [r0, #{rc}]",
+    "ldrh r3, [r0, #{rsq}]",
+    "adds r2, r2, r3",
+    "ldrh r1, [r0, #{re}]",
+    "ldrh r3, [r0, #{rsr}]",
+    "subs r1, r1, r3",
+    "bpl 8f",
+    "ldrh r3, [r0, #{rdy}]",
+    "adds r1, r1, r3",
+    "adds r2, #1",
+    "8:",
+    "strh r1, [r0, #{re}]",
+    "strh r2, [r0, #{rc}]",
+    // Packed rows: row += inc, + gx when the left edge carried.
+    "ldr r1, [r0, #{row0}]",
+    "ldr r2, [r0, #{inc0}]",
+    "adds r1, r1, r2",
+    "ldr r3, [r0, #{row1}]",
+    "ldr r2, [r0, #{inc1}]",
+    "adds r3, r3, r2",
+    "ldr r4, [r0, #{row2}]",
+    "ldr r2, [r0, #{inc2}]",
+    "adds r4, r4, r2",
+    "cmp r6, #0",
+    "beq 9f",
+    "ldr r2, [r0, #{gx0}]",
+    "adds r1, r1, r2",
+    "ldr r2, [r0, #{gx1}]",
+    "adds r3, r3, r2",
+    "ldr r2, [r0, #{gx2}]",
+    "adds r4, r4, r2",
+    "9:",
+    "str r1, [r0, #{row0}]",
+    "str r3, [r0, #{row1}]",
+    "str r4, [r0, #{row2}]",
+    "mov r0, r7",
+    "pop {{r4, r5, r6, r7}}",
+    "mov r8, r4",
+    "mov r9, r5",
+    "mov r10, r6",
+    "mov r11, r7",
+    "pop {{r4, r5, r6, r7, pc}}",
+    ".size scanline3d_row565, . - scanline3d_row565",
+    lc = const o::LEFT + o::C,
+    lsq = const o::LEFT + o::SQ,
+    le = const o::LEFT + o::E,
+    lsr = const o::LEFT + o::SR,
+    ldy = const o::LEFT + o::DY,
+    rc = const o::RIGHT + o::C,
+    rsq = const o::RIGHT + o::SQ,
+    re = const o::RIGHT + o::E,
+    rsr = const o::RIGHT + o::SR,
+    rdy = const o::RIGHT + o::DY,
+    gx0 = const o::GX,
+    gx1 = const o::GX + 4,
+    gx2 = const o::GX + 8,
+    row0 = const o::ROW,
+    row1 = const o::ROW + 4,
+    row2 = const o::ROW + 8,
+    inc0 = const o::INC,
+    inc1 = const o::INC + 4,
+    inc2 = const o::INC + 8,
+);
+
+// The immediate offsets above must be encodable in 16-bit Thumb loads and stores.
+const _: () = {
+    let h = [o::LEFT, o::RIGHT];
+    let mut i = 0;
+    while i < 2 {
+        assert!(h[i] % 2 == 0 && h[i] + o::DY <= 62);
+        i += 1;
+    }
+    assert!(o::GX % 4 == 0 && o::ROW % 4 == 0 && o::INC % 4 == 0 && o::INC + 8 <= 124);
+};
+
 extern "C" {
+    fn scanline3d_row565(
+        tri: *mut ActiveTri,
+        depth: *mut u16,
+        color_offset: isize,
+        width: i32,
+    ) -> u32;
     fn scanline3d_span565_less(
         z: *mut u16,
         color_offset: isize,
@@ -136,4 +303,28 @@ pub(crate) fn span565_less<C: TargetColor>(
     // `cs` (reached as `zp + offset`), both exclusively borrowed; a colour is written as one
     // aligned `u16`, which `rgb565_words` showed is the representation of `C`.
     unsafe { scanline3d_span565_less(zp, offset, zp.add(n), &acc) }
+}
+
+/// One row of a fast Gouraud triangle (see [`ActiveTri::draw_row_565`], which checks that the
+/// row qualifies): its span into RGB565 words, then both edges and the packed attribute rows
+/// step to the next row, exactly as `draw_row` would. Returns `(fragments, written)`, or
+/// `None` when `C` is not an RGB565 word.
+#[inline(always)]
+pub(crate) fn row565<C: TargetColor>(
+    t: &mut ActiveTri,
+    colors: &mut [C],
+    depth: &mut [u16],
+) -> Option<(u32, u32)> {
+    if !rgb565_words::<C>() {
+        return None;
+    }
+    let width = colors.len().min(depth.len()).min(1024) as i32;
+    let zp = depth.as_mut_ptr();
+    let offset = (colors.as_mut_ptr() as isize).wrapping_sub(zp as isize);
+    // SAFETY: the routine reads and writes the fields of `t` at the offsets asserted above
+    // (`#[repr(C)]`), and pixels `left.c..min(right.c, width)` of both lines, where the caller
+    // checked `left.c ≥ 0` and `width` is at most both lengths; colours are written as `u16`
+    // words, which `rgb565_words` showed is the representation of `C`.
+    let r = unsafe { scanline3d_row565(t, zp, offset, width) };
+    Some((r >> 16, r & 0xffff))
 }
