@@ -98,6 +98,48 @@ fn div_floor(n: i64, d: i32) -> (i32, i32) {
     }
 }
 
+/// `(n / d, n % d)` for `d > 0` by shift and subtract, one step per quotient bit: an edge's
+/// quotients are a few bits, where the library division of a Cortex-M0 (no divide
+/// instruction) costs over a hundred instructions whatever the quotient.
+#[inline]
+fn udiv_small(n: u32, d: u32) -> (u32, u32) {
+    if n < d {
+        return (0, n);
+    }
+    let (mut dd, mut bit) = (d, 1u32);
+    let half = n >> 1;
+    while dd <= half {
+        dd <<= 1;
+        bit <<= 1;
+    }
+    // d·bit ≤ n < 2·d·bit.
+    let (mut q, mut r) = (0, n);
+    loop {
+        if r >= dd {
+            r -= dd;
+            q |= bit;
+        }
+        if bit == 1 {
+            return (q, r);
+        }
+        bit >>= 1;
+        dd >>= 1;
+    }
+}
+
+/// `(floor(n / d), n − d·floor(n / d))` for `d > 0`, by [`udiv_small`]: for `n < 0`,
+/// `floor(n/d) = −1 − floor((−n − 1)/d)`, and `−n − 1 = !n` has no overflow.
+#[inline]
+fn div_floor_small(n: i32, d: i32) -> (i32, i32) {
+    if n < 0 {
+        let (q, r) = udiv_small(!n as u32, d as u32);
+        (!(q as i32), d - 1 - r as i32)
+    } else {
+        let (q, r) = udiv_small(n as u32, d as u32);
+        (q as i32, r as i32)
+    }
+}
+
 /// One edge from its upper vertex `a` to its lower vertex `b`, positioned on a pixel row:
 /// `c` is the first pixel whose centre is at or right of the edge; the exact crossing is
 /// `c − (16·e + k)/(16·dy)` pixels (relative to centres) with `0 ≤ e < dy` and a constant
@@ -130,13 +172,36 @@ impl Edge {
         let dx = xb - xa;
         let d = SUBPIXELS * dy;
         let ys = SUBPIXELS * row + SUBPIXELS / 2;
-        // (x − 8) at the sample row, times dy.
-        let n = (xa - SUBPIXELS / 2) * dy + (ys - ya) * dx;
-        // c = ceil(n/d), e = c·d − n.
-        let (q, r) = div_floor(n as i64, d);
-        let (c, e) = if r == 0 { (q, 0) } else { (q + 1, d - r) };
         // 16·dx = sq·16·dy + sr with sr a multiple of 16.
-        let (sq, sr) = div_floor(dx as i64, dy);
+        let (sq, sr) = div_floor_small(dx, dy);
+        // The crossing numerator n = (x − 8 at the sample row)·dy = (xa − 8)·dy + k·dx, k the
+        // rows' distance in subpixels; c = ceil(n/d), e = c·d − n. With dx = sq·dy + sr:
+        // n = dy·(xa − 8 + k·sq) + k·sr, and k·sr = qb·dy + rb needs only a division with a
+        // quotient below k (< 16 on a triangle's first row), so n = dy·t + rb.
+        let k = ys - ya;
+        let (c, e) = if (0..=dy + SUBPIXELS).contains(&k) {
+            // |k·sq| ≤ (dy + 16)·|dx|/dy + k ≤ 17·2¹⁵ and k·sr < (dy + 16)·dy < 2³¹.
+            let (qb, rb) = udiv_small((k * sr) as u32, dy as u32);
+            let t = xa - SUBPIXELS / 2 + k * sq + qb as i32;
+            // n = 16·dy·(t >> 4) + dy·(t & 15) + rb, the last two in 0..16·dy.
+            let r = dy * (t & (SUBPIXELS - 1)) + rb as i32;
+            let q = t >> crate::project::SUBPIXEL_BITS;
+            if r == 0 {
+                (q, 0)
+            } else {
+                (q + 1, d - r)
+            }
+        } else {
+            // Not reached by the renderer (it starts edges at or below their upper vertex,
+            // within their rows); kept exact for any row.
+            let n = (xa - SUBPIXELS / 2) as i64 * dy as i64 + k as i64 * dx as i64;
+            let (q, r) = div_floor(n, d);
+            if r == 0 {
+                (q, 0)
+            } else {
+                (q + 1, d - r)
+            }
+        };
         Edge {
             c: c as i16,
             sq: sq as i16,
@@ -298,15 +363,47 @@ pub(crate) mod offsets {
 }
 
 impl ActiveTri {
-    /// Sets up triangle `t` starting at `row` (its first covered row, clamped to the screen).
-    /// `mode` is the strip's [`SpanMode`]. Returns `None` if it covers no row from `row` on.
-    pub(crate) fn new<C: TargetColor>(
+    /// An inactive record to set up in place (see [`ActiveTri::setup`]).
+    pub(crate) const EMPTY: ActiveTri = ActiveTri {
+        left: Edge {
+            c: 0,
+            sq: 0,
+            e: 0,
+            sr: 0,
+            dy: 1,
+        },
+        right: Edge {
+            c: 0,
+            sq: 0,
+            e: 0,
+            sr: 0,
+            dy: 1,
+        },
+        row_mid: 0,
+        row_end: 0,
+        bx: 0,
+        by: 0,
+        cx: 0,
+        cy: 0,
+        flags: 0,
+        gx: [0; 4],
+        row: [0; 4],
+        inc: [0; 4],
+    };
+
+    /// Sets up triangle `t` starting at `row` (its first covered row, clamped to the screen)
+    /// in place — the record is 84 bytes, and building it elsewhere to copy it into the
+    /// active list cost two block copies per triangle on a Cortex-M0. `mode` is the strip's
+    /// [`SpanMode`]. Returns false (leaving `self` unspecified) if the triangle covers no row
+    /// from `row` on.
+    pub(crate) fn setup<C: TargetColor>(
+        &mut self,
         t: &TriRecord,
         verts: &[ScreenVertex],
         row: i32,
         height: i32,
         mode: SpanMode,
-    ) -> Option<Self> {
+    ) -> bool {
         let [i0, i1, i2] = t.indices();
         let flat = t.v[0] & FLAT_BIT != 0;
         let flat_rgb = verts[i0].color();
@@ -328,14 +425,14 @@ impl ActiveTri {
         let row_end = first_pixel(cy).min(height);
         let row_mid = first_pixel(by);
         if row >= row_end {
-            return None;
+            return false;
         }
         let (dx1, dy1) = (bx - ax, by - ay);
         let (dx2, dy2) = (cx - ax, cy - ay);
         // |d| ≤ 32 766 each: 2·32 766² < 2³¹.
         let det = dx1 * dy2 - dx2 * dy1;
         if det == 0 {
-            return None;
+            return false;
         }
         let mid_left = det < 0;
         let long = Edge::new(ax, ay, cx, cy, row);
@@ -451,20 +548,19 @@ impl ActiveTri {
             row_v[0] = row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
         }
         let flags = (mid_left as u8 * MID_LEFT) | (flat as u8 * FLAT) | (fast as u8 * FAST);
-        Some(ActiveTri {
-            left,
-            right,
-            row_mid: row_mid as i16,
-            row_end: row_end as i16,
-            bx: bx as i16,
-            by: by as i16,
-            cx: cx as i16,
-            cy: cy as i16,
-            flags,
-            gx,
-            row: row_v,
-            inc,
-        })
+        self.left = left;
+        self.right = right;
+        self.row_mid = row_mid as i16;
+        self.row_end = row_end as i16;
+        self.bx = bx as i16;
+        self.by = by as i16;
+        self.cx = cx as i16;
+        self.cy = cy as i16;
+        self.flags = flags;
+        self.gx = gx;
+        self.row = row_v;
+        self.inc = inc;
+        true
     }
 
     #[inline(always)]
@@ -979,6 +1075,38 @@ mod tests {
             d = d * 3 + 1;
         }
         assert!(worst < 2f64.powi(-28), "worst relative error {worst:e}");
+    }
+
+    #[test]
+    fn small_divisions_match_the_library() {
+        let ns = [
+            0i32,
+            1,
+            2,
+            7,
+            15,
+            16,
+            17,
+            255,
+            1000,
+            32766,
+            65535,
+            1 << 30,
+            i32::MAX,
+        ];
+        let ds = [1i32, 2, 3, 16, 17, 1000, 32766, 1 << 20, i32::MAX];
+        for &n in &ns {
+            for &d in &ds {
+                assert_eq!(
+                    udiv_small(n as u32, d as u32),
+                    (n as u32 / d as u32, n as u32 % d as u32)
+                );
+                for m in [n, -n, -n - 1] {
+                    let want = (m.div_euclid(d), m.rem_euclid(d));
+                    assert_eq!(div_floor_small(m, d), want, "{m} / {d}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -895,10 +895,13 @@ impl<
             }
             for t in bucket {
                 let rec = self.tris[t];
-                if let Some(a) = ActiveTri::new::<C>(&rec, &self.verts, row as i32, vh as i32, mode)
-                {
-                    // Cannot fail: the largest number of rows' overlaps was checked.
-                    let _ = self.active.push(a);
+                // Cannot fail: the largest number of rows' overlaps was checked.
+                if self.active.push(ActiveTri::EMPTY).is_ok() {
+                    let n = self.active.len() - 1;
+                    let (verts, h) = (&self.verts, vh as i32);
+                    if !self.active[n].setup::<C>(&rec, verts, row as i32, h, mode) {
+                        self.active.pop();
+                    }
                 }
             }
             probe.enter(Stage::Raster);
