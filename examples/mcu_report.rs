@@ -292,10 +292,27 @@ fn markdown(
     let sized = small.iter().find(|v| v.get("instructions").is_some());
     let fit = small.iter().find(|v| v.get("next_size").is_some());
     if let (Some(t), Some(f)) = (sized, fit) {
+        let (next_stack, ram) = (
+            f["next_stack"].as_u64().unwrap_or(u64::MAX),
+            f["ram"].as_u64().unwrap_or(0),
+        );
+        let next = if next_stack <= ram {
+            format!(
+                "{0} × {0} would fit too, with {1} B of stack to spare (high-water mark {2} B), so the demo keeps the smaller frame and its margin",
+                f["next_size"],
+                ram - next_stack,
+                next_stack
+            )
+        } else {
+            format!(
+                "the largest multiple of 8 px that fits: {0} × {0} would need {1} B",
+                f["next_size"], next_stack
+            )
+        };
         let _ = writeln!(
             s,
-            "\n**Smallest part** (`microbit` row above; QEMU `microbit`: nRF51, Cortex-M0, 16 KB RAM, 256 KB flash): the cube renders at the full 240 × 240. The torus (its 18 KB mesh baked into flash by `mcu-bench/build.rs`) renders at **{0} × {0}**, the largest multiple of 8 px that fits: {1} instructions, renderer RAM {2} B, stack high-water mark {3} of {4} B; {5} × {5} would need {6} B. Its hash {7} the host's. The renderer's vertex store, triangle list and active list do not shrink with the frame, so a larger torus frame on this part needs a mesh with fewer vertices and triangles.",
-            t["size"], t["instructions"], t["renderer_ram"], f["stack"], f["ram"], f["next_size"], f["next_stack"],
+            "\n**Smallest part** (`microbit` row above; QEMU `microbit`: nRF51, Cortex-M0, 16 KB RAM, 256 KB flash): the cube renders at the full 240 × 240. The torus (its 18 KB mesh baked into flash by `mcu-bench/build.rs`) renders at **{0} × {0}**: {1} instructions, renderer RAM {2} B, stack high-water mark {3} of {4} B; {5}. Its hash {6} the host's. The renderer's vertex store, triangle list and active list do not shrink with the frame, so a larger torus frame on this part needs a mesh with fewer vertices and triangles.",
+            t["size"], t["instructions"], t["renderer_ram"], f["stack"], f["ram"], next,
             if t["hash_matches_host"].as_bool() == Some(true) { "equals" } else { "DIFFERS from" }
         );
     }

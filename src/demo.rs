@@ -166,11 +166,11 @@ fn persp<S: Scalar>(fov_deg: f64, near: f64, far: f64) -> Projection<S> {
     }
 }
 
-/// The 16 KB part's torus frame: side in pixels, triangle and active capacities. 88 × 88 is
-/// the largest multiple of 8 that runs on QEMU's `microbit` (nRF51, 16 KB RAM) with the mesh in
-/// flash: the renderer takes 14 536 B (its vertex store, triangle list and active list —
-/// 13 816 B — do not shrink with the frame) and the stack's high-water mark reaches 16 352 B
-/// (`scripts/mcu-bench` prints both, and what 96 × 96 would need).
+/// The 16 KB part's torus frame: side in pixels, triangle and active capacities, for QEMU's
+/// `microbit` (nRF51, 16 KB RAM) with the mesh in flash. The renderer's vertex store, triangle
+/// list and active list do not shrink with the frame, so the frame side is what the stack has
+/// left: `scripts/mcu-bench` measures the stack's high-water mark at this size and says what
+/// the next multiple of 8 would need (BENCHMARKS.md, "Smallest part"); 88 keeps a margin.
 pub const SMALL_PART_TORUS: (usize, usize, usize) = (88, 456, 58);
 
 /// The default torus frame (spin 0) at `W × W` pixels from a given copy of the torus mesh

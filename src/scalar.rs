@@ -452,6 +452,29 @@ macro_rules! impl_fx {
             }
             #[inline(always)]
             fn dot3_add(a: [Self; 3], b: [Self; 3], c: Self) -> Self {
+                let (a, b) = (a.map(|v| v.0.to_bits()), b.map(|v| v.0.to_bits()));
+                // With every factor in [−2³⁰, 2³⁰) each product is at most 2⁶⁰ in magnitude
+                // and the sum below 2⁶², so plain 64-bit additions (two instructions each on
+                // a Cortex-M0) cannot overflow and give the same value as the saturating ones.
+                // `v ^ (v >> 31)` is v for v ≥ 0 and |v| − 1 below.
+                let spread = (a[0] ^ (a[0] >> 31))
+                    | (a[1] ^ (a[1] >> 31))
+                    | (a[2] ^ (a[2] >> 31))
+                    | (b[0] ^ (b[0] >> 31))
+                    | (b[1] ^ (b[1] >> 31))
+                    | (b[2] ^ (b[2] >> 31));
+                if spread < 1 << 30 {
+                    let p = mul_wide(a[0], b[0])
+                        + mul_wide(a[1], b[1])
+                        + mul_wide(a[2], b[2])
+                        + ((c.0.to_bits() as i64) << $frac)
+                        + (1i64 << ($frac - 1));
+                    return Fx($t::from_bits(sat32(p >> $frac)));
+                }
+                let (a, b) = (
+                    a.map(|v| Fx($t::from_bits(v))),
+                    b.map(|v| Fx($t::from_bits(v))),
+                );
                 // Each product is below 2^62 in magnitude; the sum saturates instead of
                 // overflowing, and a saturated sum saturates the result.
                 let p = mul_wide(a[0].0.to_bits(), b[0].0.to_bits())
