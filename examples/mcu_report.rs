@@ -296,7 +296,7 @@ fn markdown(
             f["next_stack"].as_u64().unwrap_or(u64::MAX),
             f["ram"].as_u64().unwrap_or(0),
         );
-        let next = if next_stack <= ram {
+        let next = if next_stack < ram {
             format!(
                 "{0} × {0} would fit too, with {1} B of stack to spare (high-water mark {2} B), so the demo keeps the smaller frame and its margin",
                 f["next_size"],

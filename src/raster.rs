@@ -360,6 +360,11 @@ pub(crate) mod offsets {
     pub const GX: usize = offset_of!(ActiveTri, gx);
     pub const ROW: usize = offset_of!(ActiveTri, row);
     pub const INC: usize = offset_of!(ActiveTri, inc);
+    pub const FLAGS: usize = offset_of!(ActiveTri, flags);
+    pub const ROW_END: usize = offset_of!(ActiveTri, row_end);
+    pub const ROW_MID: usize = offset_of!(ActiveTri, row_mid);
+    pub const FAST: u8 = super::FAST;
+    pub const FAST_FLAT: u8 = super::FAST | super::FLAT;
 }
 
 impl ActiveTri {
@@ -647,26 +652,12 @@ impl ActiveTri {
         }
     }
 
-    /// [`ActiveTri::draw_row`] for the rows that make up most of a frame on Cortex-M: a fast
-    /// Gouraud triangle with its left edge on screen, on a row that neither ends it nor
-    /// switches its short edge, drawn into RGB565 words — the span and the row step in one
-    /// assembly routine. Returns `None` (having done nothing) for every other case.
-    #[cfg(all(target_arch = "arm", target_os = "none"))]
+    /// Whether this is a fast Gouraud triangle (packed rows), the kind the Cortex-M row
+    /// routine draws.
     #[inline(always)]
-    pub(crate) fn draw_row_565<C: TargetColor>(
-        &mut self,
-        next_row: i32,
-        colors: &mut [C],
-        depth: &mut [u16],
-    ) -> Option<(u32, u32)> {
-        if self.flags & (FAST | FLAT) != FAST
-            || self.left.c < 0
-            || next_row >= self.row_end as i32
-            || next_row == self.row_mid as i32
-        {
-            return None;
-        }
-        crate::span_thumb::row565::<C>(self, colors, depth)
+    #[cfg(all(target_arch = "arm", target_os = "none"))]
+    pub(crate) fn is_fast_gouraud(&self) -> bool {
+        self.flags & (FAST | FLAT) == FAST
     }
 
     /// Draws this triangle's span on `row` into one line of the strip and moves to the next

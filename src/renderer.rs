@@ -886,8 +886,18 @@ impl<
         let lines = LINES.min(vh - y0);
         let mode = SpanMode::new::<C>(self.depth_test, self.dither);
         for l in 0..lines {
-            self.color[l][..vw].fill(self.background);
-            self.depth[l][..vw].fill(u16::MAX);
+            #[cfg(all(target_arch = "arm", target_os = "none"))]
+            let cleared = crate::span_thumb::clear_line(
+                &mut self.color[l][..vw],
+                &mut self.depth[l][..vw],
+                self.background,
+            );
+            #[cfg(not(all(target_arch = "arm", target_os = "none")))]
+            let cleared = false;
+            if !cleared {
+                self.color[l][..vw].fill(self.background);
+                self.depth[l][..vw].fill(u16::MAX);
+            }
             let row = y0 + l;
             let bucket = self.bucket(row);
             if !bucket.is_empty() {
@@ -906,18 +916,22 @@ impl<
             }
             probe.enter(Stage::Raster);
             let mut i = 0;
-            while i < self.active.len() {
+            loop {
                 #[cfg(all(target_arch = "arm", target_os = "none"))]
-                if let Some((frag, written)) = self.active[i].draw_row_565(
-                    row as i32 + 1,
+                if let Some((next, frag, written)) = crate::span_thumb::rows565(
+                    &mut self.active,
+                    i,
                     &mut self.color[l][..vw],
                     &mut self.depth[l][..vw],
+                    row as i32 + 1,
                 ) {
                     let stats = &mut self.stats;
                     stats.fragments = stats.fragments.saturating_add(frag);
                     stats.pixels_written = stats.pixels_written.saturating_add(written);
-                    i += 1;
-                    continue;
+                    i = next;
+                }
+                if i >= self.active.len() {
+                    break;
                 }
                 let (frag, written, done) = self.active[i].draw_row(
                     row as i32,

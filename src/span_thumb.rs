@@ -98,23 +98,67 @@ core::arch::global_asm!(
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
-    ".section .text.scanline3d_row565,\"ax\",%progbits",
-    ".global scanline3d_row565",
-    ".type scanline3d_row565,%function",
+    ".section .text.scanline3d_rows565,\"ax\",%progbits",
+    ".global scanline3d_rows565",
+    ".type scanline3d_rows565,%function",
     ".p2align 2",
     ".thumb_func",
-    // r0 = active triangle, r1 = depth line, r2 = colour line − depth line (bytes),
-    // r3 = line width. Returns fragments << 16 | pixels written.
-    "scanline3d_row565:",
+    // r0 = &mut RowCtx. Draws the row of active triangles i, i+1, … while they qualify (see
+    // `rows565`); returns 0 when it reached n, 1 when triangle i needs the portable path.
+    "scanline3d_rows565:",
     "push {{r4, r5, r6, r7, lr}}",
     "mov r4, r8",
     "mov r5, r9",
     "mov r6, r10",
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
+    "push {{r0}}",
+    "b 10f",
+    // The exits sit here, within reach of the conditional branches below.
+    "11:",
+    "movs r0, #0",
+    "b 13f",
+    "12:",
+    "movs r0, #1",
+    "b 13f",
+    "10:",
+    "ldr r0, [sp]",
+    "ldr r1, [r0, #{ci}]",
+    "ldr r2, [r0, #{cn}]",
+    "cmp r1, r2",
+    "bhs 11b",
+    "movs r3, #{size}",
+    "muls r3, r1, r3",
+    "ldr r2, [r0, #{ctris}]",
+    "adds r3, r2, r3",
+    // Qualifies: fast Gouraud, left.c ≥ 0, next row < row_end, next row ≠ row_mid.
+    "movs r4, #{flags}",
+    "ldrb r4, [r3, r4]",
+    "movs r5, #{fastflat}",
+    "ands r4, r5",
+    "cmp r4, #{fast}",
+    "bne 12b",
+    "ldrh r4, [r3, #{lc}]",
+    "lsls r5, r4, #16",
+    "bmi 12b",
+    "ldr r5, [r0, #{cnext}]",
+    "ldrh r6, [r3, #{rend}]",
+    "sxth r6, r6",
+    "cmp r5, r6",
+    "bge 12b",
+    "ldrh r6, [r3, #{rmid}]",
+    "sxth r6, r6",
+    "cmp r5, r6",
+    "beq 12b",
+    "ldr r1, [r0, #{cdepth}]",
+    "ldr r2, [r0, #{coff}]",
+    "ldr r6, [r0, #{cwidth}]",
+    "mov r0, r3",
+    "mov r3, r6",
+    // One row: r0 = r12 = triangle, r1 = depth line, r2 = colour offset, r3 = width.
     "mov r12, r0",
     "movs r7, #0",
-    // xs = left.c (≥ 0, checked by the caller), xe = min(right.c, width).
+    // xs = left.c (≥ 0), xe = min(right.c, width).
     "ldrh r4, [r0, #{lc}]",
     "ldrh r5, [r0, #{rc}]",
     "sxth r5, r5",
@@ -207,14 +251,44 @@ core::arch::global_asm!(
     "str r1, [r0, #{row0}]",
     "str r3, [r0, #{row1}]",
     "str r4, [r0, #{row2}]",
-    "mov r0, r7",
+    // Counters and the next triangle.
+    "ldr r0, [sp]",
+    "ldr r1, [r0, #{cfrag}]",
+    "lsrs r2, r7, #16",
+    "adds r1, r1, r2",
+    "str r1, [r0, #{cfrag}]",
+    "ldr r1, [r0, #{cwritten}]",
+    "uxth r2, r7",
+    "adds r1, r1, r2",
+    "str r1, [r0, #{cwritten}]",
+    "ldr r1, [r0, #{ci}]",
+    "adds r1, r1, #1",
+    "str r1, [r0, #{ci}]",
+    "b 10b",
+    "13:",
+    "add sp, #4",
     "pop {{r4, r5, r6, r7}}",
     "mov r8, r4",
     "mov r9, r5",
     "mov r10, r6",
     "mov r11, r7",
     "pop {{r4, r5, r6, r7, pc}}",
-    ".size scanline3d_row565, . - scanline3d_row565",
+    ".size scanline3d_rows565, . - scanline3d_rows565",
+    ci = const core::mem::offset_of!(RowCtx, i),
+    cn = const core::mem::offset_of!(RowCtx, n),
+    ctris = const core::mem::offset_of!(RowCtx, tris),
+    cdepth = const core::mem::offset_of!(RowCtx, depth),
+    coff = const core::mem::offset_of!(RowCtx, color_offset),
+    cwidth = const core::mem::offset_of!(RowCtx, width),
+    cnext = const core::mem::offset_of!(RowCtx, next_row),
+    cfrag = const core::mem::offset_of!(RowCtx, fragments),
+    cwritten = const core::mem::offset_of!(RowCtx, written),
+    size = const core::mem::size_of::<ActiveTri>(),
+    flags = const o::FLAGS,
+    fastflat = const o::FAST_FLAT,
+    fast = const o::FAST,
+    rend = const o::ROW_END,
+    rmid = const o::ROW_MID,
     lc = const o::LEFT + o::C,
     lsq = const o::LEFT + o::SQ,
     le = const o::LEFT + o::E,
@@ -245,15 +319,12 @@ const _: () = {
         i += 1;
     }
     assert!(o::GX % 4 == 0 && o::ROW % 4 == 0 && o::INC % 4 == 0 && o::INC + 8 <= 124);
+    assert!(o::FLAGS <= 255 && o::ROW_END % 2 == 0 && o::ROW_END <= 62 && o::ROW_MID % 2 == 0);
+    assert!(o::ROW_MID <= 62 && core::mem::size_of::<ActiveTri>() <= 255);
 };
 
 extern "C" {
-    fn scanline3d_row565(
-        tri: *mut ActiveTri,
-        depth: *mut u16,
-        color_offset: isize,
-        width: i32,
-    ) -> u32;
+    fn scanline3d_rows565(ctx: *mut RowCtx) -> u32;
     fn scanline3d_span565_less(
         z: *mut u16,
         color_offset: isize,
@@ -309,26 +380,91 @@ pub(crate) fn span565_less<C: TargetColor>(
     unsafe { scanline3d_span565_less(zp, offset, zp.add(n), &acc) }
 }
 
-/// One row of a fast Gouraud triangle (see [`ActiveTri::draw_row_565`], which checks that the
-/// row qualifies): its span into RGB565 words, then both edges and the packed attribute rows
-/// step to the next row, exactly as `draw_row` would. Returns `(fragments, written)`, or
-/// `None` when `C` is not an RGB565 word.
+/// What the row routine reads and updates (`#[repr(C)]`: the assembly uses the offsets).
+#[repr(C)]
+struct RowCtx {
+    tris: *mut ActiveTri,
+    n: usize,
+    i: usize,
+    depth: *mut u16,
+    color_offset: isize,
+    width: i32,
+    next_row: i32,
+    fragments: u32,
+    written: u32,
+}
+
+/// Draws one row of the active triangles `start..` for as long as they are fast Gouraud
+/// triangles with their left edge on screen on a row that neither ends them nor switches
+/// their short edge (the rows that make up most of a frame), each exactly as
+/// `ActiveTri::draw_row` would: the span into RGB565 words, then both edges and the packed
+/// attribute rows step. Returns `(index reached, fragments, written)`: the index is
+/// `active.len()` or the first triangle that needs `draw_row`. `None` when `C` is not an
+/// RGB565 word.
 #[inline(always)]
-pub(crate) fn row565<C: TargetColor>(
-    t: &mut ActiveTri,
+pub(crate) fn rows565<C: TargetColor>(
+    active: &mut [ActiveTri],
+    start: usize,
     colors: &mut [C],
     depth: &mut [u16],
-) -> Option<(u32, u32)> {
-    if !rgb565_words::<C>() {
+    next_row: i32,
+) -> Option<(usize, u32, u32)> {
+    if !rgb565_words::<C>() || !active.get(start).is_some_and(ActiveTri::is_fast_gouraud) {
         return None;
     }
-    let width = colors.len().min(depth.len()).min(1024) as i32;
     let zp = depth.as_mut_ptr();
-    let offset = (colors.as_mut_ptr() as isize).wrapping_sub(zp as isize);
-    // SAFETY: the routine reads and writes the fields of `t` at the offsets asserted above
-    // (`#[repr(C)]`), and pixels `left.c..min(right.c, width)` of both lines, where the caller
-    // checked `left.c ≥ 0` and `width` is at most both lengths; colours are written as `u16`
-    // words, which `rgb565_words` showed is the representation of `C`.
-    let r = unsafe { scanline3d_row565(t, zp, offset, width) };
-    Some((r >> 16, r & 0xffff))
+    let mut ctx = RowCtx {
+        tris: active.as_mut_ptr(),
+        n: active.len(),
+        i: start,
+        depth: zp,
+        color_offset: (colors.as_mut_ptr() as isize).wrapping_sub(zp as isize),
+        width: colors.len().min(depth.len()).min(1024) as i32,
+        next_row,
+        fragments: 0,
+        written: 0,
+    };
+    // SAFETY: the routine reads and writes the records `active[start..]` (at the field offsets
+    // asserted above, `#[repr(C)]`) and pixels `left.c..min(right.c, width)` of both lines
+    // only for records it checked to have `left.c ≥ 0`, with `width` at most both lengths;
+    // colours are written as `u16` words, which `rgb565_words` showed is the representation
+    // of `C`. It never goes past `n`.
+    unsafe { scanline3d_rows565(&mut ctx) };
+    Some((ctx.i, ctx.fragments, ctx.written))
+}
+
+/// Fills a run of 16-bit words four 32-bit words at a time (the library `fill` of a colour
+/// line is a loop of 16-bit stores; each strip clears one colour and one depth line per row).
+#[inline(always)]
+fn fill16(line: &mut [u16], v: u16) {
+    let w = (v as u32) << 16 | v as u32;
+    // SAFETY: every bit pattern is a valid `u16` and `[u32; 4]`; `align_to_mut` returns the
+    // aligned middle and the unaligned ends, which are filled as `u16`.
+    let (head, mid, tail) = unsafe { line.align_to_mut::<[u32; 4]>() };
+    head.fill(v);
+    for chunk in mid {
+        *chunk = [w; 4];
+    }
+    tail.fill(v);
+}
+
+/// Clears a strip line: colour `background` (RGB565 words, as [`rgb565_words`] checks) and
+/// depth 65535. Returns false, having done nothing, when `C` is not an RGB565 word.
+#[inline(always)]
+pub(crate) fn clear_line<C: TargetColor>(
+    colors: &mut [C],
+    depth: &mut [u16],
+    background: C,
+) -> bool {
+    if !rgb565_words::<C>() {
+        return false;
+    }
+    // SAFETY: `C` is a two-byte, two-aligned `u16` wrapper (checked above), so its bytes are a
+    // `u16` and every `u16` is a `C`.
+    let words =
+        unsafe { core::slice::from_raw_parts_mut(colors.as_mut_ptr() as *mut u16, colors.len()) };
+    let bg = unsafe { core::mem::transmute_copy::<C, u16>(&background) };
+    fill16(words, bg);
+    fill16(depth, u16::MAX);
+    true
 }
