@@ -22,7 +22,7 @@ use crate::color::{TargetColor, BAYER};
 use crate::project::{
     channel_bits, vertex_frac_bits, ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS,
 };
-use crate::scalar::{mul_wide, recip_norm};
+use crate::scalar::{mul_wide, recip_norm, round_shr_sat, shr_to_i32};
 
 /// Fraction bits of interpolated colour channels (channel units, so 0..=255·2²⁰ < 2²⁸ fits an
 /// `i32`; step 2⁻²⁰ of a channel unit).
@@ -463,8 +463,12 @@ impl ActiveTri {
         let l = 32 - vmax.leading_zeros(); // ≤ 16
         let coef = |v: i32| -> i32 {
             // |16·v·m| < 2^(l + 34); keep 30 bits.
-            let q = (mul_wide(v, inv.m) << 4) >> (l + 4);
-            (if inv.neg { -q } else { q }) as i32
+            let q = shr_to_i32(mul_wide(v, inv.m), l);
+            if inv.neg {
+                -q
+            } else {
+                q
+            }
         };
         let (bx1, bx2, by1, by2) = (coef(dy2), coef(dy1), coef(dx1), coef(dx2));
         // g = S · 2^(l + 4 − e), S = Σ da·b.
@@ -481,7 +485,7 @@ impl ActiveTri {
             } else if shift >= 63 {
                 0
             } else {
-                ((s >> (shift - 1)) + 1) >> 1
+                return round_shr_sat(s, shift as u32, GRAD_LIMIT as i32);
             };
             g.clamp(-GRAD_LIMIT, GRAD_LIMIT) as i32
         };

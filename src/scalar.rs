@@ -162,6 +162,44 @@ pub fn mul_wide(a: i32, b: i32) -> i64 {
     ((hi as i64) << 32) + (((m1 as i64) + (m2 as i64)) << 16) + lo as i64
 }
 
+/// `x >> s` (arithmetic, `s < 32`) for a result that fits in an `i32`, from 32-bit shifts: a
+/// 64-bit shift by a variable amount is a library call on a Cortex-M0.
+#[inline(always)]
+#[must_use]
+pub fn shr_to_i32(x: i64, s: u32) -> i32 {
+    let (lo, hi) = (x as u32, (x >> 32) as u32);
+    if s == 0 {
+        lo as i32
+    } else {
+        ((lo >> (s & 31)) | (hi << ((32 - s) & 31))) as i32
+    }
+}
+
+/// `clamp((x >> (s − 1)) + 1) >> 1, −limit, limit)` — `x / 2^s` rounded half up — for
+/// `1 ≤ s ≤ 63` and `limit ≤ 2³⁰`, from 32-bit shifts (see [`shr_to_i32`]). Results beyond
+/// the `i32` range saturate, as they would have after the clamp.
+#[inline]
+#[must_use]
+pub fn round_shr_sat(x: i64, s: u32, limit: i32) -> i32 {
+    let k = s - 1;
+    let (lo, hi) = (x as u32, (x >> 32) as i32);
+    // t = x >> k as a high and a low word.
+    let (thi, tlo) = if k >= 32 {
+        let h = hi >> (k - 32).min(31);
+        (h >> 31, h as u32)
+    } else if k == 0 {
+        (hi, lo)
+    } else {
+        (hi >> k, (lo >> k) | ((hi as u32) << (32 - k)))
+    };
+    if thi != (tlo as i32) >> 31 {
+        // |t| ≥ 2³¹, so |t + 1| / 2 ≥ 2³⁰ ≥ limit.
+        return if thi < 0 { -limit } else { limit };
+    }
+    let t = tlo as i32;
+    ((t >> 1) + (t & 1)).clamp(-limit, limit)
+}
+
 /// The exact product of two `u32`, from four 16 × 16-bit products (see [`mul_wide`]).
 #[inline(always)]
 #[must_use]
@@ -631,6 +669,42 @@ mod tests {
             for &k in &[1u32, 1920, 16384, 65535 << 12] {
                 let exact = ((n as i128 * k as i128 + (1 << 31)) >> 32) as i64;
                 assert_eq!(mul_q32(n, k), exact, "{n} * {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn variable_shifts_match_64_bit_shifts() {
+        let xs = [
+            0i64,
+            1,
+            -1,
+            5,
+            -5,
+            (1 << 31) - 1,
+            -(1 << 31),
+            1 << 40,
+            -(1 << 40) - 3,
+            (1 << 62) - 1,
+            -(1 << 62),
+            i64::MAX,
+            i64::MIN,
+            0x1234_5678_9abc_def0,
+            -0x0fed_cba9_8765_4321,
+        ];
+        for &x in &xs {
+            for s in 0..32 {
+                let want = x >> s;
+                if i32::try_from(want).is_ok() {
+                    assert_eq!(shr_to_i32(x, s) as i64, want, "{x} >> {s}");
+                }
+            }
+            for s in 1..=63u32 {
+                for limit in [1 << 30, 1000] {
+                    let want = (((x >> (s - 1)) >> 1) + ((x >> (s - 1)) & 1))
+                        .clamp(-limit as i64, limit as i64);
+                    assert_eq!(round_shr_sat(x, s, limit) as i64, want, "{x} / 2^{s}");
+                }
             }
         }
     }
