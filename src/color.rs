@@ -60,9 +60,17 @@ pub trait TargetColor: PixelColor + From<Rgb888> {
 pub fn scale_channels(rgb: [u16; 3], max: [u8; 3]) -> [u16; 3] {
     let mut out = [0u16; 3];
     for k in 0..3 {
-        out[k] = ((rgb[k] as u32 * max[k] as u32 + 127) / 255) as u16;
+        out[k] = div255(rgb[k] as u32 * max[k] as u32 + 127) as u16;
     }
     out
+}
+
+/// `x / 255` for any `u32`, as a multiply by 2³⁹/255 rounded up (0x8080_8081) and a shift — the
+/// constant compilers use — with the 64-bit product from four 16-bit multiplies: a Cortex-M0 has
+/// no divide instruction, and the library division costs about a hundred instructions.
+#[inline(always)]
+fn div255(x: u32) -> u32 {
+    (crate::scalar::mul_wide_u(x, 0x8080_8081) >> 39) as u32
 }
 
 /// ITU-R BT.601 luma of 8.8 channels, with the weights embedded-graphics uses (77, 150, 29)/256.
@@ -183,6 +191,23 @@ pub const BAYER: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn div255_is_exact() {
+        let mut x = 0u32;
+        loop {
+            for v in [x, x.wrapping_add(1), x.wrapping_sub(1), x.wrapping_add(254)] {
+                assert_eq!(div255(v), v / 255, "{v}");
+            }
+            // Every value the channel scaling uses, then a stride over the rest of u32.
+            let step = if x < 65280 * 255 + 128 { 1 } else { 65_521 };
+            match x.checked_add(step) {
+                Some(n) => x = n,
+                None => break,
+            }
+        }
+        assert_eq!(div255(u32::MAX), u32::MAX / 255);
+    }
     use embedded_graphics_core::pixelcolor::GrayColor;
 
     #[test]

@@ -200,6 +200,26 @@ pub fn round_shr_sat(x: i64, s: u32, limit: i32) -> i32 {
     ((t >> 1) + (t & 1)).clamp(-limit, limit)
 }
 
+/// `(x + 2^(s−1)) >> s` — `x / 2^s` rounded half up — for `1 ≤ s ≤ 62` and `|x| < 2⁶²`, from
+/// 32-bit shifts (see [`shr_to_i32`]).
+#[inline]
+#[must_use]
+pub fn round_shr64(x: i64, s: u32) -> i64 {
+    let k = s - 1;
+    let half = if k >= 32 {
+        ((1u32 << (k - 32).min(31)) as i64) << 32
+    } else {
+        (1u32 << k) as i64
+    };
+    let y = x + half;
+    let (lo, hi) = (y as u32, (y >> 32) as i32);
+    if s >= 32 {
+        (hi >> (s - 32).min(31)) as i64
+    } else {
+        (((hi >> s) as i64) << 32) | ((lo >> s) | ((hi as u32) << (32 - s))) as i64
+    }
+}
+
 /// The exact product of two `u32`, from four 16 × 16-bit products (see [`mul_wide`]).
 #[inline(always)]
 #[must_use]
@@ -531,7 +551,7 @@ macro_rules! impl_fx {
                 let p = mul_wide(v.0.to_bits(), r.mantissa);
                 let s = r.shift as i32 - NDC_FRAC_BITS as i32;
                 if s > 0 {
-                    (p + (1i64 << (s - 1))) >> s
+                    round_shr64(p, s as u32)
                 } else {
                     p.saturating_mul(1i64 << (-s).min(62))
                         .clamp(-(1 << 62), 1 << 62)
@@ -697,6 +717,15 @@ mod tests {
                 let want = x >> s;
                 if i32::try_from(want).is_ok() {
                     assert_eq!(shr_to_i32(x, s) as i64, want, "{x} >> {s}");
+                }
+            }
+            for s in 1..=62u32 {
+                if x.unsigned_abs() < 1 << 62 {
+                    assert_eq!(
+                        round_shr64(x, s),
+                        (x + (1i64 << (s - 1))) >> s,
+                        "{x} / 2^{s}"
+                    );
                 }
             }
             for s in 1..=63u32 {
