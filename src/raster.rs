@@ -22,7 +22,7 @@ use crate::color::{TargetColor, BAYER};
 use crate::project::{
     channel_bits, vertex_frac_bits, ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS,
 };
-use crate::scalar::{mul_wide, recip_norm, round_shr_sat, shr_to_i32};
+use crate::scalar::{mul_wide, mul_wide16, recip_norm, round_shr_sat, shr_to_i32};
 
 /// Fraction bits of interpolated colour channels (channel units, so 0..=255·2²⁰ < 2²⁸ fits an
 /// `i32`; step 2⁻²⁰ of a channel unit).
@@ -463,7 +463,8 @@ impl ActiveTri {
         let l = 32 - vmax.leading_zeros(); // ≤ 16
         let coef = |v: i32| -> i32 {
             // |16·v·m| < 2^(l + 34); keep 30 bits.
-            let q = shr_to_i32(mul_wide(v, inv.m), l);
+            // |v| ≤ 32 766: a 32 × 16-bit product.
+            let q = shr_to_i32(mul_wide16(inv.m, v), l);
             if inv.neg {
                 -q
             } else {
@@ -492,30 +493,40 @@ impl ActiveTri {
 
         let n_attrs = if flat { 1 } else { 4 };
         let (ca, cb, cc) = (a.color(), b.color(), c.color());
-        let val = |v: &ScreenVertex, rgb: &[u16; 3], k: usize| -> i32 {
-            if k == 0 {
-                v.depth()
-            } else {
-                (rgb[k - 1] as i32) << (COLOR_FRAC_BITS - vertex_frac_bits(C::CHANNEL_MAX[k - 1]))
-            }
-        };
         let mut a0 = [0i32; 4];
         let mut gx = [0i32; 4];
         let mut gy = [0i32; 4];
         for k in 0..n_attrs {
-            let (v0, v1, v2) = (val(&a, &ca, k), val(&b, &cb, k), val(&c, &cc, k));
-            let (da1, da2) = (v1 - v0, v2 - v0); // |da| < 2^28
-            a0[k] = v0;
-            gx[k] = scale(mul_wide(da1, bx1) - mul_wide(da2, bx2));
-            gy[k] = scale(mul_wide(da2, by1) - mul_wide(da1, by2));
+            if k == 0 {
+                let (v0, v1, v2) = (a.depth(), b.depth(), c.depth());
+                let (da1, da2) = (v1 - v0, v2 - v0); // |da| < 2^28
+                a0[0] = v0;
+                gx[0] = scale(mul_wide(da1, bx1) - mul_wide(da2, bx2));
+                gy[0] = scale(mul_wide(da2, by1) - mul_wide(da1, by2));
+            } else {
+                // Colours are 10-bit channels scaled by a constant power of two: the products
+                // are 32 × 16-bit, shifted afterwards (the same values).
+                let sh = COLOR_FRAC_BITS - vertex_frac_bits(C::CHANNEL_MAX[k - 1]);
+                let c0 = ca[k - 1] as i32;
+                let (d1, d2) = (cb[k - 1] as i32 - c0, cc[k - 1] as i32 - c0); // |d| < 2^11
+                a0[k] = c0 << sh;
+                gx[k] = scale((mul_wide16(bx1, d1) - mul_wide16(bx2, d2)) << sh);
+                gy[k] = scale((mul_wide16(by1, d2) - mul_wide16(by2, d1)) << sh);
+            }
         }
         // Evaluate every attribute plane at the centre of pixel (left.c, row).
         let dx = SUBPIXELS * left.c as i32 + SUBPIXELS / 2 - ax;
         let dy = SUBPIXELS * row + SUBPIXELS / 2 - ay;
+        let short_d = dx == dx as i16 as i32 && dy == dy as i16 as i32;
         let mut row_v = [0i32; 4];
         let mut inc = [0i32; 4];
         for k in 0..n_attrs {
-            let d = (mul_wide(gx[k], dx) + mul_wide(gy[k], dy)) >> crate::project::SUBPIXEL_BITS;
+            let p = if short_d {
+                mul_wide16(gx[k], dx) + mul_wide16(gy[k], dy)
+            } else {
+                mul_wide(gx[k], dx) + mul_wide(gy[k], dy)
+            };
+            let d = p >> crate::project::SUBPIXEL_BITS;
             row_v[k] = a0[k].wrapping_add(d as i32);
             inc[k] = gy[k].wrapping_add(gx[k].wrapping_mul(left.sq as i32));
         }

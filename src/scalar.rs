@@ -220,6 +220,16 @@ pub fn round_shr64(x: i64, s: u32) -> i64 {
     }
 }
 
+/// The exact product of an `i32` and a 16-bit `b` (`−2¹⁵ ≤ b < 2¹⁵`), from two 16 × 16-bit
+/// products (see [`mul_wide`], which needs four).
+#[inline(always)]
+#[must_use]
+pub fn mul_wide16(a: i32, b: i32) -> i64 {
+    let (al, ah) = ((a & 0xffff) as i32, a >> 16);
+    // |al·b| ≤ 65535·2¹⁵ < 2³¹, |ah·b| ≤ 2³⁰.
+    (((ah * b) as i64) << 16) + (al * b) as i64
+}
+
 /// The exact product of two `u32`, from four 16 × 16-bit products (see [`mul_wide`]).
 #[inline(always)]
 #[must_use]
@@ -270,6 +280,11 @@ pub fn mul_q32(n: i64, k: u32) -> i64 {
     let hi = n >> 32; // signed
     let lo = n as u32;
     let l = (mul_wide_u(lo, k) + (1 << 31)) >> 32;
+    if hi == hi as i16 as i64 && k < 1 << 31 {
+        // The common case (on-screen coordinates): |hi·k| < 2⁴⁶, nothing to saturate, and a
+        // 32 × 16-bit product instead of a library 64-bit multiply.
+        return mul_wide16(k as i32, hi as i32) + l as i64;
+    }
     (hi.saturating_mul(k as i64)).saturating_add(l as i64)
 }
 
@@ -734,6 +749,46 @@ mod tests {
                         .clamp(-limit as i64, limit as i64);
                     assert_eq!(round_shr_sat(x, s, limit) as i64, want, "{x} / 2^{s}");
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn mul_q32_rounds_and_saturates() {
+        for n in [
+            0i64,
+            1,
+            -1,
+            1 << 32,
+            -(1 << 32) + 5,
+            123_456_789_012,
+            -(1 << 47) - 1,
+            (1 << 61) + 3,
+        ] {
+            for k in [0u32, 1, 1920, 65535 << 4, (1 << 31) - 1] {
+                let want = ((n as i128 * k as i128 + (1 << 31)) >> 32)
+                    .clamp(i64::MIN as i128, i64::MAX as i128) as i64;
+                assert_eq!(mul_q32(n, k), want, "{n} · {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn mul_wide16_is_exact() {
+        for a in [
+            0i32,
+            1,
+            -1,
+            65535,
+            65536,
+            -65536,
+            i32::MAX,
+            i32::MIN,
+            0x1234_5678,
+            -0x0765_4321,
+        ] {
+            for b in [0i32, 1, -1, 32767, -32768, 12345, -2047] {
+                assert_eq!(mul_wide16(a, b), a as i64 * b as i64, "{a} · {b}");
             }
         }
     }

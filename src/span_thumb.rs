@@ -19,6 +19,35 @@
 use crate::color::TargetColor;
 use crate::raster::{offsets as o, ActiveTri};
 
+/// AAPCS entry of both routines: saves r4–r11 and the return address (r8–r11 through low
+/// registers: Thumb-1 `push` takes only r0–r7 and lr).
+macro_rules! save_registers {
+    () => {
+        concat!(
+            "push {{r4, r5, r6, r7, lr}}\n",
+            "mov r4, r8\n",
+            "mov r5, r9\n",
+            "mov r6, r10\n",
+            "mov r7, r11\n",
+            "push {{r4, r5, r6, r7}}\n",
+        )
+    };
+}
+
+/// The matching exit: restores r8–r11 and r4–r7 and returns.
+macro_rules! restore_registers_and_return {
+    () => {
+        concat!(
+            "pop {{r4, r5, r6, r7}}\n",
+            "mov r8, r4\n",
+            "mov r9, r5\n",
+            "mov r10, r6\n",
+            "mov r11, r7\n",
+            "pop {{r4, r5, r6, r7, pc}}\n",
+        )
+    };
+}
+
 /// The pixel loop shared by both routines. In: r0 = depth pointer, r1 = colour pointer −
 /// depth pointer (bytes), r2 = z·2⁴ (z in 16.12 + ½ bias, so the depth is the high half),
 /// r3 = rb (red << 16 + blue, 11 fraction bits each, + ½ bias), r4 = g·2⁶ (g with 20
@@ -67,12 +96,7 @@ core::arch::global_asm!(
     // r0 = depth pointer, r1 = colour pointer − depth pointer (bytes), r2 = end of the depth
     // run, r3 = &[z, gz, rb, grb, g, gg]. Returns the number of pixels written.
     "scanline3d_span565_less:",
-    "push {{r4, r5, r6, r7, lr}}",
-    "mov r4, r8",
-    "mov r5, r9",
-    "mov r6, r10",
-    "mov r7, r11",
-    "push {{r4, r5, r6, r7}}",
+    save_registers!(),
     "mov r11, r2",
     "ldr r4, [r3, #4]",
     "mov r8, r4",
@@ -86,12 +110,7 @@ core::arch::global_asm!(
     "movs r7, #0",
     pixel_loop!(),
     "mov r0, r7",
-    "pop {{r4, r5, r6, r7}}",
-    "mov r8, r4",
-    "mov r9, r5",
-    "mov r10, r6",
-    "mov r11, r7",
-    "pop {{r4, r5, r6, r7, pc}}",
+    restore_registers_and_return!(),
     ".size scanline3d_span565_less, . - scanline3d_span565_less",
 );
 
@@ -106,12 +125,7 @@ core::arch::global_asm!(
     // r0 = &mut RowCtx. Draws the row of active triangles i, i+1, … while they qualify (see
     // `rows565`); returns 0 when it reached n, 1 when triangle i needs the portable path.
     "scanline3d_rows565:",
-    "push {{r4, r5, r6, r7, lr}}",
-    "mov r4, r8",
-    "mov r5, r9",
-    "mov r6, r10",
-    "mov r7, r11",
-    "push {{r4, r5, r6, r7}}",
+    save_registers!(),
     "push {{r0}}",
     "b 10f",
     // The exits sit here, within reach of the conditional branches below.
@@ -267,12 +281,7 @@ core::arch::global_asm!(
     "b 10b",
     "13:",
     "add sp, #4",
-    "pop {{r4, r5, r6, r7}}",
-    "mov r8, r4",
-    "mov r9, r5",
-    "mov r10, r6",
-    "mov r11, r7",
-    "pop {{r4, r5, r6, r7, pc}}",
+    restore_registers_and_return!(),
     ".size scanline3d_rows565, . - scanline3d_rows565",
     ci = const core::mem::offset_of!(RowCtx, i),
     cn = const core::mem::offset_of!(RowCtx, n),
