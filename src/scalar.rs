@@ -225,7 +225,7 @@ pub fn round_shr64(x: i64, s: u32) -> i64 {
 #[inline(always)]
 #[must_use]
 pub fn mul_wide16(a: i32, b: i32) -> i64 {
-    let (al, ah) = ((a & 0xffff) as i32, a >> 16);
+    let (al, ah) = (a & 0xffff, a >> 16);
     // |al·b| ≤ 65535·2¹⁵ < 2³¹, |ah·b| ≤ 2³⁰.
     (((ah * b) as i64) << 16) + (al * b) as i64
 }
