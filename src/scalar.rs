@@ -236,8 +236,12 @@ pub fn mul_wide16(a: i32, b: i32) -> i64 {
 pub fn mul_wide_u(a: u32, b: u32) -> u64 {
     let (al, ah) = (a & 0xffff, a >> 16);
     let (bl, bh) = (b & 0xffff, b >> 16);
-    let mid = (ah * bl) as u64 + (al * bh) as u64;
-    (((ah * bh) as u64) << 32) + (mid << 16) + (al * bl) as u64
+    // Summed in 32-bit words with explicit carries: written as one 64-bit expression, LLVM
+    // folds it back into a library 64 × 64-bit multiply on a Cortex-M0.
+    let (mid, c1) = (ah * bl).overflowing_add(al * bh);
+    let (low, c2) = (al * bl).overflowing_add(mid << 16);
+    let high = ah * bh + (mid >> 16) + ((c1 as u32) << 16) + c2 as u32;
+    ((high as u64) << 32) | low as u64
 }
 
 /// Number of significant bits of a `u64` (0 for 0), with 32-bit `leading_zeros` only.
