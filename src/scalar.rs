@@ -162,36 +162,35 @@ pub fn mul_wide(a: i32, b: i32) -> i64 {
     ((hi as i64) << 32) + (((m1 as i64) + (m2 as i64)) << 16) + lo as i64
 }
 
-/// `x >> s` (arithmetic, `s < 32`) for a result that fits in an `i32`, from 32-bit shifts: a
+/// `x >> k` (arithmetic, `k ≤ 63`) as its high and low 32-bit words, from 32-bit shifts: a
 /// 64-bit shift by a variable amount is a library call on a Cortex-M0.
 #[inline(always)]
-#[must_use]
-pub fn shr_to_i32(x: i64, s: u32) -> i32 {
-    let (lo, hi) = (x as u32, (x >> 32) as u32);
-    if s == 0 {
-        lo as i32
-    } else {
-        ((lo >> (s & 31)) | (hi << ((32 - s) & 31))) as i32
-    }
-}
-
-/// `clamp((x >> (s − 1)) + 1) >> 1, −limit, limit)` — `x / 2^s` rounded half up — for
-/// `1 ≤ s ≤ 63` and `limit ≤ 2³⁰`, from 32-bit shifts (see [`shr_to_i32`]). Results beyond
-/// the `i32` range saturate, as they would have after the clamp.
-#[inline]
-#[must_use]
-pub fn round_shr_sat(x: i64, s: u32, limit: i32) -> i32 {
-    let k = s - 1;
+fn shr_words(x: i64, k: u32) -> (i32, u32) {
     let (lo, hi) = (x as u32, (x >> 32) as i32);
-    // t = x >> k as a high and a low word.
-    let (thi, tlo) = if k >= 32 {
+    if k >= 32 {
         let h = hi >> (k - 32).min(31);
         (h >> 31, h as u32)
     } else if k == 0 {
         (hi, lo)
     } else {
         (hi >> k, (lo >> k) | ((hi as u32) << (32 - k)))
-    };
+    }
+}
+
+/// `x >> s` (arithmetic, `s < 32`) for a result that fits in an `i32` (see [`shr_words`]).
+#[inline(always)]
+#[must_use]
+pub fn shr_to_i32(x: i64, s: u32) -> i32 {
+    shr_words(x, s).1 as i32
+}
+
+/// `clamp((x >> (s − 1)) + 1) >> 1, −limit, limit)` — `x / 2^s` rounded half up — for
+/// `1 ≤ s ≤ 63` and `limit ≤ 2³⁰`, from 32-bit shifts (see [`shr_words`]). Results beyond
+/// the `i32` range saturate, as they would have after the clamp.
+#[inline]
+#[must_use]
+pub fn round_shr_sat(x: i64, s: u32, limit: i32) -> i32 {
+    let (thi, tlo) = shr_words(x, s - 1);
     if thi != (tlo as i32) >> 31 {
         // |t| ≥ 2³¹, so |t + 1| / 2 ≥ 2³⁰ ≥ limit.
         return if thi < 0 { -limit } else { limit };
@@ -201,7 +200,7 @@ pub fn round_shr_sat(x: i64, s: u32, limit: i32) -> i32 {
 }
 
 /// `(x + 2^(s−1)) >> s` — `x / 2^s` rounded half up — for `1 ≤ s ≤ 62` and `|x| < 2⁶²`, from
-/// 32-bit shifts (see [`shr_to_i32`]).
+/// 32-bit shifts (see [`shr_words`]).
 #[inline]
 #[must_use]
 pub fn round_shr64(x: i64, s: u32) -> i64 {
@@ -211,13 +210,8 @@ pub fn round_shr64(x: i64, s: u32) -> i64 {
     } else {
         (1u32 << k) as i64
     };
-    let y = x + half;
-    let (lo, hi) = (y as u32, (y >> 32) as i32);
-    if s >= 32 {
-        (hi >> (s - 32).min(31)) as i64
-    } else {
-        (((hi >> s) as i64) << 32) | ((lo >> s) | ((hi as u32) << (32 - s))) as i64
-    }
+    let (hi, lo) = shr_words(x + half, s);
+    ((hi as i64) << 32) | lo as i64
 }
 
 /// The exact product of an `i32` and a 16-bit `b` (`−2¹⁵ ≤ b < 2¹⁵`), from two 16 × 16-bit
@@ -548,15 +542,11 @@ macro_rules! impl_fx {
                         + (1i64 << ($frac - 1));
                     return Fx($t::from_bits(sat32(p >> $frac)));
                 }
-                let (a, b) = (
-                    a.map(|v| Fx($t::from_bits(v))),
-                    b.map(|v| Fx($t::from_bits(v))),
-                );
                 // Each product is below 2^62 in magnitude; the sum saturates instead of
                 // overflowing, and a saturated sum saturates the result.
-                let p = mul_wide(a[0].0.to_bits(), b[0].0.to_bits())
-                    .saturating_add(mul_wide(a[1].0.to_bits(), b[1].0.to_bits()))
-                    .saturating_add(mul_wide(a[2].0.to_bits(), b[2].0.to_bits()))
+                let p = mul_wide(a[0], b[0])
+                    .saturating_add(mul_wide(a[1], b[1]))
+                    .saturating_add(mul_wide(a[2], b[2]))
                     .saturating_add((c.0.to_bits() as i64) << $frac)
                     .saturating_add(1i64 << ($frac - 1));
                 Fx($t::from_bits(sat32(p >> $frac)))
