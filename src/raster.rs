@@ -284,12 +284,17 @@ pub(crate) struct SpanMode {
 impl SpanMode {
     pub(crate) fn new<C: TargetColor>(test: DepthTest, dither: bool) -> Self {
         let less = test == DepthTest::Less;
-        let packable = C::CHANNEL_MAX[0] <= 63 && C::CHANNEL_MAX[2] <= 63 && C::CHANNEL_MAX[0] > 0;
         SpanMode {
             fast_flat: less,
-            fast_gouraud: less && packable && !(dither && C::can_dither()),
+            fast_gouraud: less && packable::<C>() && !(dither && C::can_dither()),
         }
     }
+}
+
+/// Whether red and blue of `C` fit the packed red-blue word (at most 6 bits each).
+#[inline(always)]
+fn packable<C: TargetColor>() -> bool {
+    C::CHANNEL_MAX[0] <= 63 && C::CHANNEL_MAX[2] <= 63 && C::CHANNEL_MAX[0] > 0
 }
 
 /// Fraction bits of red and blue in a packed red-blue word: `16 − bits` of each channel.
@@ -299,6 +304,24 @@ fn packed_frac_bits<C: TargetColor>() -> (u32, u32) {
         16 - channel_bits(C::CHANNEL_MAX[0]),
         16 - channel_bits(C::CHANNEL_MAX[2]),
     )
+}
+
+/// The packed red-blue word of red `r` and blue `b` (20 fraction bits each, values or
+/// gradients): each rounded to `16 − bits` fraction bits, red in the high half, added with
+/// wrapping (so the word is `R·2¹⁶ + B mod 2³²`, whatever the signs).
+#[inline(always)]
+fn pack_rb<C: TargetColor>(r: i32, b: i32) -> u32 {
+    let (fr, fb) = packed_frac_bits::<C>();
+    let conv = |v: i32, s: u32| v.wrapping_add(1 << (s - 1)) >> s;
+    ((conv(r, COLOR_FRAC_BITS - fr) as u32) << 16)
+        .wrapping_add(conv(b, COLOR_FRAC_BITS - fb) as u32)
+}
+
+/// Half a unit of red and of blue in a packed red-blue word: the rounding bias of a start value.
+#[inline(always)]
+fn packed_rb_half<C: TargetColor>() -> u32 {
+    let (fr, fb) = packed_frac_bits::<C>();
+    ((1u32 << (fr - 1)) << 16) + (1 << (fb - 1))
 }
 
 /// A triangle on the active list (84 bytes).
@@ -549,16 +572,10 @@ impl ActiveTri {
             };
         if fast && !flat {
             // Pack once here, so that rows and spans step three words and convert nothing.
-            let (fr, fb) = packed_frac_bits::<C>();
-            let (sr, sb) = (COLOR_FRAC_BITS - fr, COLOR_FRAC_BITS - fb);
-            let conv = |v: i32, s: u32| v.wrapping_add(1 << (s - 1)) >> s;
-            let pack = |r: i32, b: i32| {
-                ((conv(r, sr) as u32) << 16).wrapping_add(conv(b, sb) as u32) as i32
-            };
-            let rb_bias = ((1u32 << (fr - 1)) << 16) as i32 + (1 << (fb - 1));
+            let pack = |r: i32, b: i32| pack_rb::<C>(r, b) as i32;
             row_v = [
                 row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1)),
-                pack(row_v[1], row_v[3]).wrapping_add(rb_bias),
+                pack(row_v[1], row_v[3]).wrapping_add(packed_rb_half::<C>() as i32),
                 row_v[2].wrapping_add(1 << (COLOR_FRAC_BITS - 1)),
                 0,
             ];
@@ -806,12 +823,12 @@ fn span_packed<C: TargetColor, const T: u8>(
     rb: [u32; 2],
     g: [i32; 2],
 ) -> u32 {
-    // Compile-time constants of the colour type: shifts by immediates, two registers fewer.
-    let (fr, fb) = packed_frac_bits::<C>();
     #[cfg(all(target_arch = "arm", target_os = "none"))]
     if T == LESS && crate::span_thumb::rgb565_words::<C>() {
         return crate::span_thumb::span565_less(zs, cs, z, rb, g);
     }
+    // Compile-time constants of the colour type: shifts by immediates, two registers fewer.
+    let (fr, fb) = packed_frac_bits::<C>();
     let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
     let mut written = 0;
     for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
@@ -888,10 +905,9 @@ impl Span {
         depth: &mut [u16],
         dither: bool,
     ) -> u32 {
-        let packable = C::CHANNEL_MAX[0] <= 63 && C::CHANNEL_MAX[2] <= 63 && C::CHANNEL_MAX[0] > 0;
         if dither {
             self.fill_gouraud_dither::<C, T>(colors, depth)
-        } else if packable && self.x1 - self.x0 <= 1024 {
+        } else if packable::<C>() && self.x1 - self.x0 <= 1024 {
             self.fill_gouraud_packed::<C, T>(colors, depth)
         } else {
             self.fill_gouraud_round::<C, T>(colors, depth)
@@ -912,14 +928,8 @@ impl Span {
         colors: &mut [C],
         depth: &mut [u16],
     ) -> u32 {
-        let (fr, fb) = packed_frac_bits::<C>();
-        let (sr, sb) = (COLOR_FRAC_BITS - fr, COLOR_FRAC_BITS - fb);
-        // Rounded conversions from 20 to `f` fraction bits.
-        let conv = |v: i32, s: u32| (v + (1 << (s - 1))) >> s;
-        let r0 = conv(self.start[1], sr) + (1 << (fr - 1));
-        let b0 = conv(self.start[3], sb) + (1 << (fb - 1));
-        let rb = ((r0 as u32) << 16).wrapping_add(b0 as u32);
-        let grb = ((conv(self.gx[1], sr) as u32) << 16).wrapping_add(conv(self.gx[3], sb) as u32);
+        let rb = pack_rb::<C>(self.start[1], self.start[3]).wrapping_add(packed_rb_half::<C>());
+        let grb = pack_rb::<C>(self.gx[1], self.gx[3]);
         let g = self.start[2] + (1 << (COLOR_FRAC_BITS - 1));
         let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
         span_packed::<C, T>(
