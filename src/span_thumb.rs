@@ -1,5 +1,7 @@
-//! The Gouraud RGB565 span loop in Thumb-1 assembly, for Cortex-M cores (the hot loop of the
-//! renderer: about 40 % of a frame's instructions on a Cortex-M0 before it was written here).
+//! Thumb-1 assembly for the renderer's hot path on Cortex-M cores, for RGB565 words: the
+//! Gouraud span loop, a routine that draws one row of every qualifying active triangle (span,
+//! edge steps, attribute steps), and the strip-line clear. The span loop alone was about 40 %
+//! of a frame's instructions on a Cortex-M0 before it was written here.
 //!
 //! Why assembly: on `thumbv6m` only r0–r7 are general registers for most instructions and r7 is
 //! the frame pointer, so LLVM spills the span's accumulators to the stack and unrolls the loop
@@ -7,13 +9,14 @@
 //! the three accumulators and the pointer in low registers and the three steps and the end
 //! pointer in r8–r11: 21 instructions per written pixel and 10 per hidden one.
 //!
-//! The loop computes exactly what [`crate::raster`]'s portable `span_packed` computes for
-//! `DepthTest::Less` and 5-6-5 channels (same truncations, same wrapping additions), so the
-//! image is bit-identical; `scripts/mcu-bench` checks the image hashes of every benchmark scene
-//! on Cortex-M0 and Cortex-M4F against the host's, which runs the portable loop.
+//! The routines compute exactly what the portable code in [`crate::raster`] computes
+//! (`span_packed` for `DepthTest::Less` and 5-6-5 channels, `ActiveTri::draw_row` for a fast
+//! Gouraud row: same truncations, same wrapping additions), so the image is bit-identical;
+//! `scripts/mcu-bench` checks the image hashes of every benchmark scene on Cortex-M0 and
+//! Cortex-M4F against the host's, which runs the portable code.
 //!
-//! Safety: the caller passes a depth run and a colour run of the same length `n ≥ 1`, with the
-//! colour type a plain 16-bit RGB565 word (checked by [`rgb565_words`]).
+//! Safety: every entry point checks that the colour type is a plain 16-bit RGB565 word
+//! ([`rgb565_words`]) and passes runs within the lines it was given.
 #![allow(unsafe_code)]
 
 use crate::color::TargetColor;
@@ -350,12 +353,16 @@ pub(crate) fn rgb565_words<C: TargetColor>() -> bool {
     if !C::RGB565_WORD || core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() > 2 {
         return false;
     }
-    let bits = |c: [u8; 3]| -> u16 {
-        let v = C::from_channels(c);
-        // SAFETY: `C` is two bytes without padding (a `u16` wrapper), so its bytes are a `u16`.
-        unsafe { core::mem::transmute_copy::<C, u16>(&v) }
-    };
+    let bits = |c: [u8; 3]| word(&C::from_channels(c));
     bits([31, 0, 0]) == 0xF800 && bits([0, 63, 0]) == 0x07E0 && bits([0, 0, 31]) == 0x001F
+}
+
+/// The bytes of a two-byte colour as a `u16`; only called once `size_of::<C>() == 2` holds.
+#[inline(always)]
+fn word<C: TargetColor>(c: &C) -> u16 {
+    debug_assert_eq!(core::mem::size_of::<C>(), 2);
+    // SAFETY: `C` is two bytes without padding (a `u16` wrapper), so its bytes are a `u16`.
+    unsafe { core::mem::transmute_copy::<C, u16>(c) }
 }
 
 /// The `DepthTest::Less` Gouraud span for RGB565 words; the same arguments as the portable
@@ -472,8 +479,7 @@ pub(crate) fn clear_line<C: TargetColor>(
     // `u16` and every `u16` is a `C`.
     let words =
         unsafe { core::slice::from_raw_parts_mut(colors.as_mut_ptr() as *mut u16, colors.len()) };
-    let bg = unsafe { core::mem::transmute_copy::<C, u16>(&background) };
-    fill16(words, bg);
+    fill16(words, word(&background));
     fill16(depth, u16::MAX);
     true
 }
