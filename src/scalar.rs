@@ -177,7 +177,8 @@ fn shr_words(x: i64, k: u32) -> (i32, u32) {
     }
 }
 
-/// `x >> s` (arithmetic, `s < 32`) for a result that fits in an `i32` (a 64-bit shift by a variable amount is a library call on a Cortex-M0).
+/// `x >> s` (arithmetic, `s < 32`) for a result that fits in an `i32`, from 32-bit shifts: a
+/// 64-bit shift by a variable amount is a library call on a Cortex-M0.
 #[inline(always)]
 #[must_use]
 pub fn shr_to_i32(x: i64, s: u32) -> i32 {
@@ -185,8 +186,9 @@ pub fn shr_to_i32(x: i64, s: u32) -> i32 {
 }
 
 /// `clamp((x >> (s − 1)) + 1) >> 1, −limit, limit)` — `x / 2^s` rounded half up — for
-/// `1 ≤ s ≤ 63` and `limit ≤ 2³⁰`, from 32-bit shifts (a 64-bit shift by a variable amount is a library call on a Cortex-M0). Results beyond
-/// the `i32` range saturate, as they would have after the clamp.
+/// `1 ≤ s ≤ 63` and `limit ≤ 2³⁰`, from 32-bit shifts (a 64-bit shift by a variable amount
+/// is a library call on a Cortex-M0). Results beyond the `i32` range saturate, as they would
+/// have after the clamp.
 #[inline]
 #[must_use]
 pub fn round_shr_sat(x: i64, s: u32, limit: i32) -> i32 {
