@@ -23,6 +23,7 @@ use crate::project::{
     channel_bits, vertex_frac_bits, ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS,
 };
 use crate::scalar::{mul_wide, mul_wide16, recip_norm, round_shr_sat, shr_to_i32};
+use heapless::Vec;
 
 /// Fraction bits of interpolated colour channels (channel units, so 0..=255·2²⁰ < 2²⁸ fits an
 /// `i32`; step 2⁻²⁰ of a channel unit).
@@ -347,6 +348,10 @@ pub(crate) struct ActiveTri {
     cy: i16,
     /// [`MID_LEFT`], [`FLAT`], [`FAST`].
     flags: u8,
+    /// Not this triangle's data: entry `i` of [`ActiveList`]'s order lives in slot `i`, in
+    /// bytes that would otherwise be padding: the index of the entry's slot (`0..N`) XOR `i`,
+    /// so that the all-zero records of a new list are the identity order.
+    ord: u16,
     /// Per-pixel x gradients, |g| ≤ 2³⁰: depth (16.12 per pixel) and r, g, b (channel units,
     /// 20 fraction bits per pixel). Flat triangles keep their final channel bytes in `gx[1]`.
     /// (The y gradient lives on in `inc`, and the values at the first vertex in `row`, so
@@ -368,6 +373,94 @@ pub(crate) struct ActiveTri {
     inc: [i32; 4],
 }
 
+// The order entry fills padding: an active triangle stays 84 bytes.
+const _: () = assert!(core::mem::size_of::<ActiveTri>() == 84);
+
+/// The active triangles of the current row: up to `N` records that stay where they were set
+/// up, and their drawing order as a permutation of slot indices (kept in the records' spare
+/// bytes, see [`ActiveTri`]). Adding or removing a triangle moves two bytes, not a record:
+/// on a Cortex-M0 a record copy is a library `memcpy` of about a hundred instructions.
+/// Removal has the order semantics of `swap_remove` (the last triangle takes the removed
+/// one's place), so the drawing order is that of a plain vector. Slots are added when the
+/// list first grows past them and then reused, frame after frame.
+#[derive(Debug)]
+pub(crate) struct ActiveList<const N: usize> {
+    /// The slots used so far (never shrinks; a vector, so a new list is built without
+    /// writing, or copying, `N` records on the stack).
+    slots: Vec<ActiveTri, N>,
+    /// Triangles on the list (≤ `slots.len()`).
+    len: usize,
+}
+
+impl<const N: usize> ActiveList<N> {
+    pub(crate) const fn new() -> Self {
+        ActiveList {
+            slots: Vec::new(),
+            len: 0,
+        }
+    }
+
+    #[inline(always)]
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// Most slots whose indices fit the order entries.
+    pub(crate) const MAX: usize = 1 << 16;
+
+    /// The slot of list entry `i` (`i < slots.len()`).
+    #[inline(always)]
+    fn slot(&self, i: usize) -> usize {
+        (self.slots[i].ord ^ i as u16) as usize
+    }
+
+    /// Entry `i` of the list (`i < len`).
+    #[inline(always)]
+    pub(crate) fn get_mut(&mut self, i: usize) -> &mut ActiveTri {
+        let s = self.slot(i);
+        &mut self.slots[s]
+    }
+
+    /// Sets up a triangle in the next free slot with `f`, which returns whether it is kept.
+    /// Returns false when the list is full.
+    #[inline(always)]
+    pub(crate) fn push_with(&mut self, f: impl FnOnce(&mut ActiveTri) -> bool) -> bool {
+        if self.len >= N {
+            return false;
+        }
+        if self.len == self.slots.len() {
+            // A new slot: its zero order entry makes it entry `len`'s own (identity).
+            let _ = self.slots.push(ActiveTri::EMPTY);
+        }
+        let s = self.slot(self.len);
+        if f(&mut self.slots[s]) {
+            self.len += 1;
+        }
+        true
+    }
+
+    /// Removes entry `i` (`i < len`); the last entry takes its place.
+    #[inline(always)]
+    pub(crate) fn swap_remove(&mut self, i: usize) {
+        let last = self.len - 1;
+        let (a, b) = (self.slot(i), self.slot(last));
+        self.slots[i].ord = (b ^ i) as u16;
+        self.slots[last].ord = (a ^ last) as u16;
+        self.len = last;
+    }
+
+    /// The slot records (for the Cortex-M row routine) and the list length.
+    #[cfg(all(target_arch = "arm", target_os = "none"))]
+    #[inline(always)]
+    pub(crate) fn raw_parts(&mut self) -> (*mut ActiveTri, usize) {
+        (self.slots.as_mut_ptr(), self.len)
+    }
+}
+
 /// Byte offsets of the fields the Cortex-M row loop reads and writes.
 #[cfg(all(target_arch = "arm", target_os = "none"))]
 pub(crate) mod offsets {
@@ -386,6 +479,7 @@ pub(crate) mod offsets {
     pub const FLAGS: usize = offset_of!(ActiveTri, flags);
     pub const ROW_END: usize = offset_of!(ActiveTri, row_end);
     pub const ROW_MID: usize = offset_of!(ActiveTri, row_mid);
+    pub const ORD: usize = offset_of!(ActiveTri, ord);
     pub const FAST: u8 = super::FAST;
     pub const FAST_FLAT: u8 = super::FAST | super::FLAT;
 }
@@ -414,6 +508,7 @@ impl ActiveTri {
         cx: 0,
         cy: 0,
         flags: 0,
+        ord: 0,
         gx: [0; 4],
         row: [0; 4],
         inc: [0; 4],
@@ -682,14 +777,6 @@ impl ActiveTri {
             }
             self.row[k] = v;
         }
-    }
-
-    /// Whether this is a fast Gouraud triangle (packed rows), the kind the Cortex-M row
-    /// routine draws.
-    #[inline(always)]
-    #[cfg(all(target_arch = "arm", target_os = "none"))]
-    pub(crate) fn is_fast_gouraud(&self) -> bool {
-        self.flags & (FAST | FLAT) == FAST
     }
 
     /// Draws this triangle's span on `row` into one line of the strip and moves to the next
@@ -1091,6 +1178,36 @@ mod tests {
             d = d * 3 + 1;
         }
         assert!(worst < 2f64.powi(-28), "worst relative error {worst:e}");
+    }
+
+    #[test]
+    fn active_list_keeps_vector_order() {
+        // The same pushes and removals on the list and on a plain vector of ids.
+        let mut list = ActiveList::<40>::new();
+        let mut ids: Vec<i16, 40> = Vec::new();
+        let mut next = 0i16;
+        for step in 0..400u32 {
+            if step % 3 != 2 && list.len() < 40 {
+                assert!(list.push_with(|t| {
+                    t.row_end = next;
+                    true
+                }));
+                ids.push(next).unwrap();
+                next += 1;
+            } else if list.len() > 0 {
+                let i = (step as usize * 7) % list.len();
+                list.swap_remove(i);
+                ids.swap_remove(i);
+            }
+            assert!(!list.push_with(|_| false) || list.len() < 40);
+            for (i, &id) in ids.iter().enumerate() {
+                assert_eq!(list.get_mut(i).row_end, id, "step {step} entry {i}");
+            }
+        }
+        let mut full = ActiveList::<2>::new();
+        assert!(full.push_with(|_| true) && full.push_with(|_| true));
+        assert!(!full.push_with(|_| true));
+        assert_eq!(ActiveList::<2>::MAX, 65536);
     }
 
     #[test]

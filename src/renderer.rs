@@ -18,7 +18,7 @@ use crate::project::{
     pack_channels, pack_flat_channels, unpack_channels, ScreenVertex, Viewport, COORD_LIMIT,
     MAX_SCREEN,
 };
-use crate::raster::{first_pixel, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
+use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::{lit_color, PreparedLight, Shading};
@@ -214,7 +214,7 @@ pub struct Renderer<
 > {
     verts: Vec<ScreenVertex, VERTS>,
     tris: Vec<TriRecord, TRIS>,
-    active: Vec<ActiveTri, ACTIVE>,
+    active: ActiveList<ACTIVE>,
     /// Per row: during geometry the number of triangles whose first row it is; then the index
     /// of the first of them in `tris` (sorted by first row).
     heads: [u16; H],
@@ -310,6 +310,10 @@ impl<
         assert!(LINES >= 1, "LINES must be at least 1");
         assert!(TRIS <= i16::MAX as usize, "TRIS must be at most 32767");
         assert!(VERTS <= FLAT_BIT as usize, "VERTS must be at most 32768");
+        assert!(
+            ACTIVE <= ActiveList::<ACTIVE>::MAX,
+            "ACTIVE must be at most 65536"
+        );
     };
 
     /// A renderer with the default options (depth test [`DepthTest::Less`], no dithering).
@@ -321,7 +325,7 @@ impl<
         Renderer {
             verts: Vec::new(),
             tris: Vec::new(),
-            active: Vec::new(),
+            active: ActiveList::new(),
             heads: [0; H],
             starts: [0; H],
             color: [[black; W]; LINES],
@@ -905,14 +909,10 @@ impl<
             }
             for t in bucket {
                 let rec = self.tris[t];
-                // Cannot fail: the largest number of rows' overlaps was checked.
-                if self.active.push(ActiveTri::EMPTY).is_ok() {
-                    let n = self.active.len() - 1;
-                    let (verts, h) = (&self.verts, vh as i32);
-                    if !self.active[n].setup::<C>(&rec, verts, row as i32, h, mode) {
-                        self.active.pop();
-                    }
-                }
+                let (verts, h) = (&self.verts, vh as i32);
+                // Cannot be full: the largest number of rows' overlaps was checked.
+                self.active
+                    .push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, mode));
             }
             probe.enter(Stage::Raster);
             let mut i = 0;
@@ -933,7 +933,7 @@ impl<
                 if i >= self.active.len() {
                     break;
                 }
-                let (frag, written, done) = self.active[i].draw_row(
+                let (frag, written, done) = self.active.get_mut(i).draw_row(
                     row as i32,
                     &mut self.color[l][..vw],
                     &mut self.depth[l][..vw],

@@ -284,7 +284,7 @@ pub fn recip_norm(a: u64) -> (i32, u32) {
     };
     let d = a32 >> 16; // [2^15, 2^16)
     let x0 = RECIP_SEED[((d >> 8) & 127) as usize] as u32 + (1 << 16); // ≈ 2^32/d, (2^16, 2^17]
-    // e = 2^32 − d·x0, exact modulo 2^32 and |e| ≤ 2^24, so it is exact as an i32.
+                                                                       // e = 2^32 − d·x0, exact modulo 2^32 and |e| ≤ 2^24, so it is exact as an i32.
     let e = 0u32.wrapping_sub(d.wrapping_mul(x0)) as i32;
     // x1 = x0 + x0·e/2^32, in a 16 × 15-bit product: |(x0/2)·(e/2^10)| ≤ 2^30.
     let x1 = (x0 as i32 + (((x0 >> 1) as i32 * (e >> 10)) >> 21)) as u32;

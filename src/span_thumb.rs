@@ -20,7 +20,7 @@
 #![allow(unsafe_code)]
 
 use crate::color::TargetColor;
-use crate::raster::{offsets as o, ActiveTri};
+use crate::raster::{offsets as o, ActiveList, ActiveTri};
 
 /// AAPCS entry of both routines: saves r4–r11 and the return address (r8–r11 through low
 /// registers: Thumb-1 `push` takes only r0–r7 and lr).
@@ -144,9 +144,15 @@ core::arch::global_asm!(
     "ldr r2, [r0, #{cn}]",
     "cmp r1, r2",
     "bhs 11b",
+    // Entry i's slot is the index kept in slot i, XOR i (`ActiveList`).
     "movs r3, #{size}",
     "muls r3, r1, r3",
     "ldr r2, [r0, #{ctris}]",
+    "adds r3, r2, r3",
+    "ldrh r3, [r3, #{ord}]",
+    "eors r3, r1",
+    "movs r4, #{size}",
+    "muls r3, r4, r3",
     "adds r3, r2, r3",
     // Qualifies: fast Gouraud, left.c ≥ 0, next row < row_end, next row ≠ row_mid.
     "movs r4, #{flags}",
@@ -301,6 +307,7 @@ core::arch::global_asm!(
     fast = const o::FAST,
     rend = const o::ROW_END,
     rmid = const o::ROW_MID,
+    ord = const o::ORD,
     lc = const o::LEFT + o::C,
     lsq = const o::LEFT + o::SQ,
     le = const o::LEFT + o::E,
@@ -333,6 +340,7 @@ const _: () = {
     assert!(o::GX % 4 == 0 && o::ROW % 4 == 0 && o::INC % 4 == 0 && o::INC + 8 <= 124);
     assert!(o::FLAGS <= 255 && o::ROW_END % 2 == 0 && o::ROW_END <= 62 && o::ROW_MID % 2 == 0);
     assert!(o::ROW_MID <= 62 && core::mem::size_of::<ActiveTri>() <= 255);
+    assert!(o::ORD % 2 == 0 && o::ORD <= 62);
 };
 
 extern "C" {
@@ -399,6 +407,7 @@ pub(crate) fn span565_less<C: TargetColor>(
 /// What the row routine reads and updates (`#[repr(C)]`: the assembly uses the offsets).
 #[repr(C)]
 struct RowCtx {
+    /// The active list's slots (records and order entries).
     tris: *mut ActiveTri,
     n: usize,
     i: usize,
@@ -418,20 +427,22 @@ struct RowCtx {
 /// `active.len()` or the first triangle that needs `draw_row`. `None` when `C` is not an
 /// RGB565 word.
 #[inline(always)]
-pub(crate) fn rows565<C: TargetColor>(
-    active: &mut [ActiveTri],
+pub(crate) fn rows565<C: TargetColor, const N: usize>(
+    active: &mut ActiveList<N>,
     start: usize,
     colors: &mut [C],
     depth: &mut [u16],
     next_row: i32,
 ) -> Option<(usize, u32, u32)> {
-    if !rgb565_words::<C>() || !active.get(start).is_some_and(ActiveTri::is_fast_gouraud) {
+    // The routine itself returns at once when entry `start` does not qualify.
+    let (tris, n) = active.raw_parts();
+    if !rgb565_words::<C>() || start >= n {
         return None;
     }
     let zp = depth.as_mut_ptr();
     let mut ctx = RowCtx {
-        tris: active.as_mut_ptr(),
-        n: active.len(),
+        tris,
+        n,
         i: start,
         depth: zp,
         color_offset: (colors.as_mut_ptr() as isize).wrapping_sub(zp as isize),
@@ -440,8 +451,9 @@ pub(crate) fn rows565<C: TargetColor>(
         fragments: 0,
         written: 0,
     };
-    // SAFETY: the routine reads and writes the records `active[start..]` (at the field offsets
-    // asserted above, `#[repr(C)]`) and pixels `left.c..min(right.c, width)` of both lines
+    // SAFETY: the routine reads the order entries of slots `start..n` and reads and writes
+    // the records they name (slot indices below `N`, a permutation kept by `ActiveList`), at
+    // the field offsets asserted above (`#[repr(C)]`), and pixels `left.c..min(right.c, width)` of both lines
     // only for records it checked to have `left.c ≥ 0`, with `width` at most both lengths;
     // colours are written as `u16` words, which `rgb565_words` showed is the representation
     // of `C`. It never goes past `n`.
