@@ -186,9 +186,7 @@ impl<S: Scalar> Mat4<S> {
     /// `M · (p, 1)`: the homogeneous image of a point.
     #[must_use]
     pub fn transform_point(&self, p: Vec3<S>) -> [S; 4] {
-        let m = &self.m;
-        let row = |i: usize| S::dot3_add([m[i][0], m[i][1], m[i][2]], p, m[i][3]);
-        [row(0), row(1), row(2), row(3)]
+        S::transform4(&self.m, p)
     }
 
     /// The upper 3×3 block times `v` (a direction: no translation).

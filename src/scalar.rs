@@ -95,6 +95,13 @@ pub trait Scalar:
     fn dot3_add(a: [Self; 3], b: [Self; 3], c: Self) -> Self {
         a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + c
     }
+    /// `m · (p, 1)` for a 4 × 4 matrix `m` (rows): [`Scalar::dot3_add`] of each row with `p`
+    /// and the row's last entry. A type may compute it another way, with the same result.
+    #[must_use]
+    #[inline(always)]
+    fn transform4(m: &[[Self; 4]; 4], p: [Self; 3]) -> [Self; 4] {
+        dot3_rows(m, p)
+    }
     /// Tangent of an angle in radians (saturating for fixed-point types).
     #[must_use]
     fn tan(self) -> Self {
@@ -455,7 +462,7 @@ pub struct FxRecip {
 }
 
 macro_rules! impl_fx {
-    ($t:ident, $frac:expr, $name:expr) => {
+    ($t:ident, $frac:expr, $name:expr $(, $thumb_transform:path)?) => {
         impl Fx<$t> {
             /// Builds a value from a float literal (rounds to nearest, saturates).
             #[must_use]
@@ -577,6 +584,20 @@ macro_rules! impl_fx {
                     .saturating_add(1i64 << ($frac - 1));
                 Fx($t::from_bits(sat32(p >> $frac)))
             }
+            #[inline(always)]
+            fn transform4(m: &[[Self; 4]; 4], p: [Self; 3]) -> [Self; 4] {
+                $(
+                    #[cfg(all(target_arch = "arm", target_os = "none"))]
+                    {
+                        if let Some(r) = $thumb_transform(m, p) {
+                            return r;
+                        }
+                        return dot3_rows_cold(m, p);
+                    }
+                )?
+                #[allow(unreachable_code)]
+                dot3_rows(m, p)
+            }
             fn recip(w: Self) -> FxRecip {
                 let (mantissa, shift) = recip_norm(w.0.to_bits().max(1) as u64);
                 FxRecip { mantissa, shift }
@@ -606,9 +627,24 @@ macro_rules! impl_fx {
     };
 }
 
-impl_fx!(I16F16, 16, "I16F16");
+impl_fx!(I16F16, 16, "I16F16", crate::span_thumb::transform_i16f16);
 impl_fx!(I20F12, 12, "I20F12");
 impl_fx!(I12F20, 20, "I12F20");
+
+/// [`Scalar::dot3_add`] of each row of `m` with `p` and the row's last entry.
+#[inline(always)]
+fn dot3_rows<S: Scalar>(m: &[[S; 4]; 4], p: [S; 3]) -> [S; 4] {
+    let row = |i: usize| S::dot3_add([m[i][0], m[i][1], m[i][2]], p, m[i][3]);
+    [row(0), row(1), row(2), row(3)]
+}
+
+/// [`dot3_rows`] out of line, for the values an assembly transform declines: inlined, its
+/// spills would grow the frame of every caller (on a 16 KB part the stack has no room).
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+#[inline(never)]
+fn dot3_rows_cold<S: Scalar>(m: &[[S; 4]; 4], p: [S; 3]) -> [S; 4] {
+    dot3_rows(m, p)
+}
 
 /// Saturates an `i64` to `i32`.
 #[inline(always)]

@@ -21,6 +21,8 @@
 
 use crate::color::TargetColor;
 use crate::raster::{offsets as o, ActiveList, ActiveTri};
+use crate::scalar::Fx;
+use fixed::types::I16F16;
 
 /// AAPCS entry of both routines: saves r4–r11 and the return address (r8–r11 through low
 /// registers: Thumb-1 `push` takes only r0–r7 and lr).
@@ -395,7 +397,152 @@ core::arch::global_asm!(
     ".size scanline3d_fill128, . - scanline3d_fill128",
 );
 
+/// One signed 32 × 32-bit product `a·b` of a transform row added to the 64-bit accumulator
+/// r7:r6, for `|a|, |b| < 2³⁰`. In: r5 = the row, `a` at byte offset `$a`; the low (unsigned)
+/// and high (signed) 16-bit halves of `b` in the high registers `$bl` and `$bh`. Uses r0–r4.
+/// With a = ah·2¹⁶ + al and b likewise: al·bl (< 2³²) is added unsigned, ah·bh (< 2²⁸) to
+/// the high word, and ah·bl + al·bh (each below 2³⁰ in magnitude, so their sum fits) shifted
+/// by 16. 20 instructions, four of them `muls`.
+macro_rules! q16_product {
+    ($a:literal, $bl:literal, $bh:literal) => {
+        concat!(
+            "ldr r0, [r5, #",
+            $a,
+            "]\n",
+            "uxth r1, r0\n",
+            "asrs r0, r0, #16\n",
+            "mov r2, ",
+            $bl,
+            "\n",
+            "mov r3, ",
+            $bh,
+            "\n",
+            "mov r4, r1\n",
+            "muls r4, r2, r4\n",
+            "adds r6, r6, r4\n",
+            "movs r4, #0\n",
+            "adcs r7, r4\n",
+            "mov r4, r0\n",
+            "muls r4, r3, r4\n",
+            "adds r7, r7, r4\n",
+            "muls r0, r2, r0\n",
+            "muls r1, r3, r1\n",
+            "adds r0, r0, r1\n",
+            "lsls r4, r0, #16\n",
+            "asrs r0, r0, #16\n",
+            "adds r6, r6, r4\n",
+            "adcs r7, r0\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".syntax unified",
+    ".thumb",
+    ".section .text.scanline3d_xform_q16,\"ax\",%progbits",
+    ".global scanline3d_xform_q16",
+    ".type scanline3d_xform_q16,%function",
+    ".p2align 2",
+    ".thumb_func",
+    // r0 = the matrix (16 words, row after row), r1 = the point (3 words), r2 = the result
+    // (4 words). Every entry of the matrix and the point in [−2³⁰, 2³⁰). Per row:
+    // sat32((Σ a·b + (c << 16) + 2¹⁵) >> 16). The point's halves live in r8–r12 and lr, so
+    // the stack holds only the saved registers, the result pointer and the row count (44
+    // bytes: this runs inside the geometry stage, where a 16 KB part has little to spare).
+    "scanline3d_xform_q16:",
+    save_registers!(),
+    "push {{r2}}",
+    "movs r3, #4",
+    "push {{r3}}",
+    "ldr r3, [r1, #0]",
+    "uxth r4, r3",
+    "asrs r3, r3, #16",
+    "mov r8, r4",
+    "mov r9, r3",
+    "ldr r3, [r1, #4]",
+    "uxth r4, r3",
+    "asrs r3, r3, #16",
+    "mov r10, r4",
+    "mov r11, r3",
+    "ldr r3, [r1, #8]",
+    "uxth r4, r3",
+    "asrs r3, r3, #16",
+    "mov r12, r4",
+    "mov lr, r3",
+    "mov r5, r0",
+    "1:",
+    // r7:r6 = (c << 16) + 2^15.
+    "ldr r0, [r5, #12]",
+    "lsls r6, r0, #16",
+    "asrs r7, r0, #16",
+    "movs r4, #1",
+    "lsls r4, r4, #15",
+    "adds r6, r6, r4",
+    "movs r4, #0",
+    "adcs r7, r4",
+    q16_product!("0", "r8", "r9"),
+    q16_product!("4", "r10", "r11"),
+    q16_product!("8", "r12", "lr"),
+    // r6 = the sum >> 16 when it fits an i32, else i32::MIN or i32::MAX by its sign.
+    "lsrs r6, r6, #16",
+    "lsls r0, r7, #16",
+    "orrs r6, r0",
+    "asrs r7, r7, #16",
+    "asrs r0, r6, #31",
+    "cmp r0, r7",
+    "beq 2f",
+    "movs r6, #1",
+    "lsls r6, r6, #31",
+    "cmp r7, #0",
+    "blt 2f",
+    "subs r6, #1",
+    "2:",
+    "ldr r0, [sp, #4]",
+    "stm r0!, {{r6}}",
+    "str r0, [sp, #4]",
+    "adds r5, #16",
+    "ldr r0, [sp, #0]",
+    "subs r0, #1",
+    "str r0, [sp, #0]",
+    "bne 1b",
+    "add sp, #8",
+    restore_registers_and_return!(),
+    ".size scanline3d_xform_q16, . - scanline3d_xform_q16",
+);
+
+/// `m · (p, 1)` in Q16.16 by [`scanline3d_xform_q16`] when every entry of `m` and `p` is in
+/// [−2³⁰, 2³⁰) — the condition under which the portable `dot3_add` takes its plain 64-bit sum,
+/// whose result this is, bit for bit. `None` otherwise (the portable code then saturates
+/// where it must). About 330 instructions on a Cortex-M0, where LLVM's version of the four
+/// rows takes about 600.
+#[inline(always)]
+pub(crate) fn transform_i16f16(
+    m: &[[Fx<I16F16>; 4]; 4],
+    p: [Fx<I16F16>; 3],
+) -> Option<[Fx<I16F16>; 4]> {
+    // `v ^ (v >> 31)` is v for v ≥ 0 and |v| − 1 below.
+    let spread = |v: Fx<I16F16>| {
+        let b = v.0.to_bits();
+        b ^ (b >> 31)
+    };
+    let mut s = spread(p[0]) | spread(p[1]) | spread(p[2]);
+    for row in m {
+        s |= spread(row[0]) | spread(row[1]) | spread(row[2]) | spread(row[3]);
+    }
+    if s >= 1 << 30 {
+        return None;
+    }
+    let pb = p.map(|v| v.0.to_bits());
+    let mut out = [0i32; 4];
+    // SAFETY: `Fx<I16F16>` is `repr(transparent)` over `FixedI32`, which is `repr(transparent)`
+    // over `i32`, so the matrix is 16 `i32` words, row after row; the routine reads those and
+    // the three words of `pb` and writes the four words of `out`.
+    unsafe { scanline3d_xform_q16(m.as_ptr() as *const i32, pb.as_ptr(), out.as_mut_ptr()) };
+    Some(out.map(|b| Fx(I16F16::from_bits(b))))
+}
+
 extern "C" {
+    fn scanline3d_xform_q16(m: *const i32, p: *const i32, out: *mut i32);
     fn scanline3d_fill128(start: *mut [u32; 4], end: *mut [u32; 4], word: u32);
     fn scanline3d_rows565(ctx: *mut RowCtx) -> u32;
     fn scanline3d_span565_less(
