@@ -614,23 +614,27 @@ impl ActiveTri {
         let mut a0 = [0i32; 4];
         let mut gx = [0i32; 4];
         let mut gy = [0i32; 4];
-        for k in 0..n_attrs {
-            if k == 0 {
-                let (v0, v1, v2) = (a.depth(), b.depth(), c.depth());
-                let (da1, da2) = (v1 - v0, v2 - v0); // |da| < 2^28
-                a0[0] = v0;
-                gx[0] = scale(mul_wide(da1, bx1) - mul_wide(da2, bx2));
-                gy[0] = scale(mul_wide(da2, by1) - mul_wide(da1, by2));
-            } else {
-                // Colours are 10-bit channels scaled by a constant power of two: the products
-                // are 32 × 16-bit, shifted afterwards (the same values).
-                let sh = COLOR_FRAC_BITS - vertex_frac_bits(C::CHANNEL_MAX[k - 1]);
-                let c0 = ca[k - 1] as i32;
-                let (d1, d2) = (cb[k - 1] as i32 - c0, cc[k - 1] as i32 - c0); // |d| < 2^11
-                a0[k] = c0 << sh;
-                gx[k] = scale((mul_wide16(bx1, d1) - mul_wide16(bx2, d2)) << sh);
-                gy[k] = scale((mul_wide16(by1, d2) - mul_wide16(by2, d1)) << sh);
+        {
+            let (v0, v1, v2) = (a.depth(), b.depth(), c.depth());
+            let (da1, da2) = (v1 - v0, v2 - v0); // |da| < 2^28
+            a0[0] = v0;
+            gx[0] = scale(mul_wide(da1, bx1) - mul_wide(da2, bx2));
+            gy[0] = scale(mul_wide(da2, by1) - mul_wide(da1, by2));
+        }
+        // Constant trip counts (with a break), so that the channels are unrolled: with a
+        // variable count LLVM kept the arrays in memory and the loop cost about twice as much.
+        for k in 1..4 {
+            if flat {
+                break;
             }
+            // Colours are 10-bit channels scaled by a constant power of two: the products are
+            // 32 × 16-bit, shifted afterwards (the same values).
+            let sh = COLOR_FRAC_BITS - vertex_frac_bits(C::CHANNEL_MAX[k - 1]);
+            let c0 = ca[k - 1] as i32;
+            let (d1, d2) = (cb[k - 1] as i32 - c0, cc[k - 1] as i32 - c0); // |d| < 2^11
+            a0[k] = c0 << sh;
+            gx[k] = scale((mul_wide16(bx1, d1) - mul_wide16(bx2, d2)) << sh);
+            gy[k] = scale((mul_wide16(by1, d2) - mul_wide16(by2, d1)) << sh);
         }
         // Evaluate every attribute plane at the centre of pixel (left.c, row).
         let dx = SUBPIXELS * left.c as i32 + SUBPIXELS / 2 - ax;
@@ -638,7 +642,10 @@ impl ActiveTri {
         let short_d = dx == dx as i16 as i32 && dy == dy as i16 as i32;
         let mut row_v = [0i32; 4];
         let mut inc = [0i32; 4];
-        for k in 0..n_attrs {
+        for k in 0..4 {
+            if k == n_attrs {
+                break;
+            }
             let p = if short_d {
                 mul_wide16(gx[k], dx) + mul_wide16(gy[k], dy)
             } else {
