@@ -334,6 +334,17 @@ fn packed_rb_half<C: TargetColor>() -> u32 {
 #[derive(Clone, Debug)]
 #[repr(C)] // field offsets are used by the Cortex-M row loop (`span_thumb`)
 pub(crate) struct ActiveTri {
+    /// [`MID_LEFT`], [`FLAT`], [`FAST`].
+    flags: u8,
+    /// Rows from the current one on that the Cortex-M row routine may draw without asking:
+    /// a fast Gouraud triangle's rows before the one that switches its short edge or ends it
+    /// (0..=255; 0 for every other triangle). Set at setup and after every portable row
+    /// ([`ActiveTri::set_routine_rows`]); the routine counts it down.
+    routine_rows: u8,
+    /// Not this triangle's data: entry `i` of [`ActiveList`]'s order lives in slot `i`, in
+    /// bytes that would otherwise be padding: the index of the entry's slot (`0..N`) XOR `i`,
+    /// so that the all-zero records of a new list are the identity order.
+    ord: u16,
     left: Edge,
     right: Edge,
     /// Row where the short edge changes from a→b to b→c (|·| ≤ 1025).
@@ -346,12 +357,6 @@ pub(crate) struct ActiveTri {
     by: i16,
     cx: i16,
     cy: i16,
-    /// [`MID_LEFT`], [`FLAT`], [`FAST`].
-    flags: u8,
-    /// Not this triangle's data: entry `i` of [`ActiveList`]'s order lives in slot `i`, in
-    /// bytes that would otherwise be padding: the index of the entry's slot (`0..N`) XOR `i`,
-    /// so that the all-zero records of a new list are the identity order.
-    ord: u16,
     /// Per-pixel x gradients, |g| ≤ 2³⁰: depth (16.12 per pixel) and r, g, b (channel units,
     /// 20 fraction bits per pixel). Flat triangles keep their final channel bytes in `gx[1]`.
     /// (The y gradient lives on in `inc`, and the values at the first vertex in `row`, so
@@ -373,7 +378,8 @@ pub(crate) struct ActiveTri {
     inc: [i32; 4],
 }
 
-// The order entry fills padding: an active triangle stays 84 bytes.
+// The order entry and the routine's row count fill what was padding: an active triangle stays
+// 84 bytes.
 const _: () = assert!(core::mem::size_of::<ActiveTri>() == 84);
 
 /// The active triangles of the current row: up to `N` records that stay where they were set
@@ -476,17 +482,16 @@ pub(crate) mod offsets {
     pub const GX: usize = offset_of!(ActiveTri, gx);
     pub const ROW: usize = offset_of!(ActiveTri, row);
     pub const INC: usize = offset_of!(ActiveTri, inc);
-    pub const FLAGS: usize = offset_of!(ActiveTri, flags);
-    pub const ROW_END: usize = offset_of!(ActiveTri, row_end);
-    pub const ROW_MID: usize = offset_of!(ActiveTri, row_mid);
     pub const ORD: usize = offset_of!(ActiveTri, ord);
-    pub const FAST: u8 = super::FAST;
-    pub const FAST_FLAT: u8 = super::FAST | super::FLAT;
+    pub const ROUTINE_ROWS: usize = offset_of!(ActiveTri, routine_rows);
 }
 
 impl ActiveTri {
     /// An inactive record to set up in place (see [`ActiveTri::setup`]).
     pub(crate) const EMPTY: ActiveTri = ActiveTri {
+        flags: 0,
+        routine_rows: 0,
+        ord: 0,
         left: Edge {
             c: 0,
             sq: 0,
@@ -507,8 +512,6 @@ impl ActiveTri {
         by: 0,
         cx: 0,
         cy: 0,
-        flags: 0,
-        ord: 0,
         gx: [0; 4],
         row: [0; 4],
         inc: [0; 4],
@@ -699,7 +702,24 @@ impl ActiveTri {
         self.gx = gx;
         self.row = row_v;
         self.inc = inc;
+        self.set_routine_rows(row);
         true
+    }
+
+    /// Sets [`ActiveTri::routine_rows`] for `row`, the next row to draw: rows `x` from `row`
+    /// on with `x + 1 < row_end` and `x + 1 ≠ row_mid`, up to the first that fails.
+    #[inline(always)]
+    fn set_routine_rows(&mut self, row: i32) {
+        let mut k = 0;
+        if self.flags & (FAST | FLAT) == FAST {
+            let mut stop = self.row_end as i32 - 1;
+            let mid = self.row_mid as i32 - 1;
+            if mid >= row && mid < stop {
+                stop = mid;
+            }
+            k = (stop - row).clamp(0, 255);
+        }
+        self.routine_rows = k as u8;
     }
 
     #[inline(always)]
@@ -878,6 +898,7 @@ impl ActiveTri {
             return (counts.0, counts.1, true);
         }
         self.advance(next);
+        self.set_routine_rows(next);
         (counts.0, counts.1, false)
     }
 }

@@ -923,7 +923,6 @@ impl<
                     i,
                     &mut self.color[l][..vw],
                     &mut self.depth[l][..vw],
-                    row as i32 + 1,
                 ) {
                     let stats = &mut self.stats;
                     stats.fragments = stats.fragments.saturating_add(frag);

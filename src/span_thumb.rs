@@ -172,25 +172,15 @@ core::arch::global_asm!(
     "movs r4, #{size}",
     "muls r3, r4, r3",
     "adds r3, r2, r3",
-    // Qualifies: fast Gouraud, left.c ≥ 0, next row < row_end, next row ≠ row_mid.
-    "movs r4, #{flags}",
-    "ldrb r4, [r3, r4]",
-    "movs r5, #{fastflat}",
-    "ands r4, r5",
-    "cmp r4, #{fast}",
-    "bne 12b",
-    "ldrh r4, [r3, #{lc}]",
-    "lsls r5, r4, #16",
+    // Qualifies: rows left on the triangle's routine count (a fast Gouraud row that neither
+    // switches its short edge nor ends it), and left.c ≥ 0. The count goes down by one.
+    "ldrb r4, [r3, #{rrows}]",
+    "subs r4, #1",
+    "bcc 12b",
+    "ldrh r5, [r3, #{lc}]",
+    "lsls r5, r5, #16",
     "bmi 12b",
-    "ldr r5, [r0, #{cnext}]",
-    "ldrh r6, [r3, #{rend}]",
-    "sxth r6, r6",
-    "cmp r5, r6",
-    "bge 12b",
-    "ldrh r6, [r3, #{rmid}]",
-    "sxth r6, r6",
-    "cmp r5, r6",
-    "beq 12b",
+    "strb r4, [r3, #{rrows}]",
     "ldr r1, [r0, #{cdepth}]",
     "ldr r2, [r0, #{coff}]",
     "ldr r6, [r0, #{cwidth}]",
@@ -319,16 +309,11 @@ core::arch::global_asm!(
     cdepth = const core::mem::offset_of!(RowCtx, depth),
     coff = const core::mem::offset_of!(RowCtx, color_offset),
     cwidth = const core::mem::offset_of!(RowCtx, width),
-    cnext = const core::mem::offset_of!(RowCtx, next_row),
     cfrag = const core::mem::offset_of!(RowCtx, fragments),
     cwritten = const core::mem::offset_of!(RowCtx, written),
     size = const core::mem::size_of::<ActiveTri>(),
-    flags = const o::FLAGS,
-    fastflat = const o::FAST_FLAT,
-    fast = const o::FAST,
-    rend = const o::ROW_END,
-    rmid = const o::ROW_MID,
     ord = const o::ORD,
+    rrows = const o::ROUTINE_ROWS,
     lc = const o::LEFT + o::C,
     lsq = const o::LEFT + o::SQ,
     le = const o::LEFT + o::E,
@@ -359,9 +344,8 @@ const _: () = {
         i += 1;
     }
     assert!(o::GX % 4 == 0 && o::ROW % 4 == 0 && o::INC % 4 == 0 && o::INC + 8 <= 124);
-    assert!(o::FLAGS <= 255 && o::ROW_END % 2 == 0 && o::ROW_END <= 62 && o::ROW_MID % 2 == 0);
-    assert!(o::ROW_MID <= 62 && core::mem::size_of::<ActiveTri>() <= 255);
-    assert!(o::ORD % 2 == 0 && o::ORD <= 62);
+    assert!(core::mem::size_of::<ActiveTri>() <= 255);
+    assert!(o::ORD % 2 == 0 && o::ORD <= 62 && o::ROUTINE_ROWS <= 31);
 };
 
 core::arch::global_asm!(
@@ -614,14 +598,14 @@ struct RowCtx {
     depth: *mut u16,
     color_offset: isize,
     width: i32,
-    next_row: i32,
     fragments: u32,
     written: u32,
 }
 
 /// Draws one row of the active triangles `start..` for as long as they are fast Gouraud
 /// triangles with their left edge on screen on a row that neither ends them nor switches
-/// their short edge (the rows that make up most of a frame), each exactly as
+/// their short edge (the rows that make up most of a frame; the triangle's routine row count
+/// says so, `ActiveTri::set_routine_rows`), each exactly as
 /// `ActiveTri::draw_row` would: the span into RGB565 words, then both edges and the packed
 /// attribute rows step. Returns `(index reached, fragments, written)`: the index is
 /// `active.len()` or the first triangle that needs `draw_row`. `None` when `C` is not an
@@ -632,7 +616,6 @@ pub(crate) fn rows565<C: TargetColor, const N: usize>(
     start: usize,
     colors: &mut [C],
     depth: &mut [u16],
-    next_row: i32,
 ) -> Option<(usize, u32, u32)> {
     // The routine itself returns at once when entry `start` does not qualify.
     let (tris, n) = active.raw_parts();
@@ -647,14 +630,14 @@ pub(crate) fn rows565<C: TargetColor, const N: usize>(
         depth: zp,
         color_offset: (colors.as_mut_ptr() as isize).wrapping_sub(zp as isize),
         width: colors.len().min(depth.len()).min(1024) as i32,
-        next_row,
         fragments: 0,
         written: 0,
     };
     // SAFETY: the routine reads the order entries of slots `start..n` and reads and writes
     // the records they name (slot indices below `N`, a permutation kept by `ActiveList`), at
-    // the field offsets asserted above (`#[repr(C)]`), and pixels `left.c..min(right.c, width)` of both lines
-    // only for records it checked to have `left.c ≥ 0`, with `width` at most both lengths;
+    // the field offsets asserted above (`#[repr(C)]`), and pixels `left.c..min(right.c,
+    // width)` of both lines only for records it checked to have `left.c ≥ 0`, with `width` at
+    // most both lengths;
     // colours are written as `u16` words, which `rgb565_words` showed is the representation
     // of `C`. It never goes past `n`.
     unsafe { scanline3d_rows565(&mut ctx) };
