@@ -205,8 +205,11 @@ fn run() -> Result<(), String> {
             .map_err(|e| e.to_string())?,
     )
     .map_err(|e| e.to_string())?;
-    std::fs::write("BENCHMARKS.md", markdown(&rows, &mem, budget, &small))
-        .map_err(|e| e.to_string())?;
+    let mut md = markdown(&rows, &mem, budget, &small);
+    if let Some(t) = torus {
+        md.push_str(&breakdown(t)?);
+    }
+    std::fs::write("BENCHMARKS.md", md).map_err(|e| e.to_string())?;
     println!("{}", table(&rows));
     if let Some((i, ram, ok)) = budget {
         println!(
@@ -259,6 +262,63 @@ fn table(rows: &[Value]) -> String {
         );
     }
     s
+}
+
+/// Instructions per written pixel of the Cortex-M span loop (`src/span_thumb.rs`,
+/// `pixel_loop!`): the floor of the raster stage for a frame's written pixels.
+const SPAN_LOOP_PER_PIXEL: u64 = 20;
+
+/// Where the budget frame's instructions go: each stage per unit of its work, and what the
+/// budget leaves once the pixel loop's floor is paid.
+fn breakdown(t: &Value) -> Result<String, String> {
+    let torus = scanline3d::demo::torus::<Fx<I16F16>>().map_err(|e| format!("torus: {e:?}"))?;
+    let mesh = torus.mesh();
+    let (nv, nt) = (mesh.positions().len() as u64, mesh.indices().len() as u64);
+    let st = &t["stages"];
+    let g = |k: &str| st[k].as_u64().unwrap_or(0);
+    let drawn = t["triangles_drawn"].as_u64().unwrap_or(0);
+    let written = t["pixels_written"].as_u64().unwrap_or(0);
+    let total = t["renderer_instructions"].as_u64().unwrap_or(0);
+    let per = |a: u64, b: u64| (a + b / 2).checked_div(b).unwrap_or(0);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "\n**Where the budget frame goes** (torus, I16F16, `m0`; stage columns above divided by the work each stage does):\n"
+    );
+    let _ = writeln!(s, "| stage | instructions | work | per unit |");
+    let _ = writeln!(s, "|---|---:|---|---:|");
+    for (k, v, unit) in [
+        (
+            "vertices (transform, project)",
+            g("vertices"),
+            format!("{nv} vertices"),
+        ),
+        ("lighting", g("lighting"), format!("{nv} vertices")),
+        (
+            "triangles (cull, clip, bucket)",
+            g("triangles"),
+            format!("{nt} triangles"),
+        ),
+        ("setup", g("setup"), format!("{drawn} triangles drawn")),
+        ("raster", g("raster"), format!("{written} pixels written")),
+    ] {
+        let n = unit
+            .split(' ')
+            .next()
+            .and_then(|n| n.parse().ok())
+            .unwrap_or(0);
+        let _ = writeln!(s, "| {k} | {v} | {unit} | {} |", per(v, n));
+    }
+    let floor = SPAN_LOOP_PER_PIXEL * written;
+    let rest = total.saturating_sub(floor);
+    let _ = writeln!(
+        s,
+        "\nThe span loop alone costs {SPAN_LOOP_PER_PIXEL} instructions per written pixel: {floor} for this frame's {written} pixels, {}% of the {BUDGET_INSTRUCTIONS}-instruction budget. That leaves {} instructions for everything else — per-row stepping, line clears, {nv} vertices, {nt} triangles and {drawn} triangle setups — which take {rest} now ({:.1}× what is left).",
+        per(100 * floor, BUDGET_INSTRUCTIONS),
+        BUDGET_INSTRUCTIONS.saturating_sub(floor),
+        rest as f64 / BUDGET_INSTRUCTIONS.saturating_sub(floor).max(1) as f64
+    );
+    Ok(s)
 }
 
 fn markdown(
