@@ -613,6 +613,8 @@ impl ActiveTri {
         };
 
         let n_attrs = if flat { 1 } else { 4 };
+        // The coefficients rounded to 16 bits (|c| ≤ 2^15) for the colour gradients.
+        let c16 = [bx1, bx2, by1, by2].map(|v| (v + (1 << 14)) >> 15);
         let (ca, cb, cc) = (a.color(), b.color(), c.color());
         let mut a0 = [0i32; 4];
         let mut gx = [0i32; 4];
@@ -636,8 +638,30 @@ impl ActiveTri {
             let c0 = ca[k - 1] as i32;
             let (d1, d2) = (cb[k - 1] as i32 - c0, cc[k - 1] as i32 - c0); // |d| < 2^11
             a0[k] = c0 << sh;
-            gx[k] = scale((mul_wide16(bx1, d1) - mul_wide16(bx2, d2)) << sh);
-            gy[k] = scale((mul_wide16(by1, d2) - mul_wide16(by2, d1)) << sh);
+            // The gradients from the coefficients rounded to 16 bits: sums of single 32-bit
+            // products (|d·c| < 2^26), rounded once by a 32-bit shift. The largest
+            // coefficient is at least 2^28, so rounding them to multiples of 2^15 moves a value
+            // anywhere in the triangle by a few 2^-14 of the channel's change across it: under
+            // 2^-8 of a unit for a 5-bit channel, which flips a rounding only next to a half
+            // (`tests/accuracy.rs` bounds the image against f64). Slivers thin enough to need
+            // a left shift of more than 3 keep the exact 64-bit sums.
+            let r = shift - 15 - sh as i32;
+            if r >= -3 {
+                let round = |v: i32| -> i32 {
+                    if r > 0 {
+                        // v / 2^r rounded half up, as `round_shr_sat` (r ≤ 62).
+                        ((v >> (r - 1).min(31)) + 1) >> 1
+                    } else {
+                        // |v| < 2^27, so |v·2^3| < 2^30 = GRAD_LIMIT.
+                        v << -r
+                    }
+                };
+                gx[k] = round(c16[0] * d1 - c16[1] * d2);
+                gy[k] = round(c16[2] * d2 - c16[3] * d1);
+            } else {
+                gx[k] = scale((mul_wide16(bx1, d1) - mul_wide16(bx2, d2)) << sh);
+                gy[k] = scale((mul_wide16(by1, d2) - mul_wide16(by2, d1)) << sh);
+            }
         }
         // Evaluate every attribute plane at the centre of pixel (left.c, row).
         let dx = SUBPIXELS * left.c as i32 + SUBPIXELS / 2 - ax;
