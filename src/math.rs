@@ -192,9 +192,7 @@ impl<S: Scalar> Mat4<S> {
     /// The upper 3×3 block times `v` (a direction: no translation).
     #[must_use]
     pub fn transform_dir(&self, v: Vec3<S>) -> Vec3<S> {
-        let m = &self.m;
-        let row = |i: usize| S::dot3_add([m[i][0], m[i][1], m[i][2]], v, S::ZERO);
-        [row(0), row(1), row(2)]
+        S::transform_dir3(&self.m, v)
     }
 
     /// The transpose.

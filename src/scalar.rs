@@ -102,6 +102,14 @@ pub trait Scalar:
     fn transform4(m: &[[Self; 4]; 4], p: [Self; 3]) -> [Self; 4] {
         dot3_rows(m, p)
     }
+    /// The upper 3 × 3 block of `m` times the direction `v`: [`Scalar::dot3_add`] of each of
+    /// the first three rows with `v` and zero. A type may compute it another way, with the
+    /// same result.
+    #[must_use]
+    #[inline(always)]
+    fn transform_dir3(m: &[[Self; 4]; 4], v: [Self; 3]) -> [Self; 3] {
+        dot3_dir_rows(m, v)
+    }
     /// Tangent of an angle in radians (saturating for fixed-point types).
     #[must_use]
     fn tan(self) -> Self {
@@ -462,7 +470,7 @@ pub struct FxRecip {
 }
 
 macro_rules! impl_fx {
-    ($t:ident, $frac:expr, $name:expr $(, $thumb_transform:path)?) => {
+    ($t:ident, $frac:expr, $name:expr $(, $thumb_transform:path, $thumb_dir:path)?) => {
         impl Fx<$t> {
             /// Builds a value from a float literal (rounds to nearest, saturates).
             #[must_use]
@@ -598,6 +606,20 @@ macro_rules! impl_fx {
                 #[allow(unreachable_code)]
                 dot3_rows(m, p)
             }
+            #[inline(always)]
+            fn transform_dir3(m: &[[Self; 4]; 4], v: [Self; 3]) -> [Self; 3] {
+                $(
+                    #[cfg(all(target_arch = "arm", target_os = "none"))]
+                    {
+                        if let Some(r) = $thumb_dir(m, v) {
+                            return r;
+                        }
+                        return dot3_dir_rows_cold(m, v);
+                    }
+                )?
+                #[allow(unreachable_code)]
+                dot3_dir_rows(m, v)
+            }
             fn recip(w: Self) -> FxRecip {
                 let (mantissa, shift) = recip_norm(w.0.to_bits().max(1) as u64);
                 FxRecip { mantissa, shift }
@@ -627,7 +649,13 @@ macro_rules! impl_fx {
     };
 }
 
-impl_fx!(I16F16, 16, "I16F16", crate::span_thumb::transform_i16f16);
+impl_fx!(
+    I16F16,
+    16,
+    "I16F16",
+    crate::span_thumb::transform_i16f16,
+    crate::span_thumb::transform_dir_i16f16
+);
 impl_fx!(I20F12, 12, "I20F12");
 impl_fx!(I12F20, 20, "I12F20");
 
@@ -644,6 +672,20 @@ fn dot3_rows<S: Scalar>(m: &[[S; 4]; 4], p: [S; 3]) -> [S; 4] {
 #[inline(never)]
 fn dot3_rows_cold<S: Scalar>(m: &[[S; 4]; 4], p: [S; 3]) -> [S; 4] {
     dot3_rows(m, p)
+}
+
+/// [`Scalar::dot3_add`] of each of the first three rows of `m` with `v` and zero.
+#[inline(always)]
+fn dot3_dir_rows<S: Scalar>(m: &[[S; 4]; 4], v: [S; 3]) -> [S; 3] {
+    let row = |i: usize| S::dot3_add([m[i][0], m[i][1], m[i][2]], v, S::ZERO);
+    [row(0), row(1), row(2)]
+}
+
+/// [`dot3_dir_rows`] out of line (see [`dot3_rows_cold`]).
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+#[inline(never)]
+fn dot3_dir_rows_cold<S: Scalar>(m: &[[S; 4]; 4], v: [S; 3]) -> [S; 3] {
+    dot3_dir_rows(m, v)
 }
 
 /// Saturates an `i64` to `i32`.

@@ -429,14 +429,20 @@ core::arch::global_asm!(
     ".p2align 2",
     ".thumb_func",
     // r0 = the matrix (16 words, row after row), r1 = the point (3 words), r2 = the result
-    // (4 words). Every entry of the matrix and the point in [−2³⁰, 2³⁰). Per row:
-    // sat32((Σ a·b + (c << 16) + 2¹⁵) >> 16). The point's halves live in r8–r12 and lr, so
-    // the stack holds only the saved registers, the result pointer and the row count (44
-    // bytes: this runs inside the geometry stage, where a 16 KB part has little to spare).
+    // (r3 words), r3 = 4 for a point (w = 1: the last column counts) or 3 for a direction
+    // (w = 0: the first three rows, last column ignored). Every entry used in [−2³⁰, 2³⁰).
+    // Per row: sat32((Σ a·b + (c << 16) + 2¹⁵) >> 16). The point's halves live in r8–r12
+    // and lr, so the stack holds only the saved registers, the result pointer, a mask and the
+    // row count (48 bytes: this runs inside the geometry stage, where a 16 KB part has little
+    // to spare).
     "scanline3d_xform_q16:",
     save_registers!(),
+    // [sp, #8] = the result pointer, [sp, #4] = the mask of the last column (all ones for a
+    // point, zero for a direction), [sp] = rows left.
     "push {{r2}}",
-    "movs r3, #4",
+    "subs r4, r3, #4",
+    "mvns r4, r4",
+    "push {{r4}}",
     "push {{r3}}",
     "ldr r3, [r1, #0]",
     "uxth r4, r3",
@@ -455,8 +461,10 @@ core::arch::global_asm!(
     "mov lr, r3",
     "mov r5, r0",
     "1:",
-    // r7:r6 = (c << 16) + 2^15.
+    // r7:r6 = (c << 16) + 2^15, c = the last column (zero for a direction).
     "ldr r0, [r5, #12]",
+    "ldr r1, [sp, #4]",
+    "ands r0, r1",
     "lsls r6, r0, #16",
     "asrs r7, r0, #16",
     "movs r4, #1",
@@ -481,34 +489,37 @@ core::arch::global_asm!(
     "blt 2f",
     "subs r6, #1",
     "2:",
-    "ldr r0, [sp, #4]",
+    "ldr r0, [sp, #8]",
     "stm r0!, {{r6}}",
-    "str r0, [sp, #4]",
+    "str r0, [sp, #8]",
     "adds r5, #16",
     "ldr r0, [sp, #0]",
     "subs r0, #1",
     "str r0, [sp, #0]",
     "bne 1b",
-    "add sp, #8",
+    "add sp, #12",
     restore_registers_and_return!(),
     ".size scanline3d_xform_q16, . - scanline3d_xform_q16",
 );
 
+/// `v ^ (v >> 31)`: `v` for `v ≥ 0`, `|v| − 1` below, so an OR of these is below 2³⁰ exactly
+/// when every value is in [−2³⁰, 2³⁰).
+#[inline(always)]
+fn spread(v: Fx<I16F16>) -> i32 {
+    let b = v.0.to_bits();
+    b ^ (b >> 31)
+}
+
 /// `m · (p, 1)` in Q16.16 by [`scanline3d_xform_q16`] when every entry of `m` and `p` is in
 /// [−2³⁰, 2³⁰) — the condition under which the portable `dot3_add` takes its plain 64-bit sum,
 /// whose result this is, bit for bit. `None` otherwise (the portable code then saturates
-/// where it must). About 330 instructions on a Cortex-M0, where LLVM's version of the four
+/// where it must). About 360 instructions on a Cortex-M0, where LLVM's version of the four
 /// rows takes about 600.
 #[inline(always)]
 pub(crate) fn transform_i16f16(
     m: &[[Fx<I16F16>; 4]; 4],
     p: [Fx<I16F16>; 3],
 ) -> Option<[Fx<I16F16>; 4]> {
-    // `v ^ (v >> 31)` is v for v ≥ 0 and |v| − 1 below.
-    let spread = |v: Fx<I16F16>| {
-        let b = v.0.to_bits();
-        b ^ (b >> 31)
-    };
     let mut s = spread(p[0]) | spread(p[1]) | spread(p[2]);
     for row in m {
         s |= spread(row[0]) | spread(row[1]) | spread(row[2]) | spread(row[3]);
@@ -521,12 +532,34 @@ pub(crate) fn transform_i16f16(
     // SAFETY: `Fx<I16F16>` is `repr(transparent)` over `FixedI32`, which is `repr(transparent)`
     // over `i32`, so the matrix is 16 `i32` words, row after row; the routine reads those and
     // the three words of `pb` and writes the four words of `out`.
-    unsafe { scanline3d_xform_q16(m.as_ptr() as *const i32, pb.as_ptr(), out.as_mut_ptr()) };
+    unsafe { scanline3d_xform_q16(m.as_ptr() as *const i32, pb.as_ptr(), out.as_mut_ptr(), 4) };
+    Some(out.map(|b| Fx(I16F16::from_bits(b))))
+}
+
+/// The upper 3 × 3 block of `m` times the direction `v`, as [`transform_i16f16`] (the same
+/// condition on the entries used, the same values as `dot3_add` with a zero last term).
+#[inline(always)]
+pub(crate) fn transform_dir_i16f16(
+    m: &[[Fx<I16F16>; 4]; 4],
+    v: [Fx<I16F16>; 3],
+) -> Option<[Fx<I16F16>; 3]> {
+    let mut s = spread(v[0]) | spread(v[1]) | spread(v[2]);
+    for row in &m[..3] {
+        s |= spread(row[0]) | spread(row[1]) | spread(row[2]);
+    }
+    if s >= 1 << 30 {
+        return None;
+    }
+    let vb = v.map(|v| v.0.to_bits());
+    let mut out = [0i32; 3];
+    // SAFETY: as in `transform_i16f16`; the routine reads the first three rows (and ignores
+    // their last word) and writes the three words of `out`.
+    unsafe { scanline3d_xform_q16(m.as_ptr() as *const i32, vb.as_ptr(), out.as_mut_ptr(), 3) };
     Some(out.map(|b| Fx(I16F16::from_bits(b))))
 }
 
 extern "C" {
-    fn scanline3d_xform_q16(m: *const i32, p: *const i32, out: *mut i32);
+    fn scanline3d_xform_q16(m: *const i32, p: *const i32, out: *mut i32, rows: u32);
     fn scanline3d_fill128(start: *mut [u32; 4], end: *mut [u32; 4], word: u32);
     fn scanline3d_rows565(ctx: *mut RowCtx) -> u32;
     fn scanline3d_span565_less(

@@ -392,8 +392,8 @@ fn main() -> ! {
     }
 }
 
-/// The point transform (which on Cortex-M takes the assembly path for Q16.16 values within
-/// ±2³⁰) gives exactly the portable `dot3_add` of each row, on matrices and points of every
+/// The point and direction transforms (which on Cortex-M take the assembly path for Q16.16
+/// values within ±2³⁰) give exactly the portable `dot3_add` of each row, on matrices and points of every
 /// magnitude up to the saturation rails: 4096 pseudo-random cases. Prints the first mismatch.
 /// Not inlined, so that its locals are not part of `main`'s frame during the renders.
 #[inline(never)]
@@ -420,6 +420,15 @@ fn transform_matches_rows() -> bool {
         });
         if got != want {
             hprintln!("TRANSFORM MISMATCH case={} got={:?} want={:?}", case, got, want);
+            return false;
+        }
+        let got = m.transform_dir(p);
+        let want: [Fx<I16F16>; 3] = core::array::from_fn(|i| {
+            let r = m.m[i];
+            Fx::dot3_add([r[0], r[1], r[2]], p, Fx::ZERO)
+        });
+        if got != want {
+            hprintln!("DIRECTION MISMATCH case={} got={:?} want={:?}", case, got, want);
             return false;
         }
     }
