@@ -532,9 +532,11 @@ impl ActiveTri {
     ) -> bool {
         let [i0, i1, i2] = t.indices();
         let flat = t.v[0] & FLAT_BIT != 0;
-        let flat_rgb = verts[i0].color();
-        let mut p = [verts[i0], verts[i1], verts[i2]];
-        // Sort by y (for equal y the order does not matter: horizontal edges are unused).
+        let (v0, v1, v2) = (&verts[i0], &verts[i1], &verts[i2]);
+        let flat_rgb = v0.color();
+        // Sort by y (for equal y the order does not matter: horizontal edges are unused),
+        // moving references rather than 12-byte vertices.
+        let mut p = [v0, v1, v2];
         if p[1].y < p[0].y {
             p.swap(0, 1);
         }
