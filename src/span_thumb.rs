@@ -222,16 +222,20 @@ core::arch::global_asm!(
     "lsls r6, r6, #6",
     "mov r10, r6",
     pixel_loop!(),
-    // r7 = written = run length − hidden.
+    // r6 = fragments (the run length), r7 = hidden pixels: added to the counters.
     "pop {{r6}}",
-    "subs r7, r6, r7",
     "b 6f",
     hidden_pixel!(),
     "5:",
     "movs r6, #0",
     "6:",
-    "lsls r6, r6, #16",
-    "orrs r7, r6",
+    "ldr r0, [sp]",
+    "ldr r1, [r0, #{cfrag}]",
+    "adds r1, r1, r6",
+    "str r1, [r0, #{cfrag}]",
+    "ldr r1, [r0, #{chidden}]",
+    "adds r1, r1, r7",
+    "str r1, [r0, #{chidden}]",
     "mov r0, r12",
     // Left edge: c += sq, e -= sr; on e < 0: e += dy, c += 1, and the attributes carry.
     "ldrh r2, [r0, #{lc}]",
@@ -285,16 +289,8 @@ core::arch::global_asm!(
     "str r1, [r0, #{row0}]",
     "str r3, [r0, #{row1}]",
     "str r4, [r0, #{row2}]",
-    // Counters and the next triangle.
+    // The next triangle.
     "ldr r0, [sp]",
-    "ldr r1, [r0, #{cfrag}]",
-    "lsrs r2, r7, #16",
-    "adds r1, r1, r2",
-    "str r1, [r0, #{cfrag}]",
-    "ldr r1, [r0, #{cwritten}]",
-    "uxth r2, r7",
-    "adds r1, r1, r2",
-    "str r1, [r0, #{cwritten}]",
     "ldr r1, [r0, #{ci}]",
     "adds r1, r1, #1",
     "str r1, [r0, #{ci}]",
@@ -310,7 +306,7 @@ core::arch::global_asm!(
     coff = const core::mem::offset_of!(RowCtx, color_offset),
     cwidth = const core::mem::offset_of!(RowCtx, width),
     cfrag = const core::mem::offset_of!(RowCtx, fragments),
-    cwritten = const core::mem::offset_of!(RowCtx, written),
+    chidden = const core::mem::offset_of!(RowCtx, hidden),
     size = const core::mem::size_of::<ActiveTri>(),
     ord = const o::ORD,
     rrows = const o::ROUTINE_ROWS,
@@ -632,7 +628,7 @@ struct RowCtx {
     color_offset: isize,
     width: i32,
     fragments: u32,
-    written: u32,
+    hidden: u32,
 }
 
 /// Draws one row of the active triangles `start..` for as long as they are fast Gouraud
@@ -664,7 +660,7 @@ pub(crate) fn rows565<C: TargetColor, const N: usize>(
         color_offset: (colors.as_mut_ptr() as isize).wrapping_sub(zp as isize),
         width: colors.len().min(depth.len()).min(1024) as i32,
         fragments: 0,
-        written: 0,
+        hidden: 0,
     };
     // SAFETY: the routine reads the order entries of slots `start..n` and reads and writes
     // the records they name (slot indices below `N`, a permutation kept by `ActiveList`), at
@@ -674,7 +670,7 @@ pub(crate) fn rows565<C: TargetColor, const N: usize>(
     // colours are written as `u16` words, which `rgb565_words` showed is the representation
     // of `C`. It never goes past `n`.
     unsafe { scanline3d_rows565(&mut ctx) };
-    Some((ctx.i, ctx.fragments, ctx.written))
+    Some((ctx.i, ctx.fragments, ctx.fragments.saturating_sub(ctx.hidden)))
 }
 
 /// Fills a run of 16-bit words four 32-bit words at a time (the library `fill` of a colour
