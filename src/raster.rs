@@ -271,6 +271,9 @@ const FLAT: u8 = 2;
 /// the colour has channels of at most 6 bits without dithering. A fast Gouraud triangle keeps
 /// its rows *packed* (see [`ActiveTri::row`]), ready for [`span_packed`].
 const FAST: u8 = 4;
+/// [`ActiveTri::flags`]: the row where [`ActiveTri::routine_rows`] runs out is the triangle's
+/// last, which the Cortex-M row routine draws too (and then removes the triangle).
+const LAST_IN_ROUTINE: u8 = 8;
 
 /// Which fast span loops a strip may use, decided once per strip from the colour type, the
 /// depth test and dithering (see [`FAST`]).
@@ -459,6 +462,14 @@ impl<const N: usize> ActiveList<N> {
         self.len = last;
     }
 
+    /// The list length after the Cortex-M row routine removed finished triangles (the order
+    /// entries it swapped are those of [`ActiveList::swap_remove`]); `n ≤ len`.
+    #[cfg(all(target_arch = "arm", target_os = "none"))]
+    #[inline(always)]
+    pub(crate) fn set_len_after_routine(&mut self, n: usize) {
+        self.len = n.min(self.len);
+    }
+
     /// The slot records (for the Cortex-M row routine) and the list length.
     #[cfg(all(target_arch = "arm", target_os = "none"))]
     #[inline(always)]
@@ -484,6 +495,8 @@ pub(crate) mod offsets {
     pub const INC: usize = offset_of!(ActiveTri, inc);
     pub const ORD: usize = offset_of!(ActiveTri, ord);
     pub const ROUTINE_ROWS: usize = offset_of!(ActiveTri, routine_rows);
+    pub const FLAGS: usize = offset_of!(ActiveTri, flags);
+    pub const LAST_BIT: u32 = super::LAST_IN_ROUTINE.trailing_zeros();
 }
 
 impl ActiveTri {
@@ -733,17 +746,21 @@ impl ActiveTri {
     }
 
     /// Sets [`ActiveTri::routine_rows`] for `row`, the next row to draw: rows `x` from `row`
-    /// on with `x + 1 < row_end` and `x + 1 ≠ row_mid`, up to the first that fails.
+    /// on with `x + 1 < row_end` and `x + 1 ≠ row_mid`, up to the first that fails; and
+    /// [`LAST_IN_ROUTINE`] when that one is the last row (`x + 1 = row_end`) and the count
+    /// reaches it.
     #[inline(always)]
     fn set_routine_rows(&mut self, row: i32) {
         let mut k = 0;
+        self.flags &= !LAST_IN_ROUTINE;
         if self.flags & (FAST | FLAT) == FAST {
-            let mut stop = self.row_end as i32 - 1;
+            let last = self.row_end as i32 - 1;
             let mid = self.row_mid as i32 - 1;
-            if mid >= row && mid < stop {
-                stop = mid;
-            }
+            let stop = if mid >= row && mid < last { mid } else { last };
             k = (stop - row).clamp(0, 255);
+            if stop == last && stop - row <= 255 {
+                self.flags |= LAST_IN_ROUTINE;
+            }
         }
         self.routine_rows = k as u8;
     }
