@@ -690,11 +690,10 @@ pub(crate) fn rows565<C: TargetColor, const N: usize>(
     colors: &mut [C],
     depth: &mut [u16],
 ) -> Option<(usize, u32, u32)> {
-    // The routine itself returns at once when entry `start` does not qualify.
-    let (tris, n) = active.raw_parts();
-    if !rgb565_words::<C>() || start >= n {
+    if !rgb565_words::<C>() || start >= active.len() || !active.routine_may_draw(start) {
         return None;
     }
+    let (tris, n) = active.raw_parts();
     let zp = depth.as_mut_ptr();
     let mut ctx = RowCtx {
         tris,
