@@ -550,52 +550,61 @@ fn spread(v: Fx<I16F16>) -> i32 {
     b ^ (b >> 31)
 }
 
-/// `m · (p, 1)` in Q16.16 by [`scanline3d_xform_q16`] when every entry of `m` and `p` is in
-/// [−2³⁰, 2³⁰) — the condition under which the portable `dot3_add` takes its plain 64-bit sum,
-/// whose result this is, bit for bit. `None` otherwise (the portable code then saturates
-/// where it must). About 360 instructions on a Cortex-M0, where LLVM's version of the four
-/// rows takes about 600.
+/// The first `R` rows of `m` times `(p, 1)` for `R = 4` (a point) or times `(p, 0)` for
+/// `R = 3` (a direction: the upper 3 × 3 block), in Q16.16 by [`scanline3d_xform_q16`] when
+/// every entry it uses is in [−2³⁰, 2³⁰) — the condition under which the portable `dot3_add`
+/// takes its plain 64-bit sum, whose result this is, bit for bit. `None` otherwise (the
+/// portable code then saturates where it must).
 #[inline(always)]
-pub(crate) fn transform_i16f16(
+fn transform_q16<const R: usize>(
     m: &[[Fx<I16F16>; 4]; 4],
     p: [Fx<I16F16>; 3],
-) -> Option<[Fx<I16F16>; 4]> {
+) -> Option<[Fx<I16F16>; R]> {
+    const { assert!(R == 3 || R == 4) };
     let mut s = spread(p[0]) | spread(p[1]) | spread(p[2]);
-    for row in m {
-        s |= spread(row[0]) | spread(row[1]) | spread(row[2]) | spread(row[3]);
+    for row in &m[..R] {
+        s |= spread(row[0]) | spread(row[1]) | spread(row[2]);
+        if R == 4 {
+            s |= spread(row[3]);
+        }
     }
     if s >= 1 << 30 {
         return None;
     }
     let pb = p.map(|v| v.0.to_bits());
-    let mut out = [0i32; 4];
+    let mut out = [0i32; R];
     // SAFETY: `Fx<I16F16>` is `repr(transparent)` over `FixedI32`, which is `repr(transparent)`
-    // over `i32`, so the matrix is 16 `i32` words, row after row; the routine reads those and
-    // the three words of `pb` and writes the four words of `out`.
-    unsafe { scanline3d_xform_q16(m.as_ptr() as *const i32, pb.as_ptr(), out.as_mut_ptr(), 4) };
+    // over `i32`, so the matrix is 16 `i32` words, row after row; the routine reads the first
+    // `R` rows (the last word of each only for R = 4) and the three words of `pb`, and writes
+    // the `R` words of `out`.
+    unsafe {
+        scanline3d_xform_q16(
+            m.as_ptr() as *const i32,
+            pb.as_ptr(),
+            out.as_mut_ptr(),
+            R as u32,
+        )
+    };
     Some(out.map(|b| Fx(I16F16::from_bits(b))))
 }
 
-/// The upper 3 × 3 block of `m` times the direction `v`, as [`transform_i16f16`] (the same
-/// condition on the entries used, the same values as `dot3_add` with a zero last term).
+/// `m · (p, 1)` (see [`transform_q16`]): about 360 instructions on a Cortex-M0, where LLVM's
+/// version of the four rows takes about 600.
+#[inline(always)]
+pub(crate) fn transform_i16f16(
+    m: &[[Fx<I16F16>; 4]; 4],
+    p: [Fx<I16F16>; 3],
+) -> Option<[Fx<I16F16>; 4]> {
+    transform_q16::<4>(m, p)
+}
+
+/// The upper 3 × 3 block of `m` times the direction `v` (see [`transform_q16`]).
 #[inline(always)]
 pub(crate) fn transform_dir_i16f16(
     m: &[[Fx<I16F16>; 4]; 4],
     v: [Fx<I16F16>; 3],
 ) -> Option<[Fx<I16F16>; 3]> {
-    let mut s = spread(v[0]) | spread(v[1]) | spread(v[2]);
-    for row in &m[..3] {
-        s |= spread(row[0]) | spread(row[1]) | spread(row[2]);
-    }
-    if s >= 1 << 30 {
-        return None;
-    }
-    let vb = v.map(|v| v.0.to_bits());
-    let mut out = [0i32; 3];
-    // SAFETY: as in `transform_i16f16`; the routine reads the first three rows (and ignores
-    // their last word) and writes the three words of `out`.
-    unsafe { scanline3d_xform_q16(m.as_ptr() as *const i32, vb.as_ptr(), out.as_mut_ptr(), 3) };
-    Some(out.map(|b| Fx(I16F16::from_bits(b))))
+    transform_q16::<3>(m, v)
 }
 
 extern "C" {
