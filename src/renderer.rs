@@ -184,6 +184,14 @@ pub struct Stats {
     pub max_active: u32,
 }
 
+impl Stats {
+    /// Counts one triangle-row's fragments and written pixels (saturating).
+    fn add_row(&mut self, fragments: u32, written: u32) {
+        self.fragments = self.fragments.saturating_add(fragments);
+        self.pixels_written = self.pixels_written.saturating_add(written);
+    }
+}
+
 /// A scanline Z-buffer renderer with a strip of `LINES` lines of `W` pixels.
 ///
 /// * `S` — the number type of the geometry pipeline ([`crate::Fx`]`<I16F16>`, `f32`, `f64`).
@@ -924,9 +932,7 @@ impl<
                     &mut self.color[l][..vw],
                     &mut self.depth[l][..vw],
                 ) {
-                    let stats = &mut self.stats;
-                    stats.fragments = stats.fragments.saturating_add(frag);
-                    stats.pixels_written = stats.pixels_written.saturating_add(written);
+                    self.stats.add_row(frag, written);
                     i = next;
                 }
                 if i >= self.active.len() {
@@ -939,9 +945,7 @@ impl<
                     self.depth_test,
                     self.dither,
                 );
-                let stats = &mut self.stats;
-                stats.fragments = stats.fragments.saturating_add(frag);
-                stats.pixels_written = stats.pixels_written.saturating_add(written);
+                self.stats.add_row(frag, written);
                 if done {
                     self.active.swap_remove(i);
                 } else {
