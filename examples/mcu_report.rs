@@ -287,27 +287,24 @@ fn breakdown(t: &Value) -> Result<String, String> {
     );
     let _ = writeln!(s, "| stage | instructions | work | per unit |");
     let _ = writeln!(s, "|---|---:|---|---:|");
-    for (k, v, unit) in [
+    for (k, v, n, unit) in [
         (
             "vertices (transform, project)",
             g("vertices"),
-            format!("{nv} vertices"),
+            nv,
+            "vertices",
         ),
-        ("lighting", g("lighting"), format!("{nv} vertices")),
+        ("lighting", g("lighting"), nv, "vertices"),
         (
             "triangles (cull, clip, bucket)",
             g("triangles"),
-            format!("{nt} triangles"),
+            nt,
+            "triangles",
         ),
-        ("setup", g("setup"), format!("{drawn} triangles drawn")),
-        ("raster", g("raster"), format!("{written} pixels written")),
+        ("setup", g("setup"), drawn, "triangles drawn"),
+        ("raster", g("raster"), written, "pixels written"),
     ] {
-        let n = unit
-            .split(' ')
-            .next()
-            .and_then(|n| n.parse().ok())
-            .unwrap_or(0);
-        let _ = writeln!(s, "| {k} | {v} | {unit} | {} |", per(v, n));
+        let _ = writeln!(s, "| {k} | {v} | {n} {unit} | {} |", per(v, n));
     }
     let floor = SPAN_LOOP_PER_PIXEL * written;
     let rest = total.saturating_sub(floor);
