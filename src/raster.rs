@@ -328,6 +328,30 @@ fn packed_rb_half<C: TargetColor>() -> u32 {
     ((1u32 << (fr - 1)) << 16) + (1 << (fb - 1))
 }
 
+/// Left shift of a packed depth word: depth (16.12) times 2⁴, so that the stored depth is the
+/// high half (the shifted value wraps exactly as the unshifted one, modulo 2³²).
+const PACKED_Z_SHIFT: u32 = 32 - 16 - DEPTH_FRAC_BITS;
+
+/// Left shift of a packed green word: green (20 fraction bits) times `2^(12 − bits)`, so that
+/// its `bits` whole bits are the word's top bits.
+#[inline(always)]
+fn packed_g_shift<C: TargetColor>() -> u32 {
+    32 - COLOR_FRAC_BITS - channel_bits(C::CHANNEL_MAX[1])
+}
+
+/// A depth, red-blue and green triple (values or steps, 16.12 depth and 20-bit channels with
+/// any biases added) in the packed span formats: depth and green shifted to the top of their
+/// words, red and blue in one word ([`pack_rb`]). All wrapping, so stepping the packed words
+/// gives exactly the packed stepped values.
+#[inline(always)]
+fn pack_zrgb<C: TargetColor>(z: i32, r: i32, g: i32, b: i32) -> [i32; 3] {
+    [
+        z << PACKED_Z_SHIFT,
+        pack_rb::<C>(r, b) as i32,
+        g << packed_g_shift::<C>(),
+    ]
+}
+
 /// A triangle on the active list (84 bytes).
 ///
 /// Attribute values are 32-bit and updated with wrapping arithmetic: every value that is
@@ -367,15 +391,16 @@ pub(crate) struct ActiveTri {
     gx: [i32; 4],
     /// Values at the centre of the current row's first pixel (column `left.c`), same formats.
     /// A [`FAST`] Gouraud triangle keeps three *packed* values here, in `gx` and in `inc`
-    /// instead: depth with its ½-step rounding bias (16.12); red and blue in one word, red in
-    /// the high half and blue in the low half, each with `16 − bits` fraction bits, rounded
-    /// from the 20-bit values at setup, plus ½ unit each; green (20 fraction bits) plus ½
-    /// unit. All steps are wrapping additions, so the packed word is exactly
-    /// `R·2¹⁶ + B (mod 2³²)` of the stepped red and blue, and its halves read back as the
-    /// channels whenever `B` is in `0..2¹⁶`, which holds at every pixel centre inside the
-    /// triangle (the ½-unit bias leaves ½ unit of headroom at both ends, and the stepping of
-    /// values rounded to `16 − bits` fraction bits drifts by under 2⁻¹² unit per row and per
-    /// pixel).
+    /// instead ([`pack_zrgb`]): depth with its ½-step rounding bias, times 2⁴ (16.16, the
+    /// depth is the high half); red and blue in one word, red in the high half and blue in the
+    /// low half, each with `16 − bits` fraction bits, rounded from the 20-bit values at setup,
+    /// plus ½ unit each; green plus ½ unit, shifted so that its `bits` whole bits are the
+    /// word's top bits (`32 − bits` fraction bits). All steps are wrapping additions, so the
+    /// packed word is exactly `R·2¹⁶ + B (mod 2³²)` of the stepped red and blue, and its
+    /// halves read back as the channels whenever `B` is in `0..2¹⁶`, which holds at every
+    /// pixel centre inside the triangle (the ½-unit bias leaves ½ unit of headroom at both
+    /// ends, and the stepping of values rounded to `16 − bits` fraction bits drifts by under
+    /// 2⁻¹² unit per row and per pixel).
     row: [i32; 4],
     /// Change of `row` when the left edge moves by `sq` columns: `gy + gx·sq`.
     inc: [i32; 4],
@@ -726,15 +751,17 @@ impl ActiveTri {
             };
         if fast && !flat {
             // Pack once here, so that rows and spans step three words and convert nothing.
-            let pack = |r: i32, b: i32| pack_rb::<C>(r, b) as i32;
-            row_v = [
+            let [z, rb, g] = pack_zrgb::<C>(
                 row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1)),
-                pack(row_v[1], row_v[3]).wrapping_add(packed_rb_half::<C>() as i32),
+                row_v[1],
                 row_v[2].wrapping_add(1 << (COLOR_FRAC_BITS - 1)),
-                0,
-            ];
-            gx = [gx[0], pack(gx[1], gx[3]), gx[2], 0];
-            inc = [inc[0], pack(inc[1], inc[3]), inc[2], 0];
+                row_v[3],
+            );
+            row_v = [z, rb.wrapping_add(packed_rb_half::<C>() as i32), g, 0];
+            let [z, rb, g] = pack_zrgb::<C>(gx[0], gx[1], gx[2], gx[3]);
+            gx = [z, rb, g, 0];
+            let [z, rb, g] = pack_zrgb::<C>(inc[0], inc[1], inc[2], inc[3]);
+            inc = [z, rb, g, 0];
         } else if fast {
             row_v[0] = row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
         }
@@ -982,7 +1009,8 @@ fn span_flat<C: TargetColor, const T: u8>(
 
 /// Gouraud span with red and blue packed in one accumulator (see
 /// [`Span::fill_gouraud_packed`] for why that is exact), depth test `T`: `z`, `rb`, `g` are
-/// `[start, per-pixel step]` with their rounding biases already added.
+/// `[start, per-pixel step]` in the packed formats ([`pack_zrgb`]) with their rounding biases
+/// already added.
 #[inline(never)]
 fn span_packed<C: TargetColor, const T: u8>(
     zs: &mut [u16],
@@ -997,15 +1025,16 @@ fn span_packed<C: TargetColor, const T: u8>(
     }
     // Compile-time constants of the colour type: shifts by immediates, two registers fewer.
     let (fr, fb) = packed_frac_bits::<C>();
+    let g_low = 32 - channel_bits(C::CHANNEL_MAX[1]);
     let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
     let mut written = 0;
     for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
-        let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+        let z16 = (z as u32 >> 16) as u16;
         if passes::<T>(z16, *zb) {
             *zb = z16;
             *cb = C::from_channels([
                 (rb >> (16 + fr)) as u8,
-                (g >> COLOR_FRAC_BITS) as u8,
+                (g as u32 >> g_low) as u8,
                 ((rb & 0xffff) >> fb) as u8,
             ]);
             written += 1;
@@ -1096,17 +1125,17 @@ impl Span {
         colors: &mut [C],
         depth: &mut [u16],
     ) -> u32 {
-        let rb = pack_rb::<C>(self.start[1], self.start[3]).wrapping_add(packed_rb_half::<C>());
-        let grb = pack_rb::<C>(self.gx[1], self.gx[3]);
-        let g = self.start[2] + (1 << (COLOR_FRAC_BITS - 1));
+        let [s, g] = [self.start, self.gx];
+        let [z, rb, g0] = pack_zrgb::<C>(
+            self.z_start(),
+            s[1],
+            s[2] + (1 << (COLOR_FRAC_BITS - 1)),
+            s[3],
+        );
+        let rb = (rb as u32).wrapping_add(packed_rb_half::<C>());
+        let [gz, grb, gg] = pack_zrgb::<C>(g[0], g[1], g[2], g[3]);
         let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
-        span_packed::<C, T>(
-            zs,
-            cs,
-            [self.z_start(), self.gx[0]],
-            [rb, grb],
-            [g, self.gx[2]],
-        )
+        span_packed::<C, T>(zs, cs, [z, gz], [rb, grb as u32], [g0, gg])
     }
 
     /// Gouraud span, rounding to nearest: the half is folded into the start values.

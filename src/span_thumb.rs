@@ -56,11 +56,11 @@ macro_rules! restore_registers_and_return {
 }
 
 /// The pixel loop shared by both routines. In: r0 = depth pointer, r1 = colour pointer −
-/// depth pointer (bytes), r2 = z·2⁴ (z in 16.12 + ½ bias, so the depth is the high half),
-/// r3 = rb (red << 16 + blue, 11 fraction bits each, + ½ bias), r4 = g·2⁶ (g with 20
-/// fraction bits + ½ bias, so its 6 bits are the top ones), r8, r9, r10 = their per-pixel
-/// steps (shifted alike; all wrapping, so the shifted values are the same bits the portable
-/// loop extracts), r11 = end of the depth run (> r0), r7 = count of *hidden* pixels so far
+/// depth pointer (bytes), r2 = z, r3 = rb, r4 = g in the packed formats of a fast triangle
+/// (`raster::pack_zrgb`: the depth is the high half of z, red and blue are the halves of rb
+/// with 11 fraction bits each, green is the top 6 bits of g; rounding biases added), r8, r9,
+/// r10 = their per-pixel steps (all wrapping, so these are the bits the portable loop
+/// extracts), r11 = end of the depth run (> r0), r7 = count of *hidden* pixels so far
 /// (fewer than the written ones in a typical frame, so the count costs the rare path).
 /// Uses r5, r6. A hidden pixel branches to label 3, which must be placed (with
 /// `hidden_pixel!`) after an unconditional branch within 256 bytes of the loop.
@@ -137,6 +137,51 @@ core::arch::global_asm!(
     ".size scanline3d_span565_less, . - scanline3d_span565_less",
 );
 
+/// One row of the triangle in r3 (r5 = its `left.c << 16`, `left.c ≥ 0`) for the row
+/// routine: loads its three per-pixel steps into r8–r10 (kept after the span: the row step
+/// reuses them), draws the span `left.c..min(right.c, width)` with [`pixel_loop`] (r7 counts
+/// hidden pixels, lr fragments, across the routine's call) and ends with r0 = r12 = the
+/// triangle. Reads the stack frame of `scanline3d_rows565`.
+macro_rules! row_span {
+    () => {
+        concat!(
+            "mov r12, r3\n",
+            "lsrs r4, r5, #16\n",
+            "adds r3, #{gx0}\n",
+            "ldm r3!, {{r0, r1, r2}}\n",
+            "mov r8, r0\n",
+            "mov r9, r1\n",
+            "mov r10, r2\n",
+            "mov r3, r12\n",
+            // xe = min(right.c, width); an empty span draws nothing.
+            "ldr r1, [sp, #20]\n",
+            "ldrh r5, [r3, #{rc}]\n",
+            "sxth r5, r5\n",
+            "cmp r5, r1\n",
+            "ble 4f\n",
+            "mov r5, r1\n",
+            "4:\n",
+            "subs r6, r5, r4\n",
+            "ble 5f\n",
+            "add lr, r6\n",
+            "ldr r1, [sp, #12]\n",
+            "lsls r4, r4, #1\n",
+            "adds r0, r1, r4\n",
+            "lsls r5, r5, #1\n",
+            "adds r5, r1, r5\n",
+            "mov r11, r5\n",
+            "ldr r1, [sp, #16]\n",
+            "adds r3, #{row0}\n",
+            "ldm r3, {{r2, r3, r4}}\n",
+            pixel_loop!(),
+            "b 5f\n",
+            hidden_pixel!(),
+            "5:\n",
+            "mov r0, r12\n",
+        )
+    };
+}
+
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
@@ -149,7 +194,15 @@ core::arch::global_asm!(
     // `rows565`); returns 0 when it reached n, 1 when triangle i needs the portable path.
     "scanline3d_rows565:",
     save_registers!(),
+    // The context's first six words are copied to the stack, each a single load away:
+    // [sp] = tris, [sp, #4] = n, [sp, #8] = i, [sp, #12] = the depth line, [sp, #16] = the
+    // colour offset, [sp, #20] = the width; [sp, #24] = the context. r7 counts hidden pixels
+    // and lr fragments for the whole call (the return address is on the stack).
     "push {{r0}}",
+    "ldm r0!, {{r1, r2, r3, r4, r5, r6}}",
+    "push {{r1, r2, r3, r4, r5, r6}}",
+    "movs r7, #0",
+    "mov lr, r7",
     "b 10f",
     // The exits sit here, within reach of the conditional branches below.
     "11:",
@@ -158,16 +211,49 @@ core::arch::global_asm!(
     "12:",
     "movs r0, #1",
     "b 13f",
+    // The count is used up: the triangle's last row, if it is marked so (and left.c ≥ 0), is
+    // drawn here and the triangle leaves the list as `ActiveList::swap_remove` does: order
+    // entries i and n − 1 swap their slots, n goes down, and i stays.
+    "20:",
+    "ldrb r4, [r3, #{flags}]",
+    "lsls r4, r4, #{last_shift}",
+    "bpl 12b",
+    "ldrh r5, [r3, #{lc}]",
+    "lsls r5, r5, #16",
+    "bmi 12b",
+    row_span!(),
+    "ldr r1, [sp, #8]",
+    "ldr r2, [sp, #4]",
+    "subs r2, #1",
+    "str r2, [sp, #4]",
+    "ldr r3, [sp]",
+    "movs r4, #{size}",
+    "muls r4, r1, r4",
+    "adds r4, r3, r4",
+    "movs r5, #{size}",
+    "muls r5, r2, r5",
+    "adds r5, r3, r5",
+    "ldrh r6, [r4, #{ord}]",
+    "eors r6, r1",
+    "ldrh r0, [r5, #{ord}]",
+    "eors r0, r2",
+    "eors r0, r1",
+    "strh r0, [r4, #{ord}]",
+    "eors r6, r2",
+    "strh r6, [r5, #{ord}]",
+    "b 10f",
+    "14:",
+    "movs r0, #1",
+    "b 13f",
     "10:",
-    "ldr r0, [sp]",
-    "ldr r1, [r0, #{ci}]",
-    "ldr r2, [r0, #{cn}]",
+    "ldr r1, [sp, #8]",
+    "ldr r2, [sp, #4]",
     "cmp r1, r2",
     "bhs 11b",
     // Entry i's slot is the index kept in slot i, XOR i (`ActiveList`).
     "movs r3, #{size}",
     "muls r3, r1, r3",
-    "ldr r2, [r0, #{ctris}]",
+    "ldr r2, [sp]",
     "adds r3, r2, r3",
     "ldrh r3, [r3, #{ord}]",
     "eors r3, r1",
@@ -178,12 +264,12 @@ core::arch::global_asm!(
     // switches its short edge nor ends it), and left.c ≥ 0. The count goes down by one.
     "ldrb r4, [r3, #{rrows}]",
     "subs r4, #1",
-    "bcc 20f",
+    "bcc 20b",
     "ldrh r5, [r3, #{lc}]",
     "lsls r5, r5, #16",
-    "bmi 12b",
+    "bmi 14b",
     "strb r4, [r3, #{rrows}]",
-    "bl 30f",
+    row_span!(),
     // Left edge: c += sq, e -= sr; on e < 0: e += dy, c += 1, and the attributes carry.
     "ldrh r2, [r0, #{lc}]",
     "ldrh r3, [r0, #{lsq}]",
@@ -214,137 +300,43 @@ core::arch::global_asm!(
     "8:",
     "strh r1, [r0, #{re}]",
     "strh r2, [r0, #{rc}]",
-    // Packed rows: row += inc, + gx when the left edge carried.
-    "ldr r1, [r0, #{row0}]",
-    "ldr r2, [r0, #{inc0}]",
-    "adds r1, r1, r2",
-    "ldr r3, [r0, #{row1}]",
-    "ldr r2, [r0, #{inc1}]",
-    "adds r3, r3, r2",
-    "ldr r4, [r0, #{row2}]",
-    "ldr r2, [r0, #{inc2}]",
-    "adds r4, r4, r2",
+    // Packed rows: row += inc, + gx (still in r8–r10) when the left edge carried.
+    "movs r4, #{row0}",
+    "adds r4, r0, r4",
+    "ldm r4!, {{r1, r2, r3}}",
+    "ldr r5, [r4, #4]",
+    "adds r1, r1, r5",
+    "ldr r5, [r4, #8]",
+    "adds r2, r2, r5",
+    "ldr r5, [r4, #12]",
+    "adds r3, r3, r5",
     "cmp r6, #0",
     "beq 9f",
-    "ldr r2, [r0, #{gx0}]",
-    "adds r1, r1, r2",
-    "ldr r2, [r0, #{gx1}]",
-    "adds r3, r3, r2",
-    "ldr r2, [r0, #{gx2}]",
-    "adds r4, r4, r2",
+    "add r1, r8",
+    "add r2, r9",
+    "add r3, r10",
     "9:",
-    "str r1, [r0, #{row0}]",
-    "str r3, [r0, #{row1}]",
-    "str r4, [r0, #{row2}]",
+    "subs r4, #12",
+    "stm r4!, {{r1, r2, r3}}",
     // The next triangle.
-    "ldr r0, [sp]",
-    "ldr r1, [r0, #{ci}]",
-    "adds r1, r1, #1",
-    "str r1, [r0, #{ci}]",
+    "ldr r1, [sp, #8]",
+    "adds r1, #1",
+    "str r1, [sp, #8]",
     "b 10b",
-    // The count is used up: the triangle's last row, if it is marked so (and left.c ≥ 0), is
-    // drawn here and the triangle leaves the list as `ActiveList::swap_remove` does: order
-    // entries i and n − 1 swap their slots, n goes down, and i stays.
-    "20:",
-    "ldrb r4, [r3, #{flags}]",
-    "lsls r4, r4, #{last_shift}",
-    "bpl 12b",
-    "ldrh r5, [r3, #{lc}]",
-    "lsls r5, r5, #16",
-    "bmi 12b",
-    "bl 30f",
-    "ldr r0, [sp]",
-    "ldr r1, [r0, #{ci}]",
-    "ldr r2, [r0, #{cn}]",
-    "subs r2, #1",
-    "str r2, [r0, #{cn}]",
-    "ldr r3, [r0, #{ctris}]",
-    "movs r4, #{size}",
-    "muls r4, r1, r4",
-    "adds r4, r3, r4",
-    "movs r5, #{size}",
-    "muls r5, r2, r5",
-    "adds r5, r3, r5",
-    "ldrh r6, [r4, #{ord}]",
-    "eors r6, r1",
-    "ldrh r7, [r5, #{ord}]",
-    "eors r7, r2",
-    "eors r7, r1",
-    "strh r7, [r4, #{ord}]",
-    "eors r6, r2",
-    "strh r6, [r5, #{ord}]",
-    "b 10b",
-    // The span of triangle r3 on this row (r0 = the context); adds its fragments and hidden
-    // pixels to the counters and returns with r0 = r12 = the triangle. The caller's lr is on
-    // the stack already, so `bl` may use it.
-    "30:",
-    "ldr r1, [r0, #{cdepth}]",
-    "ldr r2, [r0, #{coff}]",
-    "ldr r6, [r0, #{cwidth}]",
-    "mov r0, r3",
-    "mov r3, r6",
-    // One row: r0 = r12 = triangle, r1 = depth line, r2 = colour offset, r3 = width.
-    "mov r12, r0",
-    "movs r7, #0",
-    // xs = left.c (≥ 0), xe = min(right.c, width).
-    "ldrh r4, [r0, #{lc}]",
-    "ldrh r5, [r0, #{rc}]",
-    "sxth r5, r5",
-    "cmp r5, r3",
-    "ble 3f",
-    "mov r5, r3",
-    "3:",
-    "subs r6, r5, r4",
-    "ble 5f",
-    "push {{r6}}",
-    "lsls r4, r4, #1",
-    "adds r4, r1, r4",
-    "lsls r5, r5, #1",
-    "adds r5, r1, r5",
-    "mov r11, r5",
-    "mov r1, r2",
-    "mov r5, r0",
-    "mov r0, r4",
-    "ldr r2, [r5, #{row0}]",
-    "lsls r2, r2, #4",
-    "ldr r3, [r5, #{row1}]",
-    "ldr r4, [r5, #{row2}]",
-    "lsls r4, r4, #6",
-    "ldr r6, [r5, #{gx0}]",
-    "lsls r6, r6, #4",
-    "mov r8, r6",
-    "ldr r6, [r5, #{gx1}]",
-    "mov r9, r6",
-    "ldr r6, [r5, #{gx2}]",
-    "lsls r6, r6, #6",
-    "mov r10, r6",
-    pixel_loop!(),
-    // r6 = fragments (the run length), r7 = hidden pixels: added to the counters.
-    "pop {{r6}}",
-    "b 6f",
-    hidden_pixel!(),
-    "5:",
-    "movs r6, #0",
-    "6:",
-    "ldr r0, [sp]",
-    "ldr r1, [r0, #{cfrag}]",
-    "adds r1, r1, r6",
-    "str r1, [r0, #{cfrag}]",
-    "ldr r1, [r0, #{chidden}]",
-    "adds r1, r1, r7",
-    "str r1, [r0, #{chidden}]",
-    "mov r0, r12",
-    "bx lr",
     "13:",
-    "add sp, #4",
+    "ldr r1, [sp, #24]",
+    "ldr r2, [sp, #4]",
+    "str r2, [r1, #{cn}]",
+    "ldr r2, [sp, #8]",
+    "str r2, [r1, #{ci}]",
+    "mov r2, lr",
+    "str r2, [r1, #{cfrag}]",
+    "str r7, [r1, #{chidden}]",
+    "add sp, #28",
     restore_registers_and_return!(),
     ".size scanline3d_rows565, . - scanline3d_rows565",
     ci = const core::mem::offset_of!(RowCtx, i),
     cn = const core::mem::offset_of!(RowCtx, n),
-    ctris = const core::mem::offset_of!(RowCtx, tris),
-    cdepth = const core::mem::offset_of!(RowCtx, depth),
-    coff = const core::mem::offset_of!(RowCtx, color_offset),
-    cwidth = const core::mem::offset_of!(RowCtx, width),
     cfrag = const core::mem::offset_of!(RowCtx, fragments),
     chidden = const core::mem::offset_of!(RowCtx, hidden),
     size = const core::mem::size_of::<ActiveTri>(),
@@ -363,14 +355,7 @@ core::arch::global_asm!(
     rsr = const o::RIGHT + o::SR,
     rdy = const o::RIGHT + o::DY,
     gx0 = const o::GX,
-    gx1 = const o::GX + 4,
-    gx2 = const o::GX + 8,
     row0 = const o::ROW,
-    row1 = const o::ROW + 4,
-    row2 = const o::ROW + 8,
-    inc0 = const o::INC,
-    inc1 = const o::INC + 4,
-    inc2 = const o::INC + 8,
 );
 
 // The immediate offsets above must be encodable in 16-bit Thumb loads and stores (some are 0
@@ -383,7 +368,8 @@ const _: () = {
         assert!(h[i] % 2 == 0 && h[i] + o::DY <= 62);
         i += 1;
     }
-    assert!(o::GX % 4 == 0 && o::ROW % 4 == 0 && o::INC % 4 == 0 && o::INC + 8 <= 124);
+    assert!(o::GX % 4 == 0 && o::ROW == o::GX + 16 && o::INC == o::ROW + 16);
+    assert!(o::INC + 12 <= 255);
     assert!(core::mem::size_of::<ActiveTri>() <= 255);
     assert!(o::ORD % 2 == 0 && o::ORD <= 62 && o::ROUTINE_ROWS <= 31 && o::FLAGS <= 31);
 };
@@ -653,14 +639,14 @@ pub(crate) fn span565_less<C: TargetColor>(
     if n == 0 || !rgb565_words::<C>() {
         return 0;
     }
-    // Pre-shifted as the loop wants them (see `pixel_loop`).
+    // Already shifted as the loop wants them (see `pixel_loop`).
     let acc = [
-        (z[0] as u32) << 4,
-        (z[1] as u32) << 4,
+        z[0] as u32,
+        z[1] as u32,
         rb[0],
         rb[1],
-        (g[0] as u32) << 6,
-        (g[1] as u32) << 6,
+        g[0] as u32,
+        g[1] as u32,
     ];
     let zp = zs.as_mut_ptr();
     let offset = (cs.as_mut_ptr() as isize).wrapping_sub(zp as isize);
@@ -683,6 +669,14 @@ struct RowCtx {
     fragments: u32,
     hidden: u32,
 }
+
+// The routine copies the first six words to its stack frame with one `ldm`.
+const _: () = {
+    use core::mem::offset_of;
+    assert!(offset_of!(RowCtx, tris) == 0 && offset_of!(RowCtx, n) == 4);
+    assert!(offset_of!(RowCtx, i) == 8 && offset_of!(RowCtx, depth) == 12);
+    assert!(offset_of!(RowCtx, color_offset) == 16 && offset_of!(RowCtx, width) == 20);
+};
 
 /// Draws one row of the active triangles `start..` for as long as they are fast Gouraud
 /// triangles with their left edge on screen on a row that does not switch their short edge
