@@ -274,6 +274,10 @@ const FAST: u8 = 4;
 /// [`ActiveTri::flags`]: the row where [`ActiveTri::routine_rows`] runs out is the triangle's
 /// last, which the Cortex-M row routine draws too (and then removes the triangle).
 const LAST_IN_ROUTINE: u8 = 8;
+/// [`ActiveTri::flags`]: the row where [`ActiveTri::routine_rows`] runs out is the one before
+/// the short edge's switch, which the Cortex-M row routine draws too, switching to the edge
+/// kept by [`ActiveTri::set_pending`] (a fast Gouraud triangle only).
+const SWITCH_IN_ROUTINE: u8 = 16;
 
 /// Which fast span loops a strip may use, decided once per strip from the colour type, the
 /// depth test and dithering (see [`FAST`]).
@@ -502,7 +506,7 @@ impl<const N: usize> ActiveList<N> {
     #[inline(always)]
     pub(crate) fn routine_may_draw(&self, i: usize) -> bool {
         let t = &self.slots[self.slot(i)];
-        t.routine_rows != 0 || t.flags & LAST_IN_ROUTINE != 0
+        t.routine_rows != 0 || t.flags & (LAST_IN_ROUTINE | SWITCH_IN_ROUTINE) != 0
     }
 
     /// The slot records (for the Cortex-M row routine) and the list length.
@@ -532,6 +536,18 @@ pub(crate) mod offsets {
     pub const ROUTINE_ROWS: usize = offset_of!(ActiveTri, routine_rows);
     pub const FLAGS: usize = offset_of!(ActiveTri, flags);
     pub const LAST_BIT: u32 = super::LAST_IN_ROUTINE.trailing_zeros();
+    pub const SWITCH_BIT: u32 = super::SWITCH_IN_ROUTINE.trailing_zeros();
+    pub const SWITCH: u8 = super::SWITCH_IN_ROUTINE;
+    pub const LAST: u8 = super::LAST_IN_ROUTINE;
+    pub const MID_LEFT: u8 = super::MID_LEFT;
+    pub const ROW_MID: usize = offset_of!(ActiveTri, row_mid);
+    pub const ROW_END: usize = offset_of!(ActiveTri, row_end);
+    /// The pending short edge of a fast Gouraud triangle ([`ActiveTri::set_pending`]): `c`
+    /// and `sq` in the fourth `gx` word, `e` and `sr` in the fourth `row` word, `dy` in the
+    /// fourth `inc` word (low halves first).
+    pub const PEND_C: usize = GX + 12;
+    pub const PEND_E: usize = ROW + 12;
+    pub const PEND_DY: usize = INC + 12;
 }
 
 impl ActiveTri {
@@ -778,8 +794,22 @@ impl ActiveTri {
         self.gx = gx;
         self.row = row_v;
         self.inc = inc;
+        if fast && !flat && row < row_mid && row_mid < row_end {
+            self.set_pending(Edge::new(bx, by, cx, cy, row_mid));
+        }
         self.set_routine_rows(row);
         true
+    }
+
+    /// Keeps the short edge `b → c` at row `row_mid` for a fast Gouraud triangle, in the
+    /// fourth words of `gx`, `row` and `inc`, which its packed attributes leave unused (the
+    /// Cortex-M row routine switches to it; the portable path computes the same edge when it
+    /// gets there).
+    fn set_pending(&mut self, e: Edge) {
+        let pair = |lo: i16, hi: u16| (lo as u16 as u32 | (hi as u32) << 16) as i32;
+        self.gx[3] = pair(e.c, e.sq as u16);
+        self.row[3] = pair(e.e, e.sr);
+        self.inc[3] = e.dy as i32;
     }
 
     /// Sets [`ActiveTri::routine_rows`] for `row`, the next row to draw: rows `x` from `row`
@@ -789,14 +819,18 @@ impl ActiveTri {
     #[inline(always)]
     fn set_routine_rows(&mut self, row: i32) {
         let mut k = 0;
-        self.flags &= !LAST_IN_ROUTINE;
+        self.flags &= !(LAST_IN_ROUTINE | SWITCH_IN_ROUTINE);
         if self.flags & (FAST | FLAT) == FAST {
             let last = self.row_end as i32 - 1;
             let mid = self.row_mid as i32 - 1;
             let stop = if mid >= row && mid < last { mid } else { last };
             k = (stop - row).clamp(0, 255);
-            if stop == last && stop - row <= 255 {
-                self.flags |= LAST_IN_ROUTINE;
+            if stop - row <= 255 {
+                self.flags |= if stop == last {
+                    LAST_IN_ROUTINE
+                } else {
+                    SWITCH_IN_ROUTINE
+                };
             }
         }
         self.routine_rows = k as u8;

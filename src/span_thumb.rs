@@ -182,6 +182,113 @@ macro_rules! row_span {
     };
 }
 
+/// The row routine's left-edge step (r0 = the triangle): c += sq, e −= sr; on e < 0:
+/// e += dy, c += 1, and r6 = 1 (the attributes carry), else r6 = 0. Uses r1–r3.
+macro_rules! left_step {
+    () => {
+        concat!(
+            "ldrh r2, [r0, #{lc}]\n",
+            "ldrh r3, [r0, #{lsq}]\n",
+            "adds r2, r2, r3\n",
+            "ldrh r1, [r0, #{le}]\n",
+            "ldrh r3, [r0, #{lsr}]\n",
+            "movs r6, #0\n",
+            "subs r1, r1, r3\n",
+            "bpl 7f\n",
+            "ldrh r3, [r0, #{ldy}]\n",
+            "adds r1, r1, r3\n",
+            "adds r2, #1\n",
+            "movs r6, #1\n",
+            "7:\n",
+            "strh r1, [r0, #{le}]\n",
+            "strh r2, [r0, #{lc}]\n",
+        )
+    };
+}
+
+/// The row routine's right-edge step, the same without the carry. Uses r1–r3.
+macro_rules! right_step {
+    () => {
+        concat!(
+            "ldrh r2, [r0, #{rc}]\n",
+            "ldrh r3, [r0, #{rsq}]\n",
+            "adds r2, r2, r3\n",
+            "ldrh r1, [r0, #{re}]\n",
+            "ldrh r3, [r0, #{rsr}]\n",
+            "subs r1, r1, r3\n",
+            "bpl 8f\n",
+            "ldrh r3, [r0, #{rdy}]\n",
+            "adds r1, r1, r3\n",
+            "adds r2, #1\n",
+            "8:\n",
+            "strh r1, [r0, #{re}]\n",
+            "strh r2, [r0, #{rc}]\n",
+        )
+    };
+}
+
+/// Copies the pending short edge of the triangle in r0 (`ActiveTri::set_pending`) over its
+/// left (`l`) or right (`r`) edge. Uses r1.
+macro_rules! take_pending {
+    ($x:literal) => {
+        concat!(
+            "ldr r1, [r0, #{pend_c}]\n",
+            "strh r1, [r0, #{",
+            $x,
+            "c}]\n",
+            "lsrs r1, r1, #16\n",
+            "strh r1, [r0, #{",
+            $x,
+            "sq}]\n",
+            "ldr r1, [r0, #{pend_e}]\n",
+            "strh r1, [r0, #{",
+            $x,
+            "e}]\n",
+            "lsrs r1, r1, #16\n",
+            "strh r1, [r0, #{",
+            $x,
+            "sr}]\n",
+            "ldr r1, [r0, #{pend_dy}]\n",
+            "strh r1, [r0, #{",
+            $x,
+            "dy}]\n",
+        )
+    };
+}
+
+/// After a switch with the middle vertex left (r0 = the triangle, r4 = dc + carry, r3 = dsq,
+/// see `ActiveTri::advance`), attribute `$k` (its step in `$g`): row += inc + gx·(dc + carry),
+/// then inc += gx·dsq. Uses r1, r2, r5.
+macro_rules! carry_attr {
+    ($k:literal, $g:literal) => {
+        concat!(
+            "ldr r1, [r0, #{row",
+            $k,
+            "}]\n",
+            "ldr r2, [r0, #{inc",
+            $k,
+            "}]\n",
+            "adds r1, r1, r2\n",
+            "mov r5, ",
+            $g,
+            "\n",
+            "muls r5, r3, r5\n",
+            "adds r2, r2, r5\n",
+            "str r2, [r0, #{inc",
+            $k,
+            "}]\n",
+            "mov r5, ",
+            $g,
+            "\n",
+            "muls r5, r4, r5\n",
+            "adds r1, r1, r5\n",
+            "str r1, [r0, #{row",
+            $k,
+            "}]\n",
+        )
+    };
+}
+
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
@@ -204,20 +311,20 @@ core::arch::global_asm!(
     "movs r7, #0",
     "mov lr, r7",
     "b 10f",
-    // The exits sit here, within reach of the conditional branches below.
-    "11:",
-    "movs r0, #0",
-    "b 13f",
+    // Exits within reach of the conditional branches of the sections below them.
     "12:",
     "movs r0, #1",
     "b 13f",
-    // The count is used up: the triangle's last row, if it is marked so (and left.c ≥ 0), is
-    // drawn here and the triangle leaves the list as `ActiveList::swap_remove` does: order
-    // entries i and n − 1 swap their slots, n goes down, and i stays.
+    // The count is used up. The row before the short edge's switch, if it is marked so:
+    // drawn here, then the edges and attribute rows move as `ActiveTri::advance` moves them
+    // at the switch, and the count starts again for the rows after it (as
+    // `ActiveTri::set_routine_rows`). The triangle's last row, if it is marked so: drawn here
+    // and the triangle leaves the list as `ActiveList::swap_remove` does. Either needs
+    // left.c ≥ 0.
     "20:",
     "ldrb r4, [r3, #{flags}]",
-    "lsls r4, r4, #{last_shift}",
-    "bpl 12b",
+    "lsls r5, r4, #{last_shift}",
+    "bpl 26f",
     "ldrh r5, [r3, #{lc}]",
     "lsls r5, r5, #16",
     "bmi 12b",
@@ -242,6 +349,74 @@ core::arch::global_asm!(
     "eors r6, r2",
     "strh r6, [r5, #{ord}]",
     "b 10f",
+    "12:",
+    "movs r0, #1",
+    "b 13f",
+    "26:",
+    "lsls r5, r4, #{switch_shift}",
+    "bpl 12b",
+    "ldrh r5, [r3, #{lc}]",
+    "lsls r5, r5, #16",
+    "bmi 12b",
+    row_span!(),
+    // Count and flags for the rows from the switch on: row_end − 1 − row_mid, last row flag
+    // when it is at most 255.
+    "ldrh r1, [r0, #{row_end}]",
+    "ldrh r2, [r0, #{row_mid}]",
+    "subs r1, r1, r2",
+    "subs r1, #1",
+    "ldrb r2, [r0, #{flags}]",
+    "movs r3, #{switch_flag}",
+    "bics r2, r3",
+    "cmp r1, #255",
+    "bls 22f",
+    "movs r1, #255",
+    "b 23f",
+    "22:",
+    "adds r2, #{last_flag}",
+    "23:",
+    "strb r2, [r0, #{flags}]",
+    "strb r1, [r0, #{rrows}]",
+    "lsls r2, r2, #{mid_left_shift}",
+    "bmi 24f",
+    // The middle vertex is right: the left edge is the long one and steps as on any row;
+    // the right edge becomes the pending one; the attributes step with the left carry.
+    left_step!(),
+    take_pending!("r"),
+    "b 30f",
+    // The middle vertex is left: the right edge steps; the left one becomes the pending
+    // one, and the attributes move along the old left edge by one row (with its carry),
+    // then by dc = new c − old stepped c columns, and their row step changes by
+    // dsq = new sq − old sq columns.
+    "24:",
+    right_step!(),
+    "ldrh r1, [r0, #{lc}]",
+    "sxth r1, r1",
+    "ldrh r2, [r0, #{lsq}]",
+    "sxth r2, r2",
+    "adds r1, r1, r2",
+    "ldrh r4, [r0, #{le}]",
+    "ldrh r5, [r0, #{lsr}]",
+    "movs r6, #0",
+    "cmp r4, r5",
+    "bhs 25f",
+    "movs r6, #1",
+    "25:",
+    "adds r1, r1, r6",
+    "ldr r3, [r0, #{pend_c}]",
+    "sxth r4, r3",
+    "subs r4, r4, r1",
+    "adds r4, r4, r6",
+    "asrs r3, r3, #16",
+    "subs r3, r3, r2",
+    take_pending!("l"),
+    carry_attr!("0", "r8"),
+    carry_attr!("1", "r9"),
+    carry_attr!("2", "r10"),
+    "b 31f",
+    "11:",
+    "movs r0, #0",
+    "b 13f",
     "14:",
     "movs r0, #1",
     "b 13f",
@@ -264,43 +439,17 @@ core::arch::global_asm!(
     // switches its short edge nor ends it), and left.c ≥ 0. The count goes down by one.
     "ldrb r4, [r3, #{rrows}]",
     "subs r4, #1",
-    "bcc 20b",
+    "bcc 19f",
     "ldrh r5, [r3, #{lc}]",
     "lsls r5, r5, #16",
     "bmi 14b",
     "strb r4, [r3, #{rrows}]",
     row_span!(),
-    // Left edge: c += sq, e -= sr; on e < 0: e += dy, c += 1, and the attributes carry.
-    "ldrh r2, [r0, #{lc}]",
-    "ldrh r3, [r0, #{lsq}]",
-    "adds r2, r2, r3",
-    "ldrh r1, [r0, #{le}]",
-    "ldrh r3, [r0, #{lsr}]",
-    "movs r6, #0",
-    "subs r1, r1, r3",
-    "bpl 7f",
-    "ldrh r3, [r0, #{ldy}]",
-    "adds r1, r1, r3",
-    "adds r2, #1",
-    "movs r6, #1",
-    "7:",
-    "strh r1, [r0, #{le}]",
-    "strh r2, [r0, #{lc}]",
-    // Right edge, the same without the carry.
-    "ldrh r2, [r0, #{rc}]",
-    "ldrh r3, [r0, #{rsq}]",
-    "adds r2, r2, r3",
-    "ldrh r1, [r0, #{re}]",
-    "ldrh r3, [r0, #{rsr}]",
-    "subs r1, r1, r3",
-    "bpl 8f",
-    "ldrh r3, [r0, #{rdy}]",
-    "adds r1, r1, r3",
-    "adds r2, #1",
-    "8:",
-    "strh r1, [r0, #{re}]",
-    "strh r2, [r0, #{rc}]",
+    // Both edges step (the left one with its carry in r6).
+    left_step!(),
+    right_step!(),
     // Packed rows: row += inc, + gx (still in r8–r10) when the left edge carried.
+    "30:",
     "movs r4, #{row0}",
     "adds r4, r0, r4",
     "ldm r4!, {{r1, r2, r3}}",
@@ -319,10 +468,13 @@ core::arch::global_asm!(
     "subs r4, #12",
     "stm r4!, {{r1, r2, r3}}",
     // The next triangle.
+    "31:",
     "ldr r1, [sp, #8]",
     "adds r1, #1",
     "str r1, [sp, #8]",
     "b 10b",
+    "19:",
+    "b 20b",
     "13:",
     "ldr r1, [sp, #24]",
     "ldr r2, [sp, #4]",
@@ -344,6 +496,20 @@ core::arch::global_asm!(
     rrows = const o::ROUTINE_ROWS,
     flags = const o::FLAGS,
     last_shift = const 31 - o::LAST_BIT,
+    switch_shift = const 31 - o::SWITCH_BIT,
+    mid_left_shift = const 31 - o::MID_LEFT.trailing_zeros(),
+    switch_flag = const o::SWITCH,
+    last_flag = const o::LAST,
+    row_mid = const o::ROW_MID,
+    row_end = const o::ROW_END,
+    pend_c = const o::PEND_C,
+    pend_e = const o::PEND_E,
+    pend_dy = const o::PEND_DY,
+    row1 = const o::ROW + 4,
+    row2 = const o::ROW + 8,
+    inc0 = const o::INC,
+    inc1 = const o::INC + 4,
+    inc2 = const o::INC + 8,
     lc = const o::LEFT + o::C,
     lsq = const o::LEFT + o::SQ,
     le = const o::LEFT + o::E,
