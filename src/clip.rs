@@ -53,9 +53,13 @@ pub fn outcode<S: Scalar>(p: [S; 4], g: S) -> u8 {
     if z > w {
         c |= FAR;
     }
-    let gw = g * w;
-    if x < -gw || x > gw || y < -gw || y > gw {
-        c |= GUARD;
+    // Inside the x/y planes (|x|, |y| ≤ w, so w ≥ 0) with g ≥ 1 is inside the band: the
+    // product is needed only for points outside them (most vertices of a frame are not).
+    if c & (LEFT | RIGHT | BOTTOM | TOP) != 0 || g < S::ONE {
+        let gw = g * w;
+        if x < -gw || x > gw || y < -gw || y > gw {
+            c |= GUARD;
+        }
     }
     c
 }

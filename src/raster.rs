@@ -212,6 +212,16 @@ impl Edge {
         }
     }
 
+    /// Overwrites this edge with `e`, one field at a time.
+    #[inline(always)]
+    fn set(&mut self, e: Edge) {
+        self.c = e.c;
+        self.sq = e.sq;
+        self.e = e.e;
+        self.sr = e.sr;
+        self.dy = e.dy;
+    }
+
     /// Moves to the next row; returns true when the boundary moved by `sq + 1` instead of `sq`.
     #[inline(always)]
     pub(crate) fn step(&mut self) -> bool {
@@ -782,8 +792,10 @@ impl ActiveTri {
             row_v[0] = row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
         }
         let flags = (mid_left as u8 * MID_LEFT) | (flat as u8 * FLAT) | (fast as u8 * FAST);
-        self.left = left;
-        self.right = right;
+        // Field by field: the right edge is not word-aligned, and a whole-`Edge` assignment
+        // became a library `memcpy` on a Cortex-M0.
+        self.left.set(left);
+        self.right.set(right);
         self.row_mid = row_mid as i16;
         self.row_end = row_end as i16;
         self.bx = bx as i16;

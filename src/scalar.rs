@@ -319,6 +319,14 @@ pub fn mul_q32(n: i64, k: u32) -> i64 {
     let hi = n >> 32; // signed
     let lo = n as u32;
     let l = (mul_wide_u(lo, k) + (1 << 31)) >> 32;
+    if hi == hi as i16 as i64 && k < 1 << 16 {
+        // Screen scales (8 × the viewport size): |hi·k| < 2³¹, one 32-bit product. (Written
+        // as a 32 × 16-bit `mul_wide16`, LLVM turned it back into a library 64-bit multiply.)
+        return (hi as i32 * k as i32) as i64 + l as i64;
+    }
+    if hi == 0 {
+        return l as i64;
+    }
     if hi == hi as i16 as i64 && k < 1 << 31 {
         // The common case (on-screen coordinates): |hi·k| < 2⁴⁶, nothing to saturate, and a
         // 32 × 16-bit product instead of a library 64-bit multiply.
