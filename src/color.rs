@@ -70,6 +70,12 @@ pub fn scale_channels(rgb: [u16; 3], max: [u8; 3]) -> [u16; 3] {
 /// no divide instruction, and the library division costs about a hundred instructions.
 #[inline(always)]
 fn div255(x: u32) -> u32 {
+    if x < 0xff_ffff {
+        // Below 2²⁴ − 1 (every scaled channel): x/255 = x/256 · (1 + 1/255), twice refined,
+        // in shifts and adds (checked against the division over the whole range).
+        let q0 = (x + (x >> 8) + 1) >> 8;
+        return (x + q0 + 1) >> 8;
+    }
     (crate::scalar::mul_wide_u(x, 0x8080_8081) >> 39) as u32
 }
 
@@ -207,6 +213,10 @@ mod tests {
             }
         }
         assert_eq!(div255(u32::MAX), u32::MAX / 255);
+        // Both sides of the shift-and-add range's end, and all of its last block.
+        for v in 0xff_0000..=0x100_00ffu32 {
+            assert_eq!(div255(v), v / 255, "{v}");
+        }
     }
     use embedded_graphics_core::pixelcolor::GrayColor;
 

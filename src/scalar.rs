@@ -82,6 +82,13 @@ pub trait Scalar:
     fn from_i32(v: i32) -> Self {
         Self::from_f64(v as f64)
     }
+    /// `self · k` for a small integer `k` (|k| ≤ 2¹¹): the same value as
+    /// `self * Self::from_i32(k)`, which a type may compute without a general product.
+    #[must_use]
+    #[inline(always)]
+    fn mul_int(self, k: i32) -> Self {
+        self * Self::from_i32(k)
+    }
     /// Square root; negative input gives zero.
     #[must_use]
     fn sqrt(self) -> Self;
@@ -549,6 +556,16 @@ macro_rules! impl_fx {
             fn from_i32(v: i32) -> Self {
                 Fx($t::saturating_from_num(v))
             }
+            #[inline(always)]
+            fn mul_int(self, k: i32) -> Self {
+                // The rounded product with an exact integer is exact; both saturate alike.
+                // (`from_i32` saturates first for |k| beyond the integer range.)
+                if k.unsigned_abs() < 1 << (31 - $frac).min(15) {
+                    Fx($t::from_bits(sat32(mul_wide16(self.0.to_bits(), k))))
+                } else {
+                    self * Self::from_i32(k)
+                }
+            }
             fn sqrt(self) -> Self {
                 if self.0 <= $t::ZERO {
                     Self::ZERO
@@ -897,6 +914,40 @@ mod tests {
                 assert_eq!(mul_q32(n, k), want, "{n} · {k}");
             }
         }
+    }
+
+    #[test]
+    fn mul_int_is_the_product_with_the_integer() {
+        fn check<S: Scalar + core::fmt::Debug + PartialEq>(vals: &[f64]) {
+            for &v in vals {
+                for k in [
+                    -2048,
+                    -255,
+                    -3,
+                    -1,
+                    0,
+                    1,
+                    2,
+                    31,
+                    63,
+                    255,
+                    2047,
+                    4096,
+                    1 << 20,
+                ] {
+                    let x = S::from_f64(v);
+                    assert_eq!(x.mul_int(k), x * S::from_i32(k), "{v} · {k}");
+                }
+            }
+        }
+        let vals = [
+            0.0, 1.0, -1.0, 0.3, -0.7, 1.999, 13.25, -32767.5, 32767.99, 1e-5, 2047.9,
+        ];
+        check::<Fx<I16F16>>(&vals);
+        check::<Fx<I20F12>>(&vals);
+        check::<Fx<I12F20>>(&vals);
+        check::<f32>(&vals);
+        check::<f64>(&vals);
     }
 
     #[test]

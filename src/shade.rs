@@ -145,7 +145,7 @@ pub(crate) fn lit_color<S: Scalar>(
     let mut out = [0u16; 3];
     let top = S::from_i32(255);
     for c in 0..3 {
-        let v = S::from_i32(m.color[c] as i32) * diffuse[c] + spec[c];
+        let v = diffuse[c].mul_int(m.color[c] as i32) + spec[c];
         let v = v.max(S::ZERO).min(top);
         out[c] = v.to_fixed_i32(8).clamp(0, 255 << 8) as u16;
     }

@@ -1,8 +1,8 @@
 //! Thumb-1 assembly for the renderer's hot path on Cortex-M cores: for RGB565 words, the
 //! Gouraud span loop, a routine that draws one row of every qualifying active triangle (span,
-//! edge steps, attribute steps, removal after the last row) and the strip-line clear; and the
-//! Q16.16 point and direction transforms. The span loop alone was about 40 % of a frame's
-//! instructions on a Cortex-M0 before it was written here.
+//! edge steps, attribute steps, the short edge's switch, removal after the last row) and the
+//! strip-line clear; and the Q16.16 point and direction transforms. The span loop alone was
+//! about 40 % of a frame's instructions on a Cortex-M0 before it was written here.
 //!
 //! Why assembly: on `thumbv6m` only r0–r7 are general registers for most instructions and r7 is
 //! the frame pointer, so LLVM spills the span's accumulators to the stack and unrolls the loop
@@ -845,11 +845,13 @@ const _: () = {
 };
 
 /// Draws one row of the active triangles `start..` for as long as they are fast Gouraud
-/// triangles with their left edge on screen on a row that does not switch their short edge
-/// (the rows that make up most of a frame; the triangle's routine row count and last-row flag
-/// say so, `ActiveTri::set_routine_rows`), each exactly as `ActiveTri::draw_row` would: the
-/// span into RGB565 words, then both edges and the packed attribute rows step — or, on a
-/// triangle's last row, the triangle leaves the list as `ActiveList::swap_remove` does.
+/// triangles with their left edge on screen (the rows that make up most of a frame; the
+/// triangle's routine row count and its last-row and switch flags say so,
+/// `ActiveTri::set_routine_rows`), each exactly as `ActiveTri::draw_row` would: the span into
+/// RGB565 words, then both edges and the packed attribute rows step — or, on the row before
+/// the short edge's switch, the edges and rows move as `ActiveTri::advance` moves them there,
+/// to the edge setup kept — or, on a triangle's last row, the triangle leaves the list as
+/// `ActiveList::swap_remove` does.
 /// Returns `(index reached, fragments, written)`: the index is `active.len()` or the first
 /// triangle that needs `draw_row`. `None` when `C` is not an RGB565 word.
 #[inline(always)]
