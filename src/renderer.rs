@@ -249,7 +249,12 @@ struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
     mvp: Mat4<S>,
     normal_matrix: Mat4<S>,
     similar: bool,
+    /// The lights: in world space, or in the object's space when `in_object` holds
+    /// ([`PreparedLight::in_object_space`]; then vertex normals are used as they are).
     lights: &'o [PreparedLight<S>; L],
+    /// Gouraud shading (so no face normals, which are in world space), a normal matrix that
+    /// is a rotation (`similar`) and no specular term (which would need the eye direction).
+    in_object: bool,
     eye: Vec3<S>,
     base: usize,
 }
@@ -278,12 +283,17 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         let mesh = &self.obj.mesh;
         let p = mesh.positions()[i];
         let n = mesh.normals().map_or([S::ZERO; 3], |ns| ns[i]);
-        let lit = lit_color(
-            &self.obj.material,
-            self.lights,
-            self.world_normal(n, false),
-            self.to_eye(p),
-        );
+        let lit = if self.in_object {
+            // The same dot products without a normal transform per vertex.
+            lit_color(&self.obj.material, self.lights, n, [S::ZERO; 3])
+        } else {
+            lit_color(
+                &self.obj.material,
+                self.lights,
+                self.world_normal(n, false),
+                self.to_eye(p),
+            )
+        };
         pack_channels(C::vertex_channels(lit), C::CHANNEL_MAX)
     }
 
@@ -516,16 +526,27 @@ impl<
             .projection
             .matrix(vp.aspect())
             .mul(&scene.camera.view);
-        let lights = scene.lights.map(|l| PreparedLight::new(&l));
         let mut need = (0usize, 0usize);
         for obj in scene.objects {
             let (normal_matrix, similar) = obj.transform.normal_matrix();
+            let in_object = similar
+                && obj.material.shading == Shading::Gouraud
+                && obj.material.specular <= S::ZERO;
+            // Prepared per object, in place (one array of lights on the stack: a 16 KB part
+            // has no room for a second).
+            let mut lights = scene.lights.map(|l| PreparedLight::new(&l));
+            if in_object {
+                for l in &mut lights {
+                    *l = l.in_object_space(&normal_matrix);
+                }
+            }
             let setup = ObjectSetup {
                 obj,
                 mvp: pv.mul(&obj.transform),
                 normal_matrix,
                 similar,
                 lights: &lights,
+                in_object,
                 eye: scene.camera.eye,
                 base: self.verts.len(),
             };
