@@ -325,12 +325,17 @@ pub fn recip_norm(a: u64) -> (i32, u32) {
 pub fn mul_q32(n: i64, k: u32) -> i64 {
     let hi = n >> 32; // signed
     let lo = n as u32;
-    let l = (mul_wide_u(lo, k) + (1 << 31)) >> 32;
     if hi == hi as i16 as i64 && k < 1 << 16 {
         // Screen scales (8 × the viewport size): |hi·k| < 2³¹, one 32-bit product. (Written
         // as a 32 × 16-bit `mul_wide16`, LLVM turned it back into a library 64-bit multiply.)
+        // The low word's rounded part in two 16-bit products: lo·k = t·2¹⁶ + r with
+        // t = (lo >> 16)·k + ((lo & 0xffff)·k >> 16) < 2³² − 2¹⁶ and r < 2¹⁶, and r cannot
+        // carry the rounding, so (lo·k + 2³¹) >> 32 = (t + 2¹⁵) >> 16.
+        let t = (lo >> 16) * k + (((lo & 0xffff) * k) >> 16);
+        let l = (t + (1 << 15)) >> 16;
         return (hi as i32 * k as i32) as i64 + l as i64;
     }
+    let l = (mul_wide_u(lo, k) + (1 << 31)) >> 32;
     if hi == 0 {
         return l as i64;
     }
@@ -913,6 +918,24 @@ mod tests {
                     .clamp(i64::MIN as i128, i64::MAX as i128) as i64;
                 assert_eq!(mul_q32(n, k), want, "{n} · {k}");
             }
+        }
+        // The 16-bit scale path: every low word pattern class, high words in the i16 range.
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..20_000 {
+            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            let hi = ((x >> 48) as i16) as i64;
+            let lo = (x as u32 ^ (x >> 29) as u32) as i64;
+            let n = (hi << 32) | lo;
+            for k in [1u32, 1920, 8191, 32768, 65535] {
+                let want = (n as i128 * k as i128 + (1 << 31)) >> 32;
+                assert_eq!(mul_q32(n, k) as i128, want, "{n} · {k}");
+            }
+        }
+        for n in [u32::MAX as i64, (1 << 32) - 1, -1, i16::MIN as i64 * (1 << 32)] {
+            assert_eq!(
+                mul_q32(n, 65535) as i128,
+                (n as i128 * 65535 + (1 << 31)) >> 32
+            );
         }
     }
 
