@@ -922,7 +922,9 @@ mod tests {
         // The 16-bit scale path: every low word pattern class, high words in the i16 range.
         let mut x = 0x9e37_79b9_7f4a_7c15u64;
         for _ in 0..20_000 {
-            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             let hi = ((x >> 48) as i16) as i64;
             let lo = (x as u32 ^ (x >> 29) as u32) as i64;
             let n = (hi << 32) | lo;
@@ -931,7 +933,12 @@ mod tests {
                 assert_eq!(mul_q32(n, k) as i128, want, "{n} · {k}");
             }
         }
-        for n in [u32::MAX as i64, (1 << 32) - 1, -1, i16::MIN as i64 * (1 << 32)] {
+        for n in [
+            u32::MAX as i64,
+            (1 << 32) - 1,
+            -1,
+            i16::MIN as i64 * (1 << 32),
+        ] {
             assert_eq!(
                 mul_q32(n, 65535) as i128,
                 (n as i128 * 65535 + (1 << 31)) >> 32
