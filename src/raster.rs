@@ -828,13 +828,23 @@ impl ActiveTri {
 
     /// Keeps the short edge `b → c` at row `row_mid` for a fast Gouraud triangle, in the
     /// fourth words of `gx`, `row` and `inc`, which its packed attributes leave unused (the
-    /// Cortex-M row routine switches to it; the portable path computes the same edge when it
-    /// gets there).
+    /// Cortex-M row routine and the portable [`ActiveTri::advance`] switch to it).
     fn set_pending(&mut self, e: Edge) {
         let pair = |lo: i16, hi: u16| (lo as u16 as u32 | (hi as u32) << 16) as i32;
         self.gx[3] = pair(e.c, e.sq as u16);
         self.row[3] = pair(e.e, e.sr);
         self.inc[3] = e.dy as i32;
+    }
+
+    /// The edge kept by [`ActiveTri::set_pending`].
+    fn pending(&self) -> Edge {
+        Edge {
+            c: self.gx[3] as i16,
+            sq: (self.gx[3] >> 16) as i16,
+            e: self.row[3] as i16,
+            sr: (self.row[3] >> 16) as u16,
+            dy: self.inc[3] as u16,
+        }
     }
 
     /// Sets [`ActiveTri::routine_rows`] for `row`, the next row to draw: rows `x` from `row`
@@ -884,20 +894,28 @@ impl ActiveTri {
     #[inline]
     fn advance(&mut self, next_row: i32) {
         let mid_left = self.flags & MID_LEFT != 0;
+        // The short edge b → c from the switch on: a fast Gouraud triangle has it from setup
+        // ([`ActiveTri::set_pending`], the one the Cortex-M row routine switches to).
+        let switch = (next_row == self.row_mid as i32).then(|| {
+            if self.flags & (FAST | FLAT) == FAST {
+                self.pending()
+            } else {
+                Edge::new(
+                    self.bx as i32,
+                    self.by as i32,
+                    self.cx as i32,
+                    self.cy as i32,
+                    next_row,
+                )
+            }
+        });
         let (long, short) = if mid_left {
             (&mut self.right, &mut self.left)
         } else {
             (&mut self.left, &mut self.right)
         };
         let long_carry = long.step();
-        if next_row == self.row_mid as i32 {
-            let new_short = Edge::new(
-                self.bx as i32,
-                self.by as i32,
-                self.cx as i32,
-                self.cy as i32,
-                next_row,
-            );
+        if let Some(new_short) = switch {
             if mid_left {
                 // Carry the attribute rows over exactly: step along the old left edge's line
                 // to the new row (in 32 bits: extrapolated past its lower end, that column may

@@ -95,7 +95,7 @@ impl<S: Scalar> PreparedLight<S> {
     /// stack of a frame on a 16 KB part.
     pub(crate) fn in_object_space(&self, n: &Mat4<S>) -> Self {
         let col = |j: usize| [n.m[0][j], n.m[1][j], n.m[2][j]];
-        let d = [0, 1, 2].map(|j| S::dot3_add(col(j), self.dir, S::ZERO));
+        let d = [0, 1, 2].map(|j| dot(col(j), self.dir));
         let r = (S::from_i32(3) - dot(d, d)) * S::from_f64(0.5);
         PreparedLight {
             dir: d.map(|v| v * r),
