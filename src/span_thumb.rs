@@ -182,47 +182,47 @@ macro_rules! row_span {
     };
 }
 
-/// The row routine's left-edge step (r0 = the triangle): c += sq, e −= sr; on e < 0:
-/// e += dy, c += 1, and r6 = 1 (the attributes carry), else r6 = 0. Uses r1–r3.
-macro_rules! left_step {
-    () => {
+/// The row routine's step of the left (`$x` = `l`) or right (`r`) edge of the triangle in r0:
+/// c += sq, e −= sr; on e < 0: e += dy and c += 1. With `carry` (the left edge, whose carry
+/// the attributes follow), also r6 = 1 on e < 0, else 0. Uses r1–r3.
+macro_rules! edge_step {
+    ($x:literal) => {
+        edge_step!($x, "", "")
+    };
+    ($x:literal, carry) => {
+        edge_step!($x, "movs r6, #0\n", "movs r6, #1\n")
+    };
+    ($x:literal, $no_carry:literal, $carry:literal) => {
         concat!(
-            "ldrh r2, [r0, #{lc}]\n",
-            "ldrh r3, [r0, #{lsq}]\n",
+            "ldrh r2, [r0, #{",
+            $x,
+            "c}]\n",
+            "ldrh r3, [r0, #{",
+            $x,
+            "sq}]\n",
             "adds r2, r2, r3\n",
-            "ldrh r1, [r0, #{le}]\n",
-            "ldrh r3, [r0, #{lsr}]\n",
-            "movs r6, #0\n",
+            "ldrh r1, [r0, #{",
+            $x,
+            "e}]\n",
+            "ldrh r3, [r0, #{",
+            $x,
+            "sr}]\n",
+            $no_carry,
             "subs r1, r1, r3\n",
             "bpl 7f\n",
-            "ldrh r3, [r0, #{ldy}]\n",
+            "ldrh r3, [r0, #{",
+            $x,
+            "dy}]\n",
             "adds r1, r1, r3\n",
             "adds r2, #1\n",
-            "movs r6, #1\n",
+            $carry,
             "7:\n",
-            "strh r1, [r0, #{le}]\n",
-            "strh r2, [r0, #{lc}]\n",
-        )
-    };
-}
-
-/// The row routine's right-edge step, the same without the carry. Uses r1–r3.
-macro_rules! right_step {
-    () => {
-        concat!(
-            "ldrh r2, [r0, #{rc}]\n",
-            "ldrh r3, [r0, #{rsq}]\n",
-            "adds r2, r2, r3\n",
-            "ldrh r1, [r0, #{re}]\n",
-            "ldrh r3, [r0, #{rsr}]\n",
-            "subs r1, r1, r3\n",
-            "bpl 8f\n",
-            "ldrh r3, [r0, #{rdy}]\n",
-            "adds r1, r1, r3\n",
-            "adds r2, #1\n",
-            "8:\n",
-            "strh r1, [r0, #{re}]\n",
-            "strh r2, [r0, #{rc}]\n",
+            "strh r1, [r0, #{",
+            $x,
+            "e}]\n",
+            "strh r2, [r0, #{",
+            $x,
+            "c}]\n",
         )
     };
 }
@@ -381,7 +381,7 @@ core::arch::global_asm!(
     "bmi 24f",
     // The middle vertex is right: the left edge is the long one and steps as on any row;
     // the right edge becomes the pending one; the attributes step with the left carry.
-    left_step!(),
+    edge_step!("l", carry),
     take_pending!("r"),
     "b 30f",
     // The middle vertex is left: the right edge steps; the left one becomes the pending
@@ -389,7 +389,7 @@ core::arch::global_asm!(
     // then by dc = new c − old stepped c columns, and their row step changes by
     // dsq = new sq − old sq columns.
     "24:",
-    right_step!(),
+    edge_step!("r"),
     "ldrh r1, [r0, #{lc}]",
     "sxth r1, r1",
     "ldrh r2, [r0, #{lsq}]",
@@ -446,8 +446,8 @@ core::arch::global_asm!(
     "strb r4, [r3, #{rrows}]",
     row_span!(),
     // Both edges step (the left one with its carry in r6).
-    left_step!(),
-    right_step!(),
+    edge_step!("l", carry),
+    edge_step!("r"),
     // Packed rows: row += inc, + gx (still in r8–r10) when the left edge carried.
     "30:",
     "movs r4, #{row0}",
