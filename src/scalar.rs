@@ -313,9 +313,10 @@ pub fn recip_norm(a: u64) -> (i32, u32) {
     // 2^61 / a32 ≈ x1 · 2^13, then m' = m + m·(2^61 − a32·m)/2^61.
     let m0 = (x1 as u64) << 13;
     let err = (1i64 << 61) - mul_wide_u(a32, m0 as u32) as i64; // |err| < 2^47
-    let m1 = m0 as i64 + (mul_wide(m0 as i32, (err >> 30) as i32) >> 31);
+                                                                // The correction is below 2¹⁷ in magnitude (|err| < 2⁴⁷, m0 ≤ 2³⁰), so m1 fits an i32.
+    let m1 = m0 as i32 + (mul_wide(m0 as i32, (err >> 30) as i32) >> 31) as i32;
     // 1/a = m1 · 2^-(61 + s − 32).
-    (m1.clamp(1, 1 << 30) as i32, 29 + s)
+    (m1.clamp(1, 1 << 30), 29 + s)
 }
 
 /// `round(n · k / 2³²)` for `|n| < 2⁶²`, `k < 2³¹`, without a 64 × 64-bit multiply: `n` is split
@@ -658,7 +659,14 @@ macro_rules! impl_fx {
                 // v/w = v_bits / w_bits = v_bits · mantissa · 2^-shift; |product| < 2^61.
                 let p = mul_wide(v.0.to_bits(), r.mantissa);
                 let s = r.shift as i32 - NDC_FRAC_BITS as i32;
-                if s > 0 {
+                if s > 0 && s < 32 {
+                    // Every positive 32-bit w: shift = 29 + bitlen(w) ≤ 60, so s ≤ 28.
+                    let (hi, lo) = ((p >> 32) as i32, p as u32);
+                    let (lo, c) = lo.overflowing_add(1 << (s - 1));
+                    let hi = hi + c as i32;
+                    let lo = (lo >> s) | ((hi as u32) << (32 - s));
+                    (((hi >> s) as i64) << 32) | lo as i64
+                } else if s > 0 {
                     round_shr64(p, s as u32)
                 } else {
                     p.saturating_mul(1i64 << (-s).min(62))
