@@ -161,11 +161,8 @@ fn mul_shr_16(m: i32, v: i32, l: u32) -> i32 {
 /// `c − (16·e + k)/(16·dy)` pixels (relative to centres) with `0 ≤ e < dy` and a constant
 /// `0 ≤ k < 16`. Every row step changes the numerator by a multiple of 16, so the DDA keeps
 /// `e = floor(numerator / 16)` exactly and the test `numerator < 0` is `e < 0`: all five
-/// fields fit 16 bits.
-///
-/// Size: 10 bytes.
+/// fields fit 16 bits. Rows step it in the packed form [`EdgeDda`] ([`Edge::dda`]).
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-#[repr(C)] // field offsets are used by the Cortex-M row loop (`span_thumb`)
 pub(crate) struct Edge {
     /// Current pixel boundary (column index; |c| ≤ 1025 on every row the edge is used).
     pub c: i16,
@@ -227,36 +224,73 @@ impl Edge {
         }
     }
 
-    /// Overwrites this edge with `e`, one field at a time.
+    /// The row loops' form of this edge: its two words and `dy`.
     #[inline(always)]
-    fn set(&mut self, e: Edge) {
-        self.c = e.c;
-        self.sq = e.sq;
-        self.e = e.e;
-        self.sr = e.sr;
-        self.dy = e.dy;
+    pub(crate) fn dda(&self) -> (EdgeDda, u16) {
+        let w = ((self.e as u32) << 16) + (self.c as i32 + C_BIAS) as u32;
+        let s = (self.sq as i32 as u32).wrapping_sub((self.sr as u32) << 16);
+        (EdgeDda { w, s }, self.dy)
+    }
+}
+
+/// Bias of the column in [`EdgeDda::w`]: every column an edge takes on a row where it is used
+/// (|c| ≤ 1025), and every sum `c + sq` on the way to the next such row, is in
+/// `−2¹⁵..2¹⁵`, so the biased column is a 16-bit unsigned half that never carries into `e`.
+const C_BIAS: i32 = 1 << 15;
+
+/// An edge as the row loops step it: [`Edge`]'s fields in two words, so that one addition
+/// steps both the column and the remainder and its sign is the carry test.
+///
+/// - `w = e·2¹⁶ + (c + 2¹⁵)`: remainder `0 ≤ e < dy` (< 2¹⁵) in the high half, the biased
+///   column (0..2¹⁶) in the low half.
+/// - `s = sq − sr·2¹⁶` (modulo 2³²): the low half is `sq` (as an `i16`), the high half is
+///   the remainder's step.
+///
+/// `w + s = (e − sr)·2¹⁶ + (c + sq + 2¹⁵)` exactly, whose sign is that of `e − sr`; when it is
+/// negative, adding `dy·2¹⁶ + 1` gives `e − sr + dy` and `c + sq + 1`, as [`Edge`]'s step.
+/// `dy` (≤ 32 766) is kept beside the words ([`ActiveTri::dy`]). Size: 8 bytes.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[repr(C)] // field offsets are used by the Cortex-M row loop (`span_thumb`)
+pub(crate) struct EdgeDda {
+    w: u32,
+    s: u32,
+}
+
+impl EdgeDda {
+    /// The current pixel boundary.
+    #[inline(always)]
+    pub(crate) fn c(&self) -> i32 {
+        (self.w & 0xffff) as i32 - C_BIAS
     }
 
-    /// Moves to the next row; returns true when the boundary moved by `sq + 1` instead of `sq`.
+    /// Whole pixels the boundary moves per row (floor).
     #[inline(always)]
-    pub(crate) fn step(&mut self) -> bool {
-        let e = self.e as i32 - self.sr as i32;
-        self.c = self.c.wrapping_add(self.sq);
-        if e < 0 {
-            self.e = (e + self.dy as i32) as i16;
-            self.c = self.c.wrapping_add(1);
+    pub(crate) fn sq(&self) -> i32 {
+        self.s as i16 as i32
+    }
+
+    /// Moves to the next row (`dy` is this edge's); returns true when the boundary moved by
+    /// `sq + 1` instead of `sq`.
+    #[inline(always)]
+    pub(crate) fn step(&mut self, dy: u16) -> bool {
+        let w = self.w.wrapping_add(self.s);
+        if (w as i32) < 0 {
+            self.w = w.wrapping_add((dy as u32) << 16 | 1);
             true
         } else {
-            self.e = e as i16;
+            self.w = w;
             false
         }
     }
 
-    /// The column and carry [`Edge::step`] would give, in 32 bits, without moving.
+    /// The column and carry [`EdgeDda::step`] would give, in 32 bits, without moving (one row
+    /// past the edge's end the column may leave the range of the packed half).
     #[inline(always)]
     fn peek(&self) -> (i32, bool) {
-        let carry = (self.e as i32) < self.sr as i32;
-        (self.c as i32 + self.sq as i32 + carry as i32, carry)
+        let e = self.w >> 16;
+        let sr = (self.sq() as u32).wrapping_sub(self.s) >> 16;
+        let carry = e < sr;
+        (self.c() + self.sq() + carry as i32, carry)
     }
 }
 
@@ -401,8 +435,10 @@ pub(crate) struct ActiveTri {
     /// bytes that would otherwise be padding: the index of the entry's slot (`0..N`) XOR `i`,
     /// so that the all-zero records of a new list are the identity order.
     ord: u16,
-    left: Edge,
-    right: Edge,
+    /// The left and right edges.
+    edges: [EdgeDda; 2],
+    /// `dy` of the left and right edges (see [`EdgeDda`]).
+    dy: [u16; 2],
     /// Row where the short edge changes from a→b to b→c (|·| ≤ 1025).
     row_mid: i16,
     /// First row not covered (≤ 1024).
@@ -545,15 +581,14 @@ impl<const N: usize> ActiveList<N> {
 /// Byte offsets of the fields the Cortex-M row loop reads and writes.
 #[cfg(all(target_arch = "arm", target_os = "none"))]
 pub(crate) mod offsets {
-    use super::{ActiveTri, Edge};
-    use core::mem::offset_of;
-    pub const LEFT: usize = offset_of!(ActiveTri, left);
-    pub const RIGHT: usize = offset_of!(ActiveTri, right);
-    pub const C: usize = offset_of!(Edge, c);
-    pub const SQ: usize = offset_of!(Edge, sq);
-    pub const E: usize = offset_of!(Edge, e);
-    pub const SR: usize = offset_of!(Edge, sr);
-    pub const DY: usize = offset_of!(Edge, dy);
+    use super::{ActiveTri, EdgeDda};
+    use core::mem::{offset_of, size_of};
+    pub const LEFT: usize = offset_of!(ActiveTri, edges);
+    pub const RIGHT: usize = LEFT + size_of::<EdgeDda>();
+    pub const W: usize = offset_of!(EdgeDda, w);
+    pub const S: usize = offset_of!(EdgeDda, s);
+    pub const LEFT_DY: usize = offset_of!(ActiveTri, dy);
+    pub const RIGHT_DY: usize = LEFT_DY + 2;
     pub const GX: usize = offset_of!(ActiveTri, gx);
     pub const ROW: usize = offset_of!(ActiveTri, row);
     pub const INC: usize = offset_of!(ActiveTri, inc);
@@ -567,11 +602,11 @@ pub(crate) mod offsets {
     pub const MID_LEFT: u8 = super::MID_LEFT;
     pub const ROW_MID: usize = offset_of!(ActiveTri, row_mid);
     pub const ROW_END: usize = offset_of!(ActiveTri, row_end);
-    /// The pending short edge of a fast Gouraud triangle ([`ActiveTri::set_pending`]): `c`
-    /// and `sq` in the fourth `gx` word, `e` and `sr` in the fourth `row` word, `dy` in the
-    /// fourth `inc` word (low halves first).
-    pub const PEND_C: usize = GX + 12;
-    pub const PEND_E: usize = ROW + 12;
+    /// The pending short edge of a fast Gouraud triangle ([`ActiveTri::set_pending`]): its
+    /// `w` word in the fourth `gx` word, `s` in the fourth `row` word, `dy` in the fourth
+    /// `inc` word.
+    pub const PEND_W: usize = GX + 12;
+    pub const PEND_S: usize = ROW + 12;
     pub const PEND_DY: usize = INC + 12;
 }
 
@@ -581,20 +616,8 @@ impl ActiveTri {
         flags: 0,
         routine_rows: 0,
         ord: 0,
-        left: Edge {
-            c: 0,
-            sq: 0,
-            e: 0,
-            sr: 0,
-            dy: 1,
-        },
-        right: Edge {
-            c: 0,
-            sq: 0,
-            e: 0,
-            sr: 0,
-            dy: 1,
-        },
+        edges: [EdgeDda { w: 0, s: 0 }; 2],
+        dy: [1; 2],
         row_mid: 0,
         row_end: 0,
         bx: 0,
@@ -805,10 +828,9 @@ impl ActiveTri {
             row_v[0] = row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
         }
         let flags = (mid_left as u8 * MID_LEFT) | (flat as u8 * FLAT) | (fast as u8 * FAST);
-        // Field by field: the right edge is not word-aligned, and a whole-`Edge` assignment
-        // became a library `memcpy` on a Cortex-M0.
-        self.left.set(left);
-        self.right.set(right);
+        let ((lw, ldy), (rw, rdy)) = (left.dda(), right.dda());
+        self.edges = [lw, rw];
+        self.dy = [ldy, rdy];
         self.row_mid = row_mid as i16;
         self.row_end = row_end as i16;
         self.bx = bx as i16;
@@ -830,21 +852,21 @@ impl ActiveTri {
     /// fourth words of `gx`, `row` and `inc`, which its packed attributes leave unused (the
     /// Cortex-M row routine and the portable [`ActiveTri::advance`] switch to it).
     fn set_pending(&mut self, e: Edge) {
-        let pair = |lo: i16, hi: u16| (lo as u16 as u32 | (hi as u32) << 16) as i32;
-        self.gx[3] = pair(e.c, e.sq as u16);
-        self.row[3] = pair(e.e, e.sr);
-        self.inc[3] = e.dy as i32;
+        let (d, dy) = e.dda();
+        self.gx[3] = d.w as i32;
+        self.row[3] = d.s as i32;
+        self.inc[3] = dy as i32;
     }
 
     /// The edge kept by [`ActiveTri::set_pending`].
-    fn pending(&self) -> Edge {
-        Edge {
-            c: self.gx[3] as i16,
-            sq: (self.gx[3] >> 16) as i16,
-            e: self.row[3] as i16,
-            sr: (self.row[3] >> 16) as u16,
-            dy: self.inc[3] as u16,
-        }
+    fn pending(&self) -> (EdgeDda, u16) {
+        (
+            EdgeDda {
+                w: self.gx[3] as u32,
+                s: self.row[3] as u32,
+            },
+            self.inc[3] as u16,
+        )
     }
 
     /// Sets [`ActiveTri::routine_rows`] for `row`, the next row to draw: rows `x` from `row`
@@ -907,24 +929,28 @@ impl ActiveTri {
                     self.cy as i32,
                     next_row,
                 )
+                .dda()
             }
         });
-        let (long, short) = if mid_left {
-            (&mut self.right, &mut self.left)
+        let [left, right] = &mut self.edges;
+        let [left_dy, right_dy] = &mut self.dy;
+        let (long, long_dy, short, short_dy) = if mid_left {
+            (right, *right_dy, left, left_dy)
         } else {
-            (&mut self.left, &mut self.right)
+            (left, *left_dy, right, right_dy)
         };
-        let long_carry = long.step();
-        if let Some(new_short) = switch {
+        let long_carry = long.step(long_dy);
+        if let Some((new_short, new_dy)) = switch {
             if mid_left {
                 // Carry the attribute rows over exactly: step along the old left edge's line
                 // to the new row (in 32 bits: extrapolated past its lower end, that column may
                 // leave the i16 range), then move by whole pixels to the new edge's first
                 // column, and change the row increment for the new edge's slope.
                 let (c_old, carry) = short.peek();
-                let dc = new_short.c as i32 - c_old;
-                let dsq = new_short.sq as i32 - short.sq as i32;
+                let dc = new_short.c() - c_old;
+                let dsq = new_short.sq() - short.sq();
                 *short = new_short;
+                *short_dy = new_dy;
                 self.step_attrs(carry);
                 for k in 0..self.n_attrs() {
                     let g = self.gx[k];
@@ -934,9 +960,10 @@ impl ActiveTri {
                 return;
             }
             *short = new_short;
+            *short_dy = new_dy;
             self.step_attrs(long_carry);
         } else {
-            let short_carry = short.step();
+            let short_carry = short.step(*short_dy);
             self.step_attrs(if mid_left { short_carry } else { long_carry });
         }
     }
@@ -976,7 +1003,7 @@ impl ActiveTri {
         dither: bool,
     ) -> (u32, u32, bool) {
         let width = colors.len().min(depth.len()) as i32;
-        let (lc, rc) = (self.left.c as i32, self.right.c as i32);
+        let (lc, rc) = (self.edges[0].c(), self.edges[1].c());
         let xs = lc.max(0);
         let xe = rc.min(width);
         let flat = self.flags & FLAT != 0;
@@ -1320,14 +1347,18 @@ mod tests {
         for (xa, ya, xb, yb) in cases {
             let first = first_pixel(ya);
             let end = first_pixel(yb);
-            let mut e = Edge::new(xa, ya, xb, yb, first);
+            let (mut e, dy) = Edge::new(xa, ya, xb, yb, first).dda();
             for row in first..end.min(first + 3000) {
                 assert_eq!(
-                    e.c as i32,
+                    e.c(),
                     reference(xa, ya, xb, yb, row),
                     "edge {xa},{ya}->{xb},{yb} row {row}"
                 );
-                e.step();
+                let (c, carry) = e.peek();
+                assert_eq!(e.step(dy), carry);
+                if row + 1 < end {
+                    assert_eq!(e.c(), c);
+                }
             }
             // Starting anywhere gives the same value.
             let mid = (first + end) / 2;

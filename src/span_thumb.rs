@@ -137,26 +137,30 @@ core::arch::global_asm!(
     ".size scanline3d_span565_less, . - scanline3d_span565_less",
 );
 
-/// One row of the triangle in r3 (r5 = its `left.c << 16`, `left.c ≥ 0`) for the row
-/// routine: loads its three per-pixel steps into r8–r10 (kept after the span: the row step
+/// One row of the triangle in r3 (r5 = its left edge's `w << 16`, with `left.c ≥ 0`) for the
+/// row routine: loads its three per-pixel steps into r8–r10 (kept after the span: the row step
 /// reuses them), draws the span `left.c..min(right.c, width)` with [`pixel_loop`] (r7 counts
-/// hidden pixels, lr fragments, across the routine's call) and ends with r0 = r12 = the
-/// triangle. Reads the stack frame of `scanline3d_rows565`.
+/// hidden pixels, lr twice the fragments, across the routine's call) and ends with
+/// r0 = r12 = the triangle. Reads the stack frame of `scanline3d_rows565`. On a row it draws,
+/// `right.c ≥ left.c ≥ 0`, so both biased columns (`raster::EdgeDda`) give twice the column
+/// as `(w << 17) >> 16`.
 macro_rules! row_span {
     () => {
         concat!(
             "mov r12, r3\n",
-            "lsrs r4, r5, #16\n",
+            "lsls r4, r5, #1\n",
+            "lsrs r4, r4, #16\n",
             "adds r3, #{gx0}\n",
             "ldm r3!, {{r0, r1, r2}}\n",
             "mov r8, r0\n",
             "mov r9, r1\n",
             "mov r10, r2\n",
             "mov r3, r12\n",
-            // xe = min(right.c, width); an empty span draws nothing.
+            // In bytes: xe = min(right.c, width); an empty span draws nothing.
             "ldr r1, [sp, #20]\n",
-            "ldrh r5, [r3, #{rc}]\n",
-            "sxth r5, r5\n",
+            "ldr r5, [r3, #{rw}]\n",
+            "lsls r5, r5, #17\n",
+            "lsrs r5, r5, #16\n",
             "cmp r5, r1\n",
             "ble 4f\n",
             "mov r5, r1\n",
@@ -165,9 +169,7 @@ macro_rules! row_span {
             "ble 5f\n",
             "add lr, r6\n",
             "ldr r1, [sp, #12]\n",
-            "lsls r4, r4, #1\n",
             "adds r0, r1, r4\n",
-            "lsls r5, r5, #1\n",
             "adds r5, r1, r5\n",
             "mov r11, r5\n",
             "ldr r1, [sp, #16]\n",
@@ -182,9 +184,10 @@ macro_rules! row_span {
     };
 }
 
-/// The row routine's step of the left (`$x` = `l`) or right (`r`) edge of the triangle in r0:
-/// c += sq, e −= sr; on e < 0: e += dy and c += 1. With `carry` (the left edge, whose carry
-/// the attributes follow), also r6 = 1 on e < 0, else 0. Uses r1–r3.
+/// The row routine's step of the left (`$x` = `l`) or right (`r`) edge of the triangle in r0
+/// (`raster::EdgeDda`): w += s; when that is negative, w += dy·2¹⁶ + 1. With `carry` (the
+/// left edge, whose carry the attributes follow), also r6 = 1 when it was negative, else 0.
+/// Uses r1 and r2.
 macro_rules! edge_step {
     ($x:literal) => {
         edge_step!($x, "", "")
@@ -194,35 +197,26 @@ macro_rules! edge_step {
     };
     ($x:literal, $no_carry:literal, $carry:literal) => {
         concat!(
+            "ldr r1, [r0, #{",
+            $x,
+            "w}]\n",
+            "ldr r2, [r0, #{",
+            $x,
+            "s}]\n",
+            $no_carry,
+            "adds r1, r1, r2\n",
+            "bpl 7f\n",
             "ldrh r2, [r0, #{",
             $x,
-            "c}]\n",
-            "ldrh r3, [r0, #{",
-            $x,
-            "sq}]\n",
-            "adds r2, r2, r3\n",
-            "ldrh r1, [r0, #{",
-            $x,
-            "e}]\n",
-            "ldrh r3, [r0, #{",
-            $x,
-            "sr}]\n",
-            $no_carry,
-            "subs r1, r1, r3\n",
-            "bpl 7f\n",
-            "ldrh r3, [r0, #{",
-            $x,
             "dy}]\n",
-            "adds r1, r1, r3\n",
+            "lsls r2, r2, #16\n",
             "adds r2, #1\n",
+            "adds r1, r1, r2\n",
             $carry,
             "7:\n",
-            "strh r1, [r0, #{",
+            "str r1, [r0, #{",
             $x,
-            "e}]\n",
-            "strh r2, [r0, #{",
-            $x,
-            "c}]\n",
+            "w}]\n",
         )
     };
 }
@@ -232,22 +226,14 @@ macro_rules! edge_step {
 macro_rules! take_pending {
     ($x:literal) => {
         concat!(
-            "ldr r1, [r0, #{pend_c}]\n",
-            "strh r1, [r0, #{",
+            "ldr r1, [r0, #{pend_w}]\n",
+            "str r1, [r0, #{",
             $x,
-            "c}]\n",
-            "lsrs r1, r1, #16\n",
-            "strh r1, [r0, #{",
+            "w}]\n",
+            "ldr r1, [r0, #{pend_s}]\n",
+            "str r1, [r0, #{",
             $x,
-            "sq}]\n",
-            "ldr r1, [r0, #{pend_e}]\n",
-            "strh r1, [r0, #{",
-            $x,
-            "e}]\n",
-            "lsrs r1, r1, #16\n",
-            "strh r1, [r0, #{",
-            $x,
-            "sr}]\n",
+            "s}]\n",
             "ldr r1, [r0, #{pend_dy}]\n",
             "strh r1, [r0, #{",
             $x,
@@ -303,8 +289,9 @@ core::arch::global_asm!(
     save_registers!(),
     // The context's first six words are copied to the stack, each a single load away:
     // [sp] = tris, [sp, #4] = n, [sp, #8] = i, [sp, #12] = the depth line, [sp, #16] = the
-    // colour offset, [sp, #20] = the width; [sp, #24] = the context. r7 counts hidden pixels
-    // and lr fragments for the whole call (the return address is on the stack).
+    // colour offset, [sp, #20] = twice the width; [sp, #24] = the context. r7 counts hidden
+    // pixels and lr twice the fragments for the whole call (the return address is on the
+    // stack).
     "push {{r0}}",
     "ldm r0!, {{r1, r2, r3, r4, r5, r6}}",
     "push {{r1, r2, r3, r4, r5, r6}}",
@@ -325,9 +312,9 @@ core::arch::global_asm!(
     "ldrb r4, [r3, #{flags}]",
     "lsls r5, r4, #{last_shift}",
     "bpl 26f",
-    "ldrh r5, [r3, #{lc}]",
+    "ldr r5, [r3, #{lw}]",
     "lsls r5, r5, #16",
-    "bmi 12b",
+    "bpl 12b",
     row_span!(),
     "ldr r1, [sp, #8]",
     "ldr r2, [sp, #4]",
@@ -355,9 +342,9 @@ core::arch::global_asm!(
     "26:",
     "lsls r5, r4, #{switch_shift}",
     "bpl 12b",
-    "ldrh r5, [r3, #{lc}]",
+    "ldr r5, [r3, #{lw}]",
     "lsls r5, r5, #16",
-    "bmi 12b",
+    "bpl 12b",
     row_span!(),
     // Count and flags for the rows from the switch on: row_end − 1 − row_mid, last row flag
     // when it is at most 255.
@@ -390,25 +377,30 @@ core::arch::global_asm!(
     // dsq = new sq − old sq columns.
     "24:",
     edge_step!("r"),
-    "ldrh r1, [r0, #{lc}]",
-    "sxth r1, r1",
-    "ldrh r2, [r0, #{lsq}]",
-    "sxth r2, r2",
-    "adds r1, r1, r2",
-    "ldrh r4, [r0, #{le}]",
-    "ldrh r5, [r0, #{lsr}]",
+    // In 32 bits (one row past its end the old edge's column may leave the packed half):
+    // biased c + sq + carry, with carry = e < sr, e = w >> 16 and sr = (sq − s) >> 16.
+    "ldr r1, [r0, #{lw}]",
+    "uxth r4, r1",
+    "ldr r2, [r0, #{ls}]",
+    "sxth r5, r2",
+    "adds r4, r4, r5",
+    "subs r2, r5, r2",
+    "lsrs r1, r1, #16",
+    "lsrs r2, r2, #16",
     "movs r6, #0",
-    "cmp r4, r5",
+    "cmp r1, r2",
     "bhs 25f",
     "movs r6, #1",
     "25:",
-    "adds r1, r1, r6",
-    "ldr r3, [r0, #{pend_c}]",
-    "sxth r4, r3",
+    "adds r1, r4, r6",
+    // dc + carry = (new biased c − that) + carry; dsq = new sq − old sq.
+    "ldr r3, [r0, #{pend_w}]",
+    "uxth r4, r3",
     "subs r4, r4, r1",
     "adds r4, r4, r6",
-    "asrs r3, r3, #16",
-    "subs r3, r3, r2",
+    "ldr r3, [r0, #{pend_s}]",
+    "sxth r3, r3",
+    "subs r3, r3, r5",
     take_pending!("l"),
     carry_attr!("0", "r8"),
     carry_attr!("1", "r9"),
@@ -440,9 +432,9 @@ core::arch::global_asm!(
     "ldrb r4, [r3, #{rrows}]",
     "subs r4, #1",
     "bcc 19f",
-    "ldrh r5, [r3, #{lc}]",
+    "ldr r5, [r3, #{lw}]",
     "lsls r5, r5, #16",
-    "bmi 14b",
+    "bpl 14b",
     "strb r4, [r3, #{rrows}]",
     row_span!(),
     // Both edges step (the left one with its carry in r6).
@@ -482,6 +474,7 @@ core::arch::global_asm!(
     "ldr r2, [sp, #8]",
     "str r2, [r1, #{ci}]",
     "mov r2, lr",
+    "lsrs r2, r2, #1",
     "str r2, [r1, #{cfrag}]",
     "str r7, [r1, #{chidden}]",
     "add sp, #28",
@@ -502,24 +495,20 @@ core::arch::global_asm!(
     last_flag = const o::LAST,
     row_mid = const o::ROW_MID,
     row_end = const o::ROW_END,
-    pend_c = const o::PEND_C,
-    pend_e = const o::PEND_E,
+    pend_w = const o::PEND_W,
+    pend_s = const o::PEND_S,
     pend_dy = const o::PEND_DY,
     row1 = const o::ROW + 4,
     row2 = const o::ROW + 8,
     inc0 = const o::INC,
     inc1 = const o::INC + 4,
     inc2 = const o::INC + 8,
-    lc = const o::LEFT + o::C,
-    lsq = const o::LEFT + o::SQ,
-    le = const o::LEFT + o::E,
-    lsr = const o::LEFT + o::SR,
-    ldy = const o::LEFT + o::DY,
-    rc = const o::RIGHT + o::C,
-    rsq = const o::RIGHT + o::SQ,
-    re = const o::RIGHT + o::E,
-    rsr = const o::RIGHT + o::SR,
-    rdy = const o::RIGHT + o::DY,
+    lw = const o::LEFT + o::W,
+    ls = const o::LEFT + o::S,
+    ldy = const o::LEFT_DY,
+    rw = const o::RIGHT + o::W,
+    rs = const o::RIGHT + o::S,
+    rdy = const o::RIGHT_DY,
     gx0 = const o::GX,
     row0 = const o::ROW,
 );
@@ -528,12 +517,8 @@ core::arch::global_asm!(
 // today, which clippy finds absurd to compare; the layout may change).
 #[allow(clippy::absurd_extreme_comparisons)]
 const _: () = {
-    let h = [o::LEFT, o::RIGHT];
-    let mut i = 0;
-    while i < 2 {
-        assert!(h[i] % 2 == 0 && h[i] + o::DY <= 62);
-        i += 1;
-    }
+    assert!(o::LEFT % 4 == 0 && o::RIGHT % 4 == 0 && o::RIGHT + o::S <= 124);
+    assert!(o::W == 0 && o::S == 4 && o::LEFT_DY % 2 == 0 && o::RIGHT_DY <= 62);
     assert!(o::GX % 4 == 0 && o::ROW == o::GX + 16 && o::INC == o::ROW + 16);
     assert!(o::INC + 12 <= 255);
     assert!(core::mem::size_of::<ActiveTri>() <= 255);
@@ -831,7 +816,8 @@ struct RowCtx {
     i: usize,
     depth: *mut u16,
     color_offset: isize,
-    width: i32,
+    /// Twice the width (the routine's columns are byte offsets).
+    width_bytes: i32,
     fragments: u32,
     hidden: u32,
 }
@@ -841,7 +827,7 @@ const _: () = {
     use core::mem::offset_of;
     assert!(offset_of!(RowCtx, tris) == 0 && offset_of!(RowCtx, n) == 4);
     assert!(offset_of!(RowCtx, i) == 8 && offset_of!(RowCtx, depth) == 12);
-    assert!(offset_of!(RowCtx, color_offset) == 16 && offset_of!(RowCtx, width) == 20);
+    assert!(offset_of!(RowCtx, color_offset) == 16 && offset_of!(RowCtx, width_bytes) == 20);
 };
 
 /// Draws one row of the active triangles `start..` for as long as they are fast Gouraud
@@ -872,7 +858,7 @@ pub(crate) fn rows565<C: TargetColor, const N: usize>(
         i: start,
         depth: zp,
         color_offset: (colors.as_mut_ptr() as isize).wrapping_sub(zp as isize),
-        width: colors.len().min(depth.len()).min(1024) as i32,
+        width_bytes: 2 * colors.len().min(depth.len()).min(1024) as i32,
         fragments: 0,
         hidden: 0,
     };
