@@ -1099,6 +1099,10 @@ fn span_flat<C: TargetColor, const T: u8>(
     gz: i32,
     color: C,
 ) -> u32 {
+    #[cfg(all(target_arch = "arm", target_os = "none"))]
+    if T == LESS && crate::span_thumb::rgb565_words::<C>() {
+        return crate::span_thumb::span565_flat_less(zs, cs, z, gz, color);
+    }
     let mut written = 0;
     for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
         let z16 = (z >> DEPTH_FRAC_BITS) as u16;
