@@ -225,18 +225,31 @@ macro_rules! row_span {
     };
 }
 
-/// The row routine's step of the left (`$x` = `l`) or right (`r`) edge of the triangle in r0
-/// (`raster::EdgeDda`): w += s; when that is negative, w += dy·2¹⁶ + 1. With `carry` (the
-/// left edge, whose carry the attributes follow), also r6 = 1 when it was negative, else 0.
-/// Uses r1 and r2.
+/// The packed attribute rows of the triangle in r0 step by one row: row += inc, then
+/// `$carry` (adds r1–r3 the steps in r8–r10 when the left edge carried). Uses r0–r6.
+macro_rules! row_step {
+    ($carry:literal) => {
+        concat!(
+            "movs r4, #{row0}\n",
+            "adds r4, r0, r4\n",
+            "ldm r4!, {{r1, r2, r3}}\n",
+            "adds r4, #4\n",
+            "ldm r4!, {{r0, r5, r6}}\n",
+            "adds r1, r1, r0\n",
+            "adds r2, r2, r5\n",
+            "adds r3, r3, r6\n",
+            $carry,
+            "subs r4, #28\n",
+            "stm r4!, {{r1, r2, r3}}\n",
+        )
+    };
+}
+
+/// The row routine's step of the right (`$x` = `r`) edge of the triangle in r0
+/// (`raster::EdgeDda`): w += s; when that is negative, w += dy·2¹⁶ + 1. Uses r1 and r2. (The
+/// left edge's step is spelled out in the routine, where each outcome has its own row step.)
 macro_rules! edge_step {
     ($x:literal) => {
-        edge_step!($x, "", "")
-    };
-    ($x:literal, carry) => {
-        edge_step!($x, "movs r6, #0\n", "movs r6, #1\n")
-    };
-    ($x:literal, $no_carry:literal, $carry:literal) => {
         concat!(
             "ldr r1, [r0, #{",
             $x,
@@ -244,7 +257,6 @@ macro_rules! edge_step {
             "ldr r2, [r0, #{",
             $x,
             "s}]\n",
-            $no_carry,
             "adds r1, r1, r2\n",
             "bpl 7f\n",
             "ldrh r2, [r0, #{",
@@ -253,7 +265,6 @@ macro_rules! edge_step {
             "lsls r2, r2, #16\n",
             "adds r2, #1\n",
             "adds r1, r1, r2\n",
-            $carry,
             "7:\n",
             "str r1, [r0, #{",
             $x,
@@ -407,11 +418,10 @@ core::arch::global_asm!(
     "strb r1, [r0, #{rrows}]",
     "lsls r2, r2, #{mid_left_shift}",
     "bmi 24f",
-    // The middle vertex is right: the left edge is the long one and steps as on any row;
-    // the right edge becomes the pending one; the attributes step with the left carry.
-    edge_step!("l", carry),
+    // The middle vertex is right: the right edge becomes the pending one; the left edge is
+    // the long one and steps with the attributes as on any row.
     take_pending!("r"),
-    "b 30f",
+    "b 29f",
     // The middle vertex is left: the right edge steps; the left one becomes the pending
     // one, and the attributes move along the old left edge by one row (with its carry),
     // then by dc = new c − old stepped c columns, and their row step changes by
@@ -455,6 +465,7 @@ core::arch::global_asm!(
     "b 13f",
     "10:",
     "ldr r1, [sp, #8]",
+    "15:",
     "ldr r2, [sp, #4]",
     "cmp r1, r2",
     "bhs 11b",
@@ -478,34 +489,33 @@ core::arch::global_asm!(
     "bpl 14b",
     "strb r4, [r3, #{rrows}]",
     row_span!(),
-    // Both edges step (the left one with its carry in r6).
-    edge_step!("l", carry),
     edge_step!("r"),
-    // Packed rows: row += inc, + gx (still in r8–r10) when the left edge carried.
-    "30:",
-    "movs r4, #{row0}",
-    "adds r4, r0, r4",
-    "ldm r4!, {{r1, r2, r3}}",
-    "ldr r5, [r4, #4]",
-    "adds r1, r1, r5",
-    "ldr r5, [r4, #8]",
-    "adds r2, r2, r5",
-    "ldr r5, [r4, #12]",
-    "adds r3, r3, r5",
-    "cmp r6, #0",
-    "beq 9f",
-    "add r1, r8",
-    "add r2, r9",
-    "add r3, r10",
-    "9:",
-    "subs r4, #12",
-    "stm r4!, {{r1, r2, r3}}",
+    // The left edge steps (`edge_step!`), and the packed rows with it: row += inc, and
+    // + gx (still in r8–r10) when the left edge carried; one path for each.
+    "29:",
+    "ldr r1, [r0, #{lw}]",
+    "ldr r2, [r0, #{ls}]",
+    "adds r1, r1, r2",
+    "bmi 8f",
+    "str r1, [r0, #{lw}]",
+    row_step!(""),
     // The next triangle.
     "31:",
     "ldr r1, [sp, #8]",
     "adds r1, #1",
     "str r1, [sp, #8]",
-    "b 10b",
+    "b 15b",
+    "8:",
+    "ldrh r2, [r0, #{ldy}]",
+    "lsls r2, r2, #16",
+    "adds r2, #1",
+    "adds r1, r1, r2",
+    "str r1, [r0, #{lw}]",
+    row_step!("add r1, r8\nadd r2, r9\nadd r3, r10\n"),
+    "ldr r1, [sp, #8]",
+    "adds r1, #1",
+    "str r1, [sp, #8]",
+    "b 15b",
     "19:",
     "b 20b",
     "13:",
