@@ -432,9 +432,10 @@ pub(crate) struct ActiveTri {
     /// ([`ActiveTri::set_routine_rows`]); the routine counts it down.
     routine_rows: u8,
     /// Not this triangle's data: entry `i` of [`ActiveList`]'s order lives in slot `i`, in
-    /// bytes that would otherwise be padding: the index of the entry's slot (`0..N`) XOR `i`,
-    /// so that the all-zero records of a new list are the identity order.
-    ord: u16,
+    /// bytes that would otherwise be padding: the index of the entry's slot (`0..N`) minus `i`
+    /// (an `i16`, −N < · < N), so that the all-zero records of a new list are the identity
+    /// order and the entry's record is `84·ord` bytes from slot `i`'s.
+    ord: i16,
     /// The left and right edges.
     edges: [EdgeDda; 2],
     /// `dy` of the left and right edges (see [`EdgeDda`]).
@@ -508,13 +509,13 @@ impl<const N: usize> ActiveList<N> {
         self.len = 0;
     }
 
-    /// Most slots whose indices fit the order entries.
-    pub(crate) const MAX: usize = 1 << 16;
+    /// Most slots whose index differences fit the order entries.
+    pub(crate) const MAX: usize = 1 << 15;
 
     /// The slot of list entry `i` (`i < slots.len()`).
     #[inline(always)]
     fn slot(&self, i: usize) -> usize {
-        (self.slots[i].ord ^ i as u16) as usize
+        (i as isize + self.slots[i].ord as isize) as usize
     }
 
     /// Entry `i` of the list (`i < len`).
@@ -547,8 +548,8 @@ impl<const N: usize> ActiveList<N> {
     pub(crate) fn swap_remove(&mut self, i: usize) {
         let last = self.len - 1;
         let (a, b) = (self.slot(i), self.slot(last));
-        self.slots[i].ord = (b ^ i) as u16;
-        self.slots[last].ord = (a ^ last) as u16;
+        self.slots[i].ord = (b as isize - i as isize) as i16;
+        self.slots[last].ord = (a as isize - last as isize) as i16;
         self.len = last;
     }
 
@@ -1430,7 +1431,7 @@ mod tests {
         let mut full = ActiveList::<2>::new();
         assert!(full.push_with(|_| true) && full.push_with(|_| true));
         assert!(!full.push_with(|_| true));
-        assert_eq!(ActiveList::<2>::MAX, 65536);
+        assert_eq!(ActiveList::<2>::MAX, 32768);
     }
 
     #[test]

@@ -330,7 +330,7 @@ impl<
         assert!(VERTS <= FLAT_BIT as usize, "VERTS must be at most 32768");
         assert!(
             ACTIVE <= ActiveList::<ACTIVE>::MAX,
-            "ACTIVE must be at most 65536"
+            "ACTIVE must be at most 32768"
         );
     };
 

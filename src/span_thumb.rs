@@ -339,17 +339,24 @@ core::arch::global_asm!(
     // `rows565`); returns 0 when it reached n, 1 when triangle i needs the portable path.
     "scanline3d_rows565:",
     save_registers!(),
-    // The context's first six words are copied to the stack, each a single load away:
-    // [sp] = tris, [sp, #4] = n, [sp, #8] = i, [sp, #12] = the depth line, [sp, #16] = the
-    // colour offset, [sp, #20] = twice the width; [sp, #24] = the context. r7 counts hidden
-    // pixels and lr twice the fragments for the whole call (the return address is on the
-    // stack).
+    // The context's first six words are copied to the stack, each a single load away, with
+    // the indices as slot addresses: [sp] = tris, [sp, #4] = slot n, [sp, #8] = slot i,
+    // [sp, #12] = the depth line, [sp, #16] = the colour offset, [sp, #20] = twice the width;
+    // [sp, #24] = the context. r7 counts hidden pixels and lr twice the fragments for the
+    // whole call (the return address is on the stack).
     "push {{r0}}",
     "ldm r0!, {{r1, r2, r3, r4, r5, r6}}",
+    "movs r7, #{size}",
+    "muls r2, r7, r2",
+    "adds r2, r1, r2",
+    "muls r3, r7, r3",
+    "adds r3, r1, r3",
     "push {{r1, r2, r3, r4, r5, r6}}",
     "movs r7, #0",
     "mov lr, r7",
     "b 10f",
+    ".p2align 2",
+    ".ltorg",
     // Exits within reach of the conditional branches of the sections below them.
     "12:",
     "movs r0, #1",
@@ -368,25 +375,23 @@ core::arch::global_asm!(
     "lsls r5, r5, #16",
     "bpl 12b",
     row_span!(),
+    // Entries i and last = n − 1 swap slots: with d = last − i (the slot addresses' distance
+    // over 84, an exact division: a product with the inverse of 21 modulo 2³²),
+    // ord_i = ord_last + d and ord_last = ord_i − d (16-bit stores wrap alike).
     "ldr r1, [sp, #8]",
     "ldr r2, [sp, #4]",
-    "subs r2, #1",
+    "subs r2, #{size}",
     "str r2, [sp, #4]",
-    "ldr r3, [sp]",
-    "movs r4, #{size}",
-    "muls r4, r1, r4",
-    "adds r4, r3, r4",
-    "movs r5, #{size}",
-    "muls r5, r2, r5",
-    "adds r5, r3, r5",
-    "ldrh r6, [r4, #{ord}]",
-    "eors r6, r1",
-    "ldrh r0, [r5, #{ord}]",
-    "eors r0, r2",
-    "eors r0, r1",
-    "strh r0, [r4, #{ord}]",
-    "eors r6, r2",
-    "strh r6, [r5, #{ord}]",
+    "ldrh r4, [r1, #{ord}]",
+    "ldrh r5, [r2, #{ord}]",
+    "subs r6, r2, r1",
+    "lsrs r6, r6, #2",
+    "ldr r3, ={inv21}",
+    "muls r6, r3, r6",
+    "adds r5, r5, r6",
+    "subs r4, r4, r6",
+    "strh r5, [r1, #{ord}]",
+    "strh r4, [r2, #{ord}]",
     "b 10f",
     "12:",
     "movs r0, #1",
@@ -469,16 +474,12 @@ core::arch::global_asm!(
     "ldr r2, [sp, #4]",
     "cmp r1, r2",
     "bhs 11b",
-    // Entry i's slot is the index kept in slot i, XOR i (`ActiveList`).
-    "movs r3, #{size}",
-    "muls r3, r1, r3",
-    "ldr r2, [sp]",
-    "adds r3, r2, r3",
-    "ldrh r3, [r3, #{ord}]",
-    "eors r3, r1",
+    // Entry i's record is 84·ord bytes from slot i (`ActiveList`).
+    "ldrh r3, [r1, #{ord}]",
+    "sxth r3, r3",
     "movs r4, #{size}",
     "muls r3, r4, r3",
-    "adds r3, r2, r3",
+    "adds r3, r1, r3",
     // Qualifies: rows left on the triangle's routine count (a fast Gouraud row that neither
     // switches its short edge nor ends it), and left.c ≥ 0. The count goes down by one.
     "ldrb r4, [r3, #{rrows}]",
@@ -502,7 +503,7 @@ core::arch::global_asm!(
     // The next triangle.
     "31:",
     "ldr r1, [sp, #8]",
-    "adds r1, #1",
+    "adds r1, #{size}",
     "str r1, [sp, #8]",
     "b 15b",
     "8:",
@@ -513,16 +514,25 @@ core::arch::global_asm!(
     "str r1, [r0, #{lw}]",
     row_step!("add r1, r8\nadd r2, r9\nadd r3, r10\n"),
     "ldr r1, [sp, #8]",
-    "adds r1, #1",
+    "adds r1, #{size}",
     "str r1, [sp, #8]",
     "b 15b",
     "19:",
     "b 20b",
+    // Slot addresses back to indices (exact divisions by 84, as above).
     "13:",
     "ldr r1, [sp, #24]",
+    "ldr r3, [sp]",
+    "ldr r4, ={inv21}",
     "ldr r2, [sp, #4]",
+    "subs r2, r2, r3",
+    "lsrs r2, r2, #2",
+    "muls r2, r4, r2",
     "str r2, [r1, #{cn}]",
     "ldr r2, [sp, #8]",
+    "subs r2, r2, r3",
+    "lsrs r2, r2, #2",
+    "muls r2, r4, r2",
     "str r2, [r1, #{ci}]",
     "mov r2, lr",
     "lsrs r2, r2, #1",
@@ -536,6 +546,7 @@ core::arch::global_asm!(
     cfrag = const core::mem::offset_of!(RowCtx, fragments),
     chidden = const core::mem::offset_of!(RowCtx, hidden),
     size = const core::mem::size_of::<ActiveTri>(),
+    inv21 = const INV21,
     ord = const o::ORD,
     rrows = const o::ROUTINE_ROWS,
     flags = const o::FLAGS,
@@ -887,6 +898,11 @@ pub(crate) fn span565_flat_less<C: TargetColor>(
     // is the representation of `C`.
     unsafe { scanline3d_span565_flat_less(zp, offset, zp.add(n), &acc) }
 }
+
+/// The inverse of 21 modulo 2³²: a multiple of 84 bytes `b` is `(b >> 2)·INV21` slots
+/// (mod 2³²). The row routine keeps slot addresses, not indices.
+const INV21: u32 = 0x3cf3_cf3d;
+const _: () = assert!(21u32.wrapping_mul(INV21) == 1 && core::mem::size_of::<ActiveTri>() == 84);
 
 /// What the row routine reads and updates (`#[repr(C)]`: the assembly uses the offsets).
 #[repr(C)]
