@@ -816,6 +816,7 @@ extern "C" {
         end: *mut u16,
         acc: *const [u32; 6],
     ) -> u32;
+    #[cfg(not(target_has_atomic = "32"))]
     fn scanline3d_span565_flat_less(
         z: *mut u16,
         color_offset: isize,
@@ -875,6 +876,7 @@ pub(crate) fn span565_less<C: TargetColor>(
     unsafe { scanline3d_span565_less(zp, offset, zp.add(n), &acc) }
 }
 
+#[cfg(not(target_has_atomic = "32"))]
 /// The `DepthTest::Less` flat span for RGB565 words; the same arguments as the portable
 /// loop (`z` 16.12 with its rounding bias, `gz` its step), whose truncation `(z >> 12) as u16`
 /// is the high half of `z << 4` (both wrap alike).
