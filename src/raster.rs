@@ -944,9 +944,9 @@ impl ActiveTri {
         if let Some((new_short, new_dy)) = switch {
             if mid_left {
                 // Carry the attribute rows over exactly: step along the old left edge's line
-                // to the new row (in 32 bits: extrapolated past its lower end, that column may
-                // leave the i16 range), then move by whole pixels to the new edge's first
-                // column, and change the row increment for the new edge's slope.
+                // to the new row (`EdgeDda::peek`, in 32 bits: extrapolated past its lower end,
+                // that column may leave the packed half), then move by whole pixels to the new
+                // edge's first column, and change the row increment for the new edge's slope.
                 let (c_old, carry) = short.peek();
                 let dc = new_short.c() - c_old;
                 let dsq = new_short.sq() - short.sq();
