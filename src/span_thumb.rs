@@ -55,25 +55,27 @@ macro_rules! restore_registers_and_return {
     };
 }
 
-/// The pixel loop shared by both routines. In: r0 = depth pointer, r1 = colour pointer −
-/// depth pointer (bytes), r2 = z, r3 = rb, r4 = g in the packed formats of a fast triangle
+/// The pixel loop shared by both routines. In: r7 = end of the depth run, r1 = end of the
+/// colour run, r0 = minus the run's length in bytes (< 0: the loop counts it up to zero and
+/// addresses both lines from their ends, so the end test is the sign of that addition),
+/// r2 = z, r3 = rb, r4 = g in the packed formats of a fast triangle
 /// (`raster::pack_zrgb`: the depth is the high half of z, red and blue are the halves of rb
 /// with 11 fraction bits each, green is the top 6 bits of g; rounding biases added), r8, r9,
 /// r10 = their per-pixel steps (all wrapping, so these are the bits the portable loop
-/// extracts), r11 = end of the depth run (> r0), r7 = count of *hidden* pixels so far
-/// (fewer than the written ones in a typical frame, so the count costs the rare path).
+/// extracts), r11 = count of *hidden* pixels so far (fewer than the written ones in a
+/// typical frame — the torus has a few dozen — so the count costs the rare path).
 /// Uses r5, r6. A hidden pixel branches to label 3, which must be placed (with
 /// `hidden_pixel!`) after an unconditional branch within 256 bytes of the loop.
-/// 20 instructions per written pixel, 12 per hidden one.
+/// 19 instructions per written pixel, 14 per hidden one.
 macro_rules! pixel_loop {
     () => {
         concat!(
             "1:\n",
-            "ldrh r5, [r0]\n",
+            "ldrh r5, [r7, r0]\n",
             "lsrs r6, r2, #16\n",
             "cmp r6, r5\n",
             "bhs 3f\n",
-            "strh r6, [r0]\n",
+            "strh r6, [r7, r0]\n",
             "lsrs r5, r3, #27\n",
             "lsls r5, r5, #11\n",
             "lsrs r6, r4, #26\n",
@@ -82,22 +84,32 @@ macro_rules! pixel_loop {
             "lsls r6, r3, #16\n",
             "lsrs r6, r6, #27\n",
             "orrs r5, r6\n",
-            "strh r5, [r0, r1]\n",
+            "strh r5, [r1, r0]\n",
             "2:\n",
             "add r2, r8\n",
             "add r3, r9\n",
             "add r4, r10\n",
             "adds r0, #2\n",
-            "cmp r0, r11\n",
             "bne 1b\n",
         )
     };
 }
 
-/// The pixel loop's hidden-pixel path: counts it and goes back to the steps.
+/// The pixel loop's hidden-pixel path: counts it in `$count` (a high register) and goes back
+/// to the steps. Uses r5.
 macro_rules! hidden_pixel {
-    () => {
-        concat!("3:\n", "adds r7, #1\n", "b 2b\n",)
+    ($count:literal) => {
+        concat!(
+            "3:\n",
+            "mov r5, ",
+            $count,
+            "\n",
+            "adds r5, #1\n",
+            "mov ",
+            $count,
+            ", r5\n",
+            "b 2b\n",
+        )
     };
 }
 
@@ -113,7 +125,11 @@ core::arch::global_asm!(
     // run, r3 = &[z, gz, rb, grb, g, gg]. Returns the number of pixels written.
     "scanline3d_span565_less:",
     save_registers!(),
-    "mov r11, r2",
+    // r0 = −(run bytes), r1 = colour end, r7 = depth end; r12 keeps r0 for the count.
+    "subs r0, r0, r2",
+    "adds r1, r1, r2",
+    "mov r7, r2",
+    "mov r12, r0",
     "ldr r4, [r3, #4]",
     "mov r8, r4",
     "ldr r4, [r3, #12]",
@@ -123,17 +139,17 @@ core::arch::global_asm!(
     "ldr r2, [r3, #0]",
     "ldr r4, [r3, #16]",
     "ldr r3, [r3, #8]",
-    "mov r12, r0",
-    "movs r7, #0",
+    "movs r5, #0",
+    "mov r11, r5",
     pixel_loop!(),
     // Written = run length − hidden.
-    "mov r0, r11",
-    "mov r1, r12",
-    "subs r0, r0, r1",
+    "mov r0, r12",
+    "negs r0, r0",
     "lsrs r0, r0, #1",
-    "subs r0, r0, r7",
+    "mov r1, r11",
+    "subs r0, r0, r1",
     restore_registers_and_return!(),
-    hidden_pixel!(),
+    hidden_pixel!("r11"),
     ".size scanline3d_span565_less, . - scanline3d_span565_less",
 );
 
@@ -148,39 +164,43 @@ core::arch::global_asm!(
     // r0 = depth pointer, r1 = colour pointer − depth pointer (bytes), r2 = end of the depth
     // run (> r0), r3 = &[z, gz, colour]: the depth 16.12 times 2⁴ (the stored depth is the
     // high half, as in `pixel_loop`) and its step, and the RGB565 word. Returns the number
-    // of pixels written. 10 instructions per written pixel and 9 per hidden one.
+    // of pixels written. 9 instructions per written pixel and 11 per hidden one (counted in
+    // lr, saved on entry). As in `pixel_loop`: r0 counts minus the run's bytes up to zero,
+    // r7 and r1 are the ends of the depth and colour runs.
     "scanline3d_span565_flat_less:",
     "push {{r4, r5, r6, r7, lr}}",
-    "mov r12, r2",
+    "subs r0, r0, r2",
+    "adds r1, r1, r2",
+    "mov r7, r2",
+    "mov r12, r0",
     "ldm r3, {{r2, r3, r4}}",
-    "mov lr, r0",
-    "movs r7, #0",
+    "movs r5, #0",
+    "mov lr, r5",
     "1:",
-    "ldrh r5, [r0]",
+    "ldrh r5, [r7, r0]",
     "lsrs r6, r2, #16",
     "cmp r6, r5",
     "bhs 3f",
-    "strh r6, [r0]",
-    "strh r4, [r0, r1]",
+    "strh r6, [r7, r0]",
+    "strh r4, [r1, r0]",
     "2:",
     "adds r2, r2, r3",
     "adds r0, #2",
-    "cmp r0, r12",
     "bne 1b",
     // Written = run length − hidden.
     "mov r0, r12",
+    "negs r0, r0",
+    "lsrs r0, r0, #1",
     "mov r1, lr",
     "subs r0, r0, r1",
-    "lsrs r0, r0, #1",
-    "subs r0, r0, r7",
     "pop {{r4, r5, r6, r7, pc}}",
-    hidden_pixel!(),
+    hidden_pixel!("lr"),
     ".size scanline3d_span565_flat_less, . - scanline3d_span565_flat_less",
 );
 
 /// One row of the triangle in r3 (r5 = its left edge's `w << 16`, with `left.c ≥ 0`) for the
 /// row routine: loads its three per-pixel steps into r8–r10 (kept after the span: the row step
-/// reuses them), draws the span `left.c..min(right.c, width)` with [`pixel_loop`] (r7 counts
+/// reuses them), draws the span `left.c..min(right.c, width)` with [`pixel_loop`] (r11 counts
 /// hidden pixels, lr twice the fragments, across the routine's call) and ends with
 /// r0 = r12 = the triangle. Reads the stack frame of `scanline3d_rows565`. On a row it draws,
 /// `right.c ≥ left.c ≥ 0`, so both biased columns (`raster::EdgeDda`) give twice the column
@@ -210,15 +230,15 @@ macro_rules! row_span {
             "ble 5f\n",
             "add lr, r6\n",
             "ldr r1, [sp, #12]\n",
-            "adds r0, r1, r4\n",
-            "adds r5, r1, r5\n",
-            "mov r11, r5\n",
+            "adds r7, r1, r5\n",
             "ldr r1, [sp, #16]\n",
+            "adds r1, r1, r5\n",
+            "negs r0, r6\n",
             "adds r3, #{row0}\n",
             "ldm r3, {{r2, r3, r4}}\n",
             pixel_loop!(),
             "b 5f\n",
-            hidden_pixel!(),
+            hidden_pixel!("r11"),
             "5:\n",
             "mov r0, r12\n",
         )
@@ -340,10 +360,11 @@ core::arch::global_asm!(
     "scanline3d_rows565:",
     save_registers!(),
     // The context's first six words are copied to the stack, each a single load away, with
-    // the indices as slot addresses: [sp] = tris, [sp, #4] = slot n, [sp, #8] = slot i,
-    // [sp, #12] = the depth line, [sp, #16] = the colour offset, [sp, #20] = twice the width;
-    // [sp, #24] = the context. r7 counts hidden pixels and lr twice the fragments for the
-    // whole call (the return address is on the stack).
+    // the indices as slot addresses and the colour offset as the colour line: [sp] = tris,
+    // [sp, #4] = slot n, [sp, #8] = slot i, [sp, #12] = the depth line, [sp, #16] = the
+    // colour line, [sp, #20] = twice the width; [sp, #24] = the context. r11 counts hidden
+    // pixels and lr twice the fragments for the whole call (the return address is on the
+    // stack).
     "push {{r0}}",
     "ldm r0!, {{r1, r2, r3, r4, r5, r6}}",
     "movs r7, #{size}",
@@ -351,9 +372,11 @@ core::arch::global_asm!(
     "adds r2, r1, r2",
     "muls r3, r7, r3",
     "adds r3, r1, r3",
+    "adds r5, r5, r4",
     "push {{r1, r2, r3, r4, r5, r6}}",
     "movs r7, #0",
     "mov lr, r7",
+    "mov r11, r7",
     "b 10f",
     ".p2align 2",
     ".ltorg",
@@ -537,7 +560,8 @@ core::arch::global_asm!(
     "mov r2, lr",
     "lsrs r2, r2, #1",
     "str r2, [r1, #{cfrag}]",
-    "str r7, [r1, #{chidden}]",
+    "mov r2, r11",
+    "str r2, [r1, #{chidden}]",
     "add sp, #28",
     restore_registers_and_return!(),
     ".size scanline3d_rows565, . - scanline3d_rows565",
