@@ -696,7 +696,7 @@ impl ActiveTri {
             .max(dy1.unsigned_abs())
             .max(dx1.unsigned_abs())
             .max(dx2.unsigned_abs());
-        let l = 32 - vmax.leading_zeros(); // ≤ 16
+        let l = crate::scalar::bitlen32(vmax); // ≤ 16
         let coef = |v: i32| -> i32 {
             let q = mul_shr_16(inv.m, v, l);
             if inv.neg {
