@@ -1028,6 +1028,27 @@ mod tests {
     }
 
     #[test]
+    fn bitlen_matches_leading_zeros() {
+        // Every power of two, its neighbours and a pseudo-random sweep.
+        let mut x = 0x2545_f491u32;
+        let edges = (0..32).flat_map(|k| {
+            let p = 1u32 << k;
+            [p, p - 1, p.wrapping_add(1), p | (p >> 1)]
+        });
+        let sweep = (0..100_000).map(|_| {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x >> (x & 31)
+        });
+        for v in [0u32, 1, u32::MAX].into_iter().chain(edges).chain(sweep) {
+            assert_eq!(bitlen32(v), 32 - v.leading_zeros(), "{v:#x}");
+            let w = (v as u64) << (v & 31) | v as u64;
+            assert_eq!(bitlen64(w), 64 - w.leading_zeros(), "{w:#x}");
+        }
+    }
+
+    #[test]
     fn mul_wide16_is_exact() {
         for a in [
             0i32,
