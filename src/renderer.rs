@@ -590,7 +590,10 @@ impl<
 
     /// The bucket of a stored triangle (see [`bucket_row`]).
     fn first_row(&self, t: &TriRecord) -> usize {
-        let [a, b, c] = t.indices().map(|i| self.verts[i].y as i32);
+        // Element by element: on a Cortex-M0 `array::map` stays a call (`try_from_fn`).
+        let [i, j, k] = t.indices();
+        let (a, b, c) = (self.verts[i].y, self.verts[j].y, self.verts[k].y);
+        let (a, b, c) = (a as i32, b as i32, c as i32);
         bucket_row(a.min(b).min(c))
     }
 
@@ -685,8 +688,17 @@ impl<
                 stats.invalid += 1;
                 continue;
             }
-            let vi = tri.map(|i| o.base + i as usize);
-            let f = vi.map(|i| self.verts[i].flags);
+            // Element by element: on a Cortex-M0 `array::map` stays a call (`try_from_fn`).
+            let vi = [
+                o.base + tri[0] as usize,
+                o.base + tri[1] as usize,
+                o.base + tri[2] as usize,
+            ];
+            let f = [
+                self.verts[vi[0]].flags,
+                self.verts[vi[1]].flags,
+                self.verts[vi[2]].flags,
+            ];
             if (f[0] | f[1] | f[2]) & INVALID != 0 {
                 stats.invalid += 1;
                 continue;
@@ -722,7 +734,7 @@ impl<
                     None
                 };
                 probe.enter(Stage::Triangles);
-                let mut v = vi.map(|v| v as u16);
+                let mut v = [vi[0] as u16, vi[1] as u16, vi[2] as u16];
                 if let Some(rgb) = color {
                     // A copy of the first vertex with the face colour carries it.
                     need.0 += 1;
@@ -849,15 +861,14 @@ impl<
     /// Returns whether the triangle is stored (or counted as needed when the store is full).
     fn push_tri(&mut self, v: [u16; 3], stats: &mut Stats, need: &mut (usize, usize)) -> bool {
         let t = TriRecord { v };
-        let p = t.indices().map(|i| self.verts[i]);
-        let (mut x0, mut x1, mut y0, mut y1) =
-            (p[0].x as i32, p[0].x as i32, p[0].y as i32, p[0].y as i32);
-        for q in &p[1..] {
-            x0 = x0.min(q.x as i32);
-            x1 = x1.max(q.x as i32);
-            y0 = y0.min(q.y as i32);
-            y1 = y1.max(q.y as i32);
-        }
+        // The three positions only (not 12-byte vertex copies through `array::map`, which
+        // stays a call on a Cortex-M0).
+        let [i, j, k] = t.indices();
+        let (a, b, c) = (&self.verts[i], &self.verts[j], &self.verts[k]);
+        let (ax, bx, cx) = (a.x as i32, b.x as i32, c.x as i32);
+        let (ay, by, cy) = (a.y as i32, b.y as i32, c.y as i32);
+        let (x0, x1) = (ax.min(bx).min(cx), ax.max(bx).max(cx));
+        let (y0, y1) = (ay.min(by).min(cy), ay.max(by).max(cy));
         let (px0, px1, py0, py1) = (
             first_pixel(x0),
             first_pixel(x1),
