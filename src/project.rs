@@ -178,12 +178,10 @@ impl Viewport {
         let r = S::recip(w);
         // x_sub = (ndc_x + 1) · width/2 · 16 = ndc_x · 8·width + 8·width.
         let (sx, sy) = (8 * self.width as i64, 8 * self.height as i64);
-        let nx = S::ndc(x, r);
-        let ny = S::ndc(y, r);
         let nz = S::ndc(z, r);
         let lim = COORD_LIMIT as i64;
-        let px = mul_q32(nx, sx as u32) + sx;
-        let py = mul_q32(-ny, sy as u32) + sy;
+        let px = S::ndc_scaled(x, r, sx as u32, false) + sx;
+        let py = S::ndc_scaled(y, r, sy as u32, true) + sy;
         let dz = (DEPTH_MAX as i64) << DEPTH_FRAC_BITS;
         let pz = mul_q32(nz.clamp(0, 1 << NDC_FRAC_BITS), dz as u32);
         // 16.12 to 16.8, rounded (at most 65535·2⁸).

@@ -162,6 +162,15 @@ pub trait Scalar:
     /// `±2⁶²`; `r` is [`Scalar::recip`]`(w)`.
     #[must_use]
     fn ndc(v: Self, r: Self::Recip) -> i64;
+    /// [`mul_q32`]`(±ndc(v, r), k)`, `−` when `negate`: the offset of `v/w` from the screen
+    /// centre in subpixels for a scale `k` ([`crate::project::Viewport::project`]). A type may
+    /// compute it more directly, with the same result.
+    #[must_use]
+    #[inline(always)]
+    fn ndc_scaled(v: Self, r: Self::Recip, k: u32, negate: bool) -> i64 {
+        let n = Self::ndc(v, r);
+        mul_q32(if negate { -n } else { n }, k)
+    }
     /// `self` as a signed integer with `frac` fraction bits, rounded to nearest, saturated to
     /// `i32` (NaN → 0).
     #[must_use]
@@ -712,6 +721,34 @@ macro_rules! impl_fx {
                         .clamp(-(1 << 62), 1 << 62)
                 }
             }
+            /// The common case in 32-bit words, without forming the 64-bit `ndc`: a 32-bit
+            /// shift (`0 < s < 32`, every positive w), a screen scale `k < 2¹⁶` and a
+            /// quotient whose high word fits an `i16` (every vertex inside the guard band).
+            /// The same roundings as [`Scalar::ndc`] then [`mul_q32`]'s 16-bit path, so the same
+            /// value; anything else takes that path.
+            #[inline(always)]
+            fn ndc_scaled(v: Self, r: FxRecip, k: u32, negate: bool) -> i64 {
+                let s = r.shift as i32 - NDC_FRAC_BITS as i32;
+                if s > 0 && s < 32 && k < 1 << 16 {
+                    let p = mul_wide(v.0.to_bits(), r.mantissa);
+                    let (hi, lo) = ((p >> 32) as i32, p as u32);
+                    let (lo, c) = lo.overflowing_add(1 << (s - 1));
+                    let hi = hi + c as i32;
+                    let (mut lo, mut hi) = ((lo >> s) | ((hi as u32) << (32 - s)), hi >> s);
+                    if negate {
+                        // −(hi·2³² + lo), |·| < 2⁶¹.
+                        hi = (!hi).wrapping_add((lo == 0) as i32);
+                        lo = lo.wrapping_neg();
+                    }
+                    if hi == hi as i16 as i32 {
+                        let t = (lo >> 16) * k + (((lo & 0xffff) * k) >> 16);
+                        let l = (t + (1 << 15)) >> 16;
+                        return (hi * k as i32) as i64 + l as i64;
+                    }
+                }
+                let n = Self::ndc(v, r);
+                mul_q32(if negate { -n } else { n }, k)
+            }
             fn to_fixed_i32(self, frac: u32) -> i32 {
                 let b = self.0.to_bits() as i64;
                 let v = if frac >= $frac {
@@ -944,6 +981,49 @@ mod tests {
                         .clamp(-limit as i64, limit as i64);
                     assert_eq!(round_shr_sat(x, s, limit) as i64, want, "{x} / 2^{s}");
                 }
+            }
+        }
+    }
+
+    /// The Q16.16 `ndc_scaled` shortcut equals the trait's definition (`mul_q32` of the
+    /// rounded, possibly negated quotient) for every kind of w, numerator and scale: small and
+    /// large w, numerators far outside the guard band (the fallback), exact ties and both signs.
+    #[test]
+    fn ndc_scaled_matches_its_definition() {
+        type F = Fx<I16F16>;
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for i in 0..200_000 {
+            let a = next();
+            let w = match i % 4 {
+                0 => (a as u32 >> (a >> 59)) as i32 & i32::MAX,
+                1 => 1 + (a as u32 & 15) as i32,
+                2 => 1 << (a as u32 % 31),
+                _ => (a as i32 & 0x7f_ffff) + 0x1_0000,
+            }
+            .max(1);
+            let b = next();
+            let v = match i % 3 {
+                0 => (b as i32) >> (b >> 59),
+                1 => ((w as i64 * ((b as i32 >> 8) % 8) as i64) as i32).wrapping_add(b as i32 % 3),
+                _ => -(w >> (b as u32 & 7)),
+            };
+            let k = [1u32, 1920, 8192, 65535, 65536, 1 << 20][(b >> 40) as usize % 6];
+            let (fv, fw) = (Fx(I16F16::from_bits(v)), Fx(I16F16::from_bits(w)));
+            let r = F::recip(fw);
+            for negate in [false, true] {
+                let n = F::ndc(fv, r);
+                let want = mul_q32(if negate { -n } else { n }, k);
+                assert_eq!(
+                    F::ndc_scaled(fv, r, k, negate),
+                    want,
+                    "{v} / {w} · {k} {negate}"
+                );
             }
         }
     }
