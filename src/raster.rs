@@ -156,6 +156,39 @@ fn mul_shr_16(m: i32, v: i32, l: u32) -> i32 {
     }
 }
 
+/// A gradient `S · 2^-shift` (see [`ActiveTri::setup`]) rounded and clamped to
+/// ±[`GRAD_LIMIT`].
+#[inline(always)]
+fn scale_gradient(s: i64, shift: i32) -> i32 {
+    let g = if shift <= 0 {
+        if s == 0 {
+            0
+        } else if s > 0 {
+            GRAD_LIMIT
+        } else {
+            -GRAD_LIMIT
+        }
+    } else if shift >= 63 {
+        0
+    } else {
+        return round_shr_sat(s, shift as u32, GRAD_LIMIT as i32);
+    };
+    g.clamp(-GRAD_LIMIT, GRAD_LIMIT) as i32
+}
+
+/// A colour channel's x and y gradients from the exact 64-bit sums, for slivers too thin for
+/// the 16-bit coefficients (see [`ActiveTri::setup`]). Out of line and cold: inlined, LLVM
+/// computed parts of it for every triangle and spilled them.
+#[cold]
+#[inline(never)]
+fn sliver_color_gradients(b: [i32; 4], d1: i32, d2: i32, sh: u32, shift: i32) -> [i32; 2] {
+    let [bx1, bx2, by1, by2] = b;
+    [
+        scale_gradient((mul_wide16(bx1, d1) - mul_wide16(bx2, d2)) << sh, shift),
+        scale_gradient((mul_wide16(by1, d2) - mul_wide16(by2, d1)) << sh, shift),
+    ]
+}
+
 /// One edge from its upper vertex `a` to its lower vertex `b`, positioned on a pixel row:
 /// `c` is the first pixel whose centre is at or right of the edge; the exact crossing is
 /// `c − (16·e + k)/(16·dy)` pixels (relative to centres) with `0 ≤ e < dy` and a constant
@@ -708,22 +741,7 @@ impl ActiveTri {
         let (bx1, bx2, by1, by2) = (coef(dy2), coef(dy1), coef(dx1), coef(dx2));
         // g = S · 2^(l + 4 − e), S = Σ da·b.
         let shift = inv.e as i32 - (l as i32 + 4);
-        let scale = |s: i64| -> i32 {
-            let g = if shift <= 0 {
-                if s == 0 {
-                    0
-                } else if s > 0 {
-                    GRAD_LIMIT
-                } else {
-                    -GRAD_LIMIT
-                }
-            } else if shift >= 63 {
-                0
-            } else {
-                return round_shr_sat(s, shift as u32, GRAD_LIMIT as i32);
-            };
-            g.clamp(-GRAD_LIMIT, GRAD_LIMIT) as i32
-        };
+        let scale = |s: i64| scale_gradient(s, shift);
 
         let n_attrs = if flat { 1 } else { 4 };
         // The coefficients rounded to 16 bits (|c| ≤ 2^15) for the colour gradients.
@@ -772,8 +790,7 @@ impl ActiveTri {
                 gx[k] = round(c16[0] * d1 - c16[1] * d2);
                 gy[k] = round(c16[2] * d2 - c16[3] * d1);
             } else {
-                gx[k] = scale((mul_wide16(bx1, d1) - mul_wide16(bx2, d2)) << sh);
-                gy[k] = scale((mul_wide16(by1, d2) - mul_wide16(by2, d1)) << sh);
+                [gx[k], gy[k]] = sliver_color_gradients([bx1, bx2, by1, by2], d1, d2, sh, shift);
             }
         }
         // Evaluate every attribute plane at the centre of pixel (left.c, row).
