@@ -99,11 +99,25 @@ fn div_floor(n: i64, d: i32) -> (i32, i32) {
     }
 }
 
-/// `(n / d, n % d)` for `d > 0` by shift and subtract, one step per quotient bit: an edge's
-/// quotients are a few bits, where the library division of a Cortex-M0 (no divide
-/// instruction) costs over a hundred instructions whatever the quotient.
+/// `(n / d, n % d)` for `d > 0`. On ARMv6-M by shift and subtract, one step per quotient
+/// bit: an edge's quotients are a few bits, where the library division of a Cortex-M0 (no
+/// divide instruction) costs over a hundred instructions whatever the quotient. Cores with a
+/// divide instruction (ARMv7-M, the host) use it. (ARMv6-M is the Arm profile without 32-bit
+/// atomics, the one property stable Rust exposes to `cfg`.)
 #[inline]
 fn udiv_small(n: u32, d: u32) -> (u32, u32) {
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        (n / d, n % d)
+    }
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    udiv_shift_subtract(n, d)
+}
+
+/// [`udiv_small`] by shift and subtract (tested on the host too).
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+#[inline]
+fn udiv_shift_subtract(n: u32, d: u32) -> (u32, u32) {
     if n < d {
         return (0, n);
     }
@@ -196,6 +210,7 @@ fn sliver_color_gradients(b: [i32; 4], d1: i32, d2: i32, sh: u32, shift: i32) ->
 /// `e = floor(numerator / 16)` exactly and the test `numerator < 0` is `e < 0`: all five
 /// fields fit 16 bits. Rows step it in the packed form [`EdgeDda`] ([`Edge::dda`]).
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[repr(C)] // field offsets are used by the Cortex-M edge setup (`span_thumb`)
 pub(crate) struct Edge {
     /// Current pixel boundary (column index; |c| ≤ 1025 on every row the edge is used).
     pub c: i16,
@@ -212,8 +227,21 @@ pub(crate) struct Edge {
 impl Edge {
     /// The edge `a → b` (`a.y < b.y`) at pixel row `row` (on the screen, 0..=1024), for
     /// coordinates within ±[`crate::project::COORD_LIMIT`]: every product below is under 2³⁰
-    /// and the sum under 2³¹, so the setup is 32-bit (two divisions).
+    /// and the sum under 2³¹, so the setup is 32-bit (two divisions). On ARMv6-M (no divide
+    /// instruction) the rows the renderer uses (the edge's own) take the assembly version of
+    /// the same steps (`span_thumb::edge_new`).
+    #[inline(always)]
     pub(crate) fn new(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> Edge {
+        #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+        if let Some(e) = crate::span_thumb::edge_new(xa, ya, xb, yb, row) {
+            return e;
+        }
+        Edge::new_portable(xa, ya, xb, yb, row)
+    }
+
+    /// [`Edge::new`] in portable code.
+    #[inline(never)]
+    pub(crate) fn new_portable(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> Edge {
         let dy = (yb - ya).max(1);
         let dx = xb - xa;
         let d = SUBPIXELS * dy;
@@ -264,6 +292,42 @@ impl Edge {
         let s = (self.sq as i32 as u32).wrapping_sub((self.sr as u32) << 16);
         (EdgeDda { w, s }, self.dy)
     }
+}
+
+/// Cortex-M only, for the benchmark firmware: the assembly edge setup against the portable
+/// one on `n` pseudo-random edges (coordinates over the whole snapped range, rows at and past
+/// the upper vertex). Returns the inputs `[xa, ya, xb, yb, row]` of the first mismatch.
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+#[doc(hidden)]
+pub fn edge_setup_self_test(n: u32) -> Option<[i32; 5]> {
+    let mut state = 0x9e37_79b9u32;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state
+    };
+    let lim = crate::project::COORD_LIMIT;
+    for i in 0..n {
+        let (r1, r2, r3) = (next(), next(), next());
+        // Short and long edges, steep and flat, every sign.
+        let span = [15, 255, 4095, 2 * lim][(r3 >> 30) as usize];
+        let xa = (r1 % (2 * lim as u32 + 1)) as i32 - lim;
+        let ya = ((r1 >> 16) % (2 * lim as u32 + 1)) as i32 - lim;
+        let xb = (xa + (r2 % (2 * span as u32 + 1)) as i32 - span).clamp(-lim, lim);
+        let yb = (ya + ((r2 >> 16) % (span as u32 + 1)) as i32).min(lim);
+        // The row of the upper vertex's first sample or a later one of the edge (some
+        // beyond it, which the assembly declines).
+        let first = first_pixel(ya);
+        let row = (first + (r3 % 8) as i32 * (i % 3) as i32).clamp(0, 1024);
+        let want = Edge::new_portable(xa, ya, xb, yb, row);
+        if let Some(got) = crate::span_thumb::edge_new(xa, ya, xb, yb, row) {
+            if got != want {
+                return Some([xa, ya, xb, yb, row]);
+            }
+        }
+    }
+    None
 }
 
 /// Bias of the column in [`EdgeDda::w`]: every column an edge takes on a row where it is used
@@ -508,6 +572,8 @@ pub(crate) struct ActiveTri {
 // The order entry and the routine's row count fill what was padding: an active triangle stays
 // 84 bytes.
 const _: () = assert!(core::mem::size_of::<ActiveTri>() == 84);
+// Five 16-bit fields and no padding (the Cortex-M edge setup writes all of them).
+const _: () = assert!(core::mem::size_of::<Edge>() == 10);
 
 /// The active triangles of the current row: up to `N` records that stay where they were set
 /// up, and their drawing order as a permutation of slot indices (kept in the records' spare
@@ -642,6 +708,11 @@ pub(crate) mod offsets {
     pub const PEND_W: usize = GX + 12;
     pub const PEND_S: usize = ROW + 12;
     pub const PEND_DY: usize = INC + 12;
+    pub const EDGE_C: usize = offset_of!(super::Edge, c);
+    pub const EDGE_SQ: usize = offset_of!(super::Edge, sq);
+    pub const EDGE_E: usize = offset_of!(super::Edge, e);
+    pub const EDGE_SR: usize = offset_of!(super::Edge, sr);
+    pub const EDGE_DY: usize = offset_of!(super::Edge, dy);
 }
 
 impl ActiveTri {
@@ -1502,10 +1573,9 @@ mod tests {
         let ds = [1i32, 2, 3, 16, 17, 1000, 32766, 1 << 20, i32::MAX];
         for &n in &ns {
             for &d in &ds {
-                assert_eq!(
-                    udiv_small(n as u32, d as u32),
-                    (n as u32 / d as u32, n as u32 % d as u32)
-                );
+                let want = (n as u32 / d as u32, n as u32 % d as u32);
+                assert_eq!(udiv_small(n as u32, d as u32), want);
+                assert_eq!(udiv_shift_subtract(n as u32, d as u32), want);
                 for m in [n, -n, -n - 1] {
                     let want = (m.div_euclid(d), m.rem_euclid(d));
                     assert_eq!(div_floor_small(m, d), want, "{m} / {d}");

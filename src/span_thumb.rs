@@ -22,7 +22,7 @@
 #![allow(unsafe_code)]
 
 use crate::color::TargetColor;
-use crate::raster::{offsets as o, ActiveList, ActiveTri};
+use crate::raster::{offsets as o, ActiveList, ActiveTri, Edge};
 use crate::scalar::Fx;
 use fixed::types::I16F16;
 
@@ -765,6 +765,140 @@ core::arch::global_asm!(
     ".size scanline3d_xform_q16, . - scanline3d_xform_q16",
 );
 
+/// `(n / d, n % d)` for `0 ≤ n < 2³¹`, `d ≥ 1` by shift and subtract, one step per quotient
+/// bit, as `raster::udiv_small`: `$q` = quotient, `$n` = remainder. Uses `$dd`, `$bit` and
+/// `$half`; labels 6–9.
+macro_rules! udiv_small {
+    ($n:literal, $d:literal, $q:literal, $dd:literal, $bit:literal, $half:literal) => {
+        concat!(
+            "movs ", $q, ", #0\n", "cmp ", $n, ", ", $d, "\n", "bcc 9f\n", "movs ", $bit, ", #1\n",
+            "mov ", $dd, ", ", $d, "\n", "lsrs ", $half, ", ", $n, ", #1\n",
+            // dd = d·bit ≤ n < 2·dd.
+            "8:\n", "cmp ", $dd, ", ", $half, "\n", "bhi 7f\n", "lsls ", $dd, ", ", $dd, ", #1\n",
+            "lsls ", $bit, ", ", $bit, ", #1\n", "b 8b\n", "7:\n", "cmp ", $n, ", ", $dd, "\n",
+            "bcc 6f\n", "subs ", $n, ", ", $n, ", ", $dd, "\n", "orrs ", $q, ", ", $bit, "\n",
+            "6:\n", "lsrs ", $dd, ", ", $dd, ", #1\n", "lsrs ", $bit, ", ", $bit, ", #1\n",
+            "bne 7b\n", "9:\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".syntax unified",
+    ".thumb",
+    ".section .text.scanline3d_edge_new,\"ax\",%progbits",
+    ".global scanline3d_edge_new",
+    ".type scanline3d_edge_new,%function",
+    ".p2align 2",
+    ".thumb_func",
+    // r0 = xa | ya << 16, r1 = xb | yb << 16 (16-bit halves), r2 = row, r3 = the `Edge` to
+    // write. `raster::Edge::new_portable`'s steps for 0 ≤ k ≤ dy + 16 (k = 16·row + 8 − ya):
+    // returns 1 having written the edge, or 0 (nothing written) for any other row.
+    "scanline3d_edge_new:",
+    "push {{r4, r5, r6, r7, lr}}",
+    "sxth r4, r0",
+    "asrs r5, r0, #16",
+    "sxth r6, r1",
+    "asrs r7, r1, #16",
+    // dy = max(1, yb − ya), dx = xb − xa.
+    "subs r7, r7, r5",
+    "bgt 1f",
+    "movs r7, #1",
+    "1:",
+    "subs r6, r6, r4",
+    // k = 16·row + 8 − ya, in 0..=dy + 16 (unsigned, so k < 0 fails too).
+    "lsls r2, r2, #4",
+    "adds r2, #8",
+    "subs r2, r2, r5",
+    "movs r5, r7",
+    "adds r5, #16",
+    "cmp r2, r5",
+    "bhi 2f",
+    // [sp] = k, [sp, #4] = the edge, [sp, #8] = xa.
+    "push {{r2, r3, r4}}",
+    // (sq, sr) = floor division of dx by dy: for dx < 0 (mask r5 = −1) from !dx:
+    // sq = !q, sr = dy − 1 − r.
+    "asrs r5, r6, #31",
+    "eors r6, r5",
+    udiv_small!("r6", "r7", "r0", "r1", "r2", "r3"),
+    "eors r0, r5",
+    "cmp r5, #0",
+    "beq 3f",
+    "subs r6, r7, r6",
+    "subs r6, #1",
+    "3:",
+    "mov r12, r0",
+    "mov lr, r6",
+    // (qb, rb) = (k·sr) / dy.
+    "ldr r4, [sp]",
+    "muls r4, r6",
+    udiv_small!("r4", "r7", "r0", "r1", "r2", "r3"),
+    // t = xa − 8 + k·sq + qb; r = dy·(t & 15) + rb; q = t >> 4.
+    "ldr r1, [sp]",
+    "mov r2, r12",
+    "muls r1, r2",
+    "adds r1, r1, r0",
+    "ldr r2, [sp, #8]",
+    "adds r1, r1, r2",
+    "subs r1, #8",
+    "movs r2, #15",
+    "ands r2, r1",
+    "muls r2, r7",
+    "adds r2, r2, r4",
+    "asrs r1, r1, #4",
+    // r = 0: (c, e) = (q, 0); else (q + 1, (16·dy − r) >> 4).
+    "movs r3, #0",
+    "cmp r2, #0",
+    "beq 4f",
+    "adds r1, #1",
+    "lsls r3, r7, #4",
+    "subs r3, r3, r2",
+    "asrs r3, r3, #4",
+    "4:",
+    "ldr r0, [sp, #4]",
+    "strh r1, [r0, #{c}]",
+    "mov r2, r12",
+    "strh r2, [r0, #{sq}]",
+    "strh r3, [r0, #{e}]",
+    "mov r2, lr",
+    "strh r2, [r0, #{sr}]",
+    "strh r7, [r0, #{dy}]",
+    "add sp, #12",
+    "movs r0, #1",
+    "pop {{r4, r5, r6, r7, pc}}",
+    "2:",
+    "movs r0, #0",
+    "pop {{r4, r5, r6, r7, pc}}",
+    ".size scanline3d_edge_new, . - scanline3d_edge_new",
+    c = const o::EDGE_C,
+    sq = const o::EDGE_SQ,
+    e = const o::EDGE_E,
+    sr = const o::EDGE_SR,
+    dy = const o::EDGE_DY,
+);
+
+/// `raster::Edge::new` for a row from the edge's first sample on (`0 ≤ k ≤ dy + 16`, the
+/// rows the renderer sets edges up on) by [`scanline3d_edge_new`], for coordinates that fit
+/// 16 bits (snapped ones always do); `None` otherwise.
+#[inline(always)]
+pub(crate) fn edge_new(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> Option<Edge> {
+    if [xa, ya, xb, yb].iter().any(|&v| v != v as i16 as i32) {
+        return None;
+    }
+    let pack = |x: i32, y: i32| (x as u16 as u32) | (y as u32) << 16;
+    let mut e = core::mem::MaybeUninit::<Edge>::uninit();
+    // SAFETY: the routine reads nothing but its arguments and, when it returns 1, has written
+    // all five 16-bit fields of `e` (at the offsets given to it, `#[repr(C)]`; the struct has
+    // no padding), so `e` is then initialized.
+    unsafe {
+        if scanline3d_edge_new(pack(xa, ya), pack(xb, yb), row, e.as_mut_ptr()) != 0 {
+            Some(e.assume_init())
+        } else {
+            None
+        }
+    }
+}
+
 /// `v ^ (v >> 31)`: `v` for `v ≥ 0`, `|v| − 1` below, so an OR of these is below 2³⁰ exactly
 /// when every value is in [−2³⁰, 2³⁰).
 #[inline(always)]
@@ -831,6 +965,7 @@ pub(crate) fn transform_dir_i16f16(
 }
 
 extern "C" {
+    fn scanline3d_edge_new(a: u32, b: u32, row: i32, out: *mut Edge) -> u32;
     fn scanline3d_xform_q16(m: *const i32, p: *const i32, out: *mut i32, rows: u32);
     fn scanline3d_fill128(start: *mut [u32; 4], end: *mut [u32; 4], word: u32);
     fn scanline3d_rows565(ctx: *mut RowCtx) -> u32;

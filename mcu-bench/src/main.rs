@@ -327,6 +327,12 @@ fn main() -> ! {
     if !transform_matches_rows() {
         debug::exit(debug::EXIT_FAILURE);
     }
+    // The assembly edge setup against the portable one (the benchmark scenes' hashes check
+    // it too, but only on the edges they have).
+    if let Some(e) = scanline3d::raster::edge_setup_self_test(20_000) {
+        hprintln!("EDGE MISMATCH {:?}", e);
+        debug::exit(debug::EXIT_FAILURE);
+    }
     timer::start();
     for &scene in SCENES {
         if cfg!(feature = "profile-torus") {
