@@ -65,8 +65,8 @@ macro_rules! restore_registers_and_return {
 /// extracts), r11 = count of *hidden* pixels so far (fewer than the written ones in a
 /// typical frame — the torus has a few dozen — so the count costs the rare path).
 /// Uses r5, r6. A hidden pixel branches to label 3, which must be placed (with
-/// `hidden_pixel!`) after an unconditional branch within 256 bytes of the loop.
-/// 19 instructions per written pixel, 14 per hidden one.
+/// `hidden_pixel!`) after an unconditional branch within 256 bytes of the loop, right before
+/// the code that follows the loop. 19 instructions per written pixel, 12 per hidden one.
 macro_rules! pixel_loop {
     () => {
         concat!(
@@ -85,20 +85,18 @@ macro_rules! pixel_loop {
             "lsrs r6, r6, #27\n",
             "orrs r5, r6\n",
             "strh r5, [r1, r0]\n",
-            "2:\n",
-            "add r2, r8\n",
-            "add r3, r9\n",
-            "add r4, r10\n",
+            gouraud_steps!(),
             "adds r0, #2\n",
             "bne 1b\n",
         )
     };
 }
 
-/// The pixel loop's hidden-pixel path: counts it in `$count` (a high register) and goes back
-/// to the steps. Uses r5.
+/// The pixel loop's hidden-pixel path: counts it in `$count` (a high register), then the
+/// loop's own steps `$steps` and end test (repeated here rather than branched back to), so
+/// that its last pixel falls through to what follows. Uses r5.
 macro_rules! hidden_pixel {
-    ($count:literal) => {
+    ($count:literal, $steps:expr) => {
         concat!(
             "3:\n",
             "mov r5, ",
@@ -108,8 +106,17 @@ macro_rules! hidden_pixel {
             "mov ",
             $count,
             ", r5\n",
-            "b 2b\n",
+            $steps,
+            "adds r0, #2\n",
+            "bne 1b\n",
         )
+    };
+}
+
+/// The per-pixel steps of [`pixel_loop`] (for [`hidden_pixel`]).
+macro_rules! gouraud_steps {
+    () => {
+        "add r2, r8\nadd r3, r9\nadd r4, r10\n"
     };
 }
 
@@ -142,14 +149,16 @@ core::arch::global_asm!(
     "movs r5, #0",
     "mov r11, r5",
     pixel_loop!(),
+    "b 4f",
+    hidden_pixel!("r11", gouraud_steps!()),
     // Written = run length − hidden.
+    "4:",
     "mov r0, r12",
     "negs r0, r0",
     "lsrs r0, r0, #1",
     "mov r1, r11",
     "subs r0, r0, r1",
     restore_registers_and_return!(),
-    hidden_pixel!("r11"),
     ".size scanline3d_span565_less, . - scanline3d_span565_less",
 );
 
@@ -164,7 +173,7 @@ core::arch::global_asm!(
     // r0 = depth pointer, r1 = colour pointer − depth pointer (bytes), r2 = end of the depth
     // run (> r0), r3 = &[z, gz, colour]: the depth 16.12 times 2⁴ (the stored depth is the
     // high half, as in `pixel_loop`) and its step, and the RGB565 word. Returns the number
-    // of pixels written. 9 instructions per written pixel and 11 per hidden one (counted in
+    // of pixels written. 9 instructions per written pixel and 10 per hidden one (counted in
     // lr, saved on entry). As in `pixel_loop`: r0 counts minus the run's bytes up to zero,
     // r7 and r1 are the ends of the depth and colour runs.
     "scanline3d_span565_flat_less:",
@@ -183,18 +192,19 @@ core::arch::global_asm!(
     "bhs 3f",
     "strh r6, [r7, r0]",
     "strh r4, [r1, r0]",
-    "2:",
     "adds r2, r2, r3",
     "adds r0, #2",
     "bne 1b",
+    "b 4f",
+    hidden_pixel!("lr", "adds r2, r2, r3\n"),
     // Written = run length − hidden.
+    "4:",
     "mov r0, r12",
     "negs r0, r0",
     "lsrs r0, r0, #1",
     "mov r1, lr",
     "subs r0, r0, r1",
     "pop {{r4, r5, r6, r7, pc}}",
-    hidden_pixel!("lr"),
     ".size scanline3d_span565_flat_less, . - scanline3d_span565_flat_less",
 );
 
@@ -238,7 +248,7 @@ macro_rules! row_span {
             "ldm r3, {{r2, r3, r4}}\n",
             pixel_loop!(),
             "b 5f\n",
-            hidden_pixel!("r11"),
+            hidden_pixel!("r11", gouraud_steps!()),
             "5:\n",
             "mov r0, r12\n",
         )
@@ -814,56 +824,53 @@ core::arch::global_asm!(
     "adds r5, #16",
     "cmp r2, r5",
     "bhi 2f",
-    // [sp] = k, [sp, #4] = the edge, [sp, #8] = xa.
-    "push {{r2, r3, r4}}",
+    // r12 = k, lr = xa, r3 = the edge (no stack beyond the saved registers: this runs at
+    // the deepest point of a frame, which on a 16 KB part sets the largest frame size).
+    "mov r12, r2",
+    "mov lr, r4",
     // (sq, sr) = floor division of dx by dy: for dx < 0 (mask r5 = −1) from !dx:
-    // sq = !q, sr = dy − 1 − r.
+    // sq = !q, sr = dy − 1 − r. Stored at once with dy.
     "asrs r5, r6, #31",
     "eors r6, r5",
-    udiv_small!("r6", "r7", "r0", "r1", "r2", "r3"),
+    udiv_small!("r6", "r7", "r0", "r1", "r2", "r4"),
     "eors r0, r5",
     "cmp r5, #0",
     "beq 3f",
     "subs r6, r7, r6",
     "subs r6, #1",
     "3:",
-    "mov r12, r0",
-    "mov lr, r6",
-    // (qb, rb) = (k·sr) / dy.
-    "ldr r4, [sp]",
+    "strh r0, [r3, #{sq}]",
+    "strh r6, [r3, #{sr}]",
+    "strh r7, [r3, #{dy}]",
+    // lr = xa − 8 + k·sq; (qb, rb) = (k·sr) / dy.
+    "mov r1, r12",
+    "muls r0, r1",
+    "mov r2, lr",
+    "adds r0, r0, r2",
+    "subs r0, #8",
+    "mov lr, r0",
+    "mov r4, r12",
     "muls r4, r6",
-    udiv_small!("r4", "r7", "r0", "r1", "r2", "r3"),
+    udiv_small!("r4", "r7", "r0", "r1", "r2", "r5"),
     // t = xa − 8 + k·sq + qb; r = dy·(t & 15) + rb; q = t >> 4.
-    "ldr r1, [sp]",
-    "mov r2, r12",
-    "muls r1, r2",
+    "mov r1, lr",
     "adds r1, r1, r0",
-    "ldr r2, [sp, #8]",
-    "adds r1, r1, r2",
-    "subs r1, #8",
     "movs r2, #15",
     "ands r2, r1",
     "muls r2, r7",
     "adds r2, r2, r4",
     "asrs r1, r1, #4",
     // r = 0: (c, e) = (q, 0); else (q + 1, (16·dy − r) >> 4).
-    "movs r3, #0",
+    "movs r5, #0",
     "cmp r2, #0",
     "beq 4f",
     "adds r1, #1",
-    "lsls r3, r7, #4",
-    "subs r3, r3, r2",
-    "asrs r3, r3, #4",
+    "lsls r5, r7, #4",
+    "subs r5, r5, r2",
+    "asrs r5, r5, #4",
     "4:",
-    "ldr r0, [sp, #4]",
-    "strh r1, [r0, #{c}]",
-    "mov r2, r12",
-    "strh r2, [r0, #{sq}]",
-    "strh r3, [r0, #{e}]",
-    "mov r2, lr",
-    "strh r2, [r0, #{sr}]",
-    "strh r7, [r0, #{dy}]",
-    "add sp, #12",
+    "strh r1, [r3, #{c}]",
+    "strh r5, [r3, #{e}]",
     "movs r0, #1",
     "pop {{r4, r5, r6, r7, pc}}",
     "2:",
