@@ -228,14 +228,10 @@ macro_rules! row_span {
             "mov r10, r2\n",
             "mov r3, r12\n",
             // In bytes: xe = min(right.c, width); an empty span draws nothing.
-            "ldr r1, [sp, #20]\n",
             "ldr r5, [r3, #{rw}]\n",
             "lsls r5, r5, #17\n",
             "lsrs r5, r5, #16\n",
-            "cmp r5, r1\n",
-            "ble 4f\n",
-            "mov r5, r1\n",
-            "4:\n",
+            clamp_right!(),
             "subs r6, r5, r4\n",
             "ble 5f\n",
             "add lr, r6\n",
@@ -251,6 +247,75 @@ macro_rules! row_span {
             hidden_pixel!("r11", gouraud_steps!()),
             "5:\n",
             "mov r0, r12\n",
+        )
+    };
+}
+
+/// [`row_span`] for a row with `left.c < 0` (r5 = the left edge's `w << 16`): the span
+/// `0..min(right.c, width)`, its attributes at column 0 as `ActiveTri::draw_row` has them,
+/// `row + gx·(−left.c)` (wrapping). Same registers in and out.
+macro_rules! row_span_left_clamped {
+    () => {
+        concat!(
+            "mov r12, r3\n",
+            // r4 = −left.c = 2¹⁵ − biased column.
+            "lsrs r5, r5, #16\n",
+            "movs r4, #1\n",
+            "lsls r4, r4, #15\n",
+            "subs r4, r4, r5\n",
+            "adds r3, #{gx0}\n",
+            "ldm r3!, {{r0, r1, r2}}\n",
+            "mov r8, r0\n",
+            "mov r9, r1\n",
+            "mov r10, r2\n",
+            "muls r0, r4, r0\n",
+            "muls r1, r4, r1\n",
+            "muls r2, r4, r2\n",
+            "mov r3, r12\n",
+            "adds r3, #{row0}\n",
+            "ldm r3!, {{r5, r6, r7}}\n",
+            "adds r5, r5, r0\n",
+            "adds r6, r6, r1\n",
+            "adds r7, r7, r2\n",
+            "mov r2, r5\n",
+            "mov r3, r6\n",
+            "mov r4, r7\n",
+            // In bytes: xe = min(2·right.c, twice the width), signed (right.c may be < 0 too);
+            // an empty span draws nothing.
+            "mov r0, r12\n",
+            "ldr r5, [r0, #{rw}]\n",
+            "lsls r5, r5, #16\n",
+            "lsrs r5, r5, #15\n",
+            "movs r1, #1\n",
+            "lsls r1, r1, #16\n",
+            "subs r5, r5, r1\n",
+            "ble 5f\n",
+            clamp_right!(),
+            "movs r6, r5\n",
+            "add lr, r6\n",
+            "ldr r1, [sp, #12]\n",
+            "adds r7, r1, r5\n",
+            "ldr r1, [sp, #16]\n",
+            "adds r1, r1, r5\n",
+            "negs r0, r6\n",
+            pixel_loop!(),
+            "b 5f\n",
+            hidden_pixel!("r11", gouraud_steps!()),
+            "5:\n",
+            "mov r0, r12\n",
+        )
+    };
+}
+
+/// For [`row_span`]: r5 = min(r5, twice the width) (signed). Uses r1.
+macro_rules! clamp_right {
+    () => {
+        concat!(
+            "ldr r1, [sp, #20]\n",
+            "cmp r5, r1\n",
+            "ble 4f\n",
+            "mov r5, r1\n",
+            "4:\n",
         )
     };
 }
@@ -498,9 +563,6 @@ core::arch::global_asm!(
     "11:",
     "movs r0, #0",
     "b 13f",
-    "14:",
-    "movs r0, #1",
-    "b 13f",
     "10:",
     "ldr r1, [sp, #8]",
     "15:",
@@ -514,15 +576,17 @@ core::arch::global_asm!(
     "muls r3, r4, r3",
     "adds r3, r1, r3",
     // Qualifies: rows left on the triangle's routine count (a fast Gouraud row that neither
-    // switches its short edge nor ends it), and left.c ≥ 0. The count goes down by one.
+    // switches its short edge nor ends it); left.c < 0 goes to 18. The count goes down by
+    // one.
     "ldrb r4, [r3, #{rrows}]",
     "subs r4, #1",
     "bcc 19f",
     "ldr r5, [r3, #{lw}]",
     "lsls r5, r5, #16",
-    "bpl 14b",
+    "bpl 18f",
     "strb r4, [r3, #{rrows}]",
     row_span!(),
+    "17:",
     edge_step!("r"),
     // The left edge steps (`edge_step!`), and the packed rows with it: row += inc, and
     // + gx (still in r8–r10) when the left edge carried; one path for each.
@@ -552,6 +616,13 @@ core::arch::global_asm!(
     "b 15b",
     "19:",
     "b 20b",
+    // A counted row with left.c < 0 (a triangle across the left border): as `draw_row`, the
+    // span starts at column 0 with the attributes moved by gx·(−left.c), then the row steps
+    // as any other.
+    "18:",
+    "strb r4, [r3, #{rrows}]",
+    row_span_left_clamped!(),
+    "b 17b",
     // Slot addresses back to indices (exact divisions by 84, as above).
     "13:",
     "ldr r1, [sp, #24]",
