@@ -234,14 +234,24 @@ macro_rules! row_span {
             clamp_right!(),
             "subs r6, r5, r4\n",
             "ble 5f\n",
+            "adds r3, #{row0}\n",
+            "ldm r3, {{r2, r3, r4}}\n",
+            span_run!(),
+        )
+    };
+}
+
+/// The end of [`row_span`]: the run of r6 bytes ending at byte column r5 of both lines, with
+/// r2–r4 and r8–r10 loaded; counts the fragments (lr) and ends with r0 = r12.
+macro_rules! span_run {
+    () => {
+        concat!(
             "add lr, r6\n",
             "ldr r1, [sp, #12]\n",
             "adds r7, r1, r5\n",
             "ldr r1, [sp, #16]\n",
             "adds r1, r1, r5\n",
             "negs r0, r6\n",
-            "adds r3, #{row0}\n",
-            "ldm r3, {{r2, r3, r4}}\n",
             pixel_loop!(),
             "b 5f\n",
             hidden_pixel!("r11", gouraud_steps!()),
@@ -292,17 +302,7 @@ macro_rules! row_span_left_clamped {
             "ble 5f\n",
             clamp_right!(),
             "movs r6, r5\n",
-            "add lr, r6\n",
-            "ldr r1, [sp, #12]\n",
-            "adds r7, r1, r5\n",
-            "ldr r1, [sp, #16]\n",
-            "adds r1, r1, r5\n",
-            "negs r0, r6\n",
-            pixel_loop!(),
-            "b 5f\n",
-            hidden_pixel!("r11", gouraud_steps!()),
-            "5:\n",
-            "mov r0, r12\n",
+            span_run!(),
         )
     };
 }
