@@ -327,15 +327,39 @@ macro_rules! row_step {
         concat!(
             "movs r4, #{row0}\n",
             "adds r4, r0, r4\n",
-            "ldm r4!, {{r1, r2, r3}}\n",
-            "adds r4, #4\n",
-            "ldm r4!, {{r0, r5, r6}}\n",
+            row_step_at!("r4", "r5", $carry),
+        )
+    };
+}
+
+/// [`row_step`] with the record's `row` address in `$p` (a low register; `$t` is another one,
+/// used as a temporary with r0–r3 and r6).
+macro_rules! row_step_at {
+    ($p:literal, $t:literal, $carry:literal) => {
+        concat!(
+            "ldm ",
+            $p,
+            "!, {{r1, r2, r3}}\n",
+            "adds ",
+            $p,
+            ", #4\n",
+            "ldm ",
+            $p,
+            "!, {{r0, ",
+            $t,
+            ", r6}}\n",
             "adds r1, r1, r0\n",
-            "adds r2, r2, r5\n",
+            "adds r2, r2, ",
+            $t,
+            "\n",
             "adds r3, r3, r6\n",
             $carry,
-            "subs r4, #28\n",
-            "stm r4!, {{r1, r2, r3}}\n",
+            "subs ",
+            $p,
+            ", #28\n",
+            "stm ",
+            $p,
+            "!, {{r1, r2, r3}}\n",
         )
     };
 }
@@ -583,13 +607,51 @@ core::arch::global_asm!(
     "bcc 19f",
     "ldr r5, [r3, #{lw}]",
     "lsls r5, r5, #16",
-    "bpl 18f",
+    "bmi 16f",
+    "b 18f",
+    "16:",
     "strb r4, [r3, #{rrows}]",
     row_span!(),
+    // Both edges step (as `edge_step!`), loaded and stored with one `ldm` and one `stm`
+    // (r1, r2 = left w, s; r3, r4 = right w, s), and the packed rows with them: row += inc,
+    // and + gx (still in r8–r10) when the left edge carried; one path for each.
     "17:",
-    edge_step!("r"),
-    // The left edge steps (`edge_step!`), and the packed rows with it: row += inc, and
-    // + gx (still in r8–r10) when the left edge carried; one path for each.
+    "adds r5, r0, #{lw}",
+    "ldm r5!, {{r1, r2, r3, r4}}",
+    "adds r3, r3, r4",
+    "bpl 7f",
+    "ldrh r6, [r0, #{rdy}]",
+    "lsls r6, r6, #16",
+    "adds r6, #1",
+    "adds r3, r3, r6",
+    "7:",
+    "adds r1, r1, r2",
+    "bmi 9f",
+    "subs r5, #16",
+    "stm r5!, {{r1, r2, r3, r4}}",
+    "adds r5, #{row_after_edges}",
+    row_step_at!("r5", "r4", ""),
+    "ldr r1, [sp, #8]",
+    "adds r1, #{size}",
+    "str r1, [sp, #8]",
+    "b 15b",
+    "19:",
+    "b 20b",
+    "9:",
+    "ldrh r6, [r0, #{ldy}]",
+    "lsls r6, r6, #16",
+    "adds r6, #1",
+    "adds r1, r1, r6",
+    "subs r5, #16",
+    "stm r5!, {{r1, r2, r3, r4}}",
+    "adds r5, #{row_after_edges}",
+    row_step_at!("r5", "r4", "add r1, r8\nadd r2, r9\nadd r3, r10\n"),
+    "ldr r1, [sp, #8]",
+    "adds r1, #{size}",
+    "str r1, [sp, #8]",
+    "b 15b",
+    // After the switch with the middle vertex right (the right edge is the new one, not
+    // stepped): the left edge steps, and the rows with it.
     "29:",
     "ldr r1, [r0, #{lw}]",
     "ldr r2, [r0, #{ls}]",
@@ -614,8 +676,6 @@ core::arch::global_asm!(
     "adds r1, #{size}",
     "str r1, [sp, #8]",
     "b 15b",
-    "19:",
-    "b 20b",
     // A counted row with left.c < 0 (a triangle across the left border): as `draw_row`, the
     // span starts at column 0 with the attributes moved by gx·(−left.c), then the row steps
     // as any other.
@@ -678,6 +738,7 @@ core::arch::global_asm!(
     rdy = const o::RIGHT_DY,
     gx0 = const o::GX,
     row0 = const o::ROW,
+    row_after_edges = const o::ROW - (o::RIGHT + o::S + 4),
 );
 
 // The immediate offsets above must be encodable in 16-bit Thumb loads and stores (some are 0
@@ -687,6 +748,10 @@ const _: () = {
     assert!(o::LEFT % 4 == 0 && o::RIGHT % 4 == 0 && o::RIGHT + o::S <= 124);
     assert!(o::W == 0 && o::S == 4 && o::LEFT_DY % 2 == 0 && o::RIGHT_DY <= 62);
     assert!(o::GX % 4 == 0 && o::ROW == o::GX + 16 && o::INC == o::ROW + 16);
+    // The row routine loads and stores both edges' words with one `ldm` and `stm` from
+    // `adds r5, r0, #LEFT` (an immediate of 3 bits).
+    assert!(o::LEFT <= 7 && o::RIGHT == o::LEFT + 8 && o::S == 4);
+    assert!(o::ROW >= o::RIGHT + o::S + 4 && o::ROW - (o::RIGHT + o::S + 4) <= 255);
     assert!(o::INC + 12 <= 255);
     assert!(core::mem::size_of::<ActiveTri>() <= 255);
     assert!(o::ORD % 2 == 0 && o::ORD <= 62 && o::ROUTINE_ROWS <= 31 && o::FLAGS <= 31);
