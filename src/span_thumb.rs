@@ -7,8 +7,8 @@
 //! Why assembly: on `thumbv6m` only r0–r7 are general registers for most instructions and r7 is
 //! the frame pointer, so LLVM spills the span's accumulators to the stack and unrolls the loop
 //! four times, which comes to about 47 instructions per pixel. Written by hand the loop keeps
-//! the three accumulators and the pointer in low registers and the three steps and the end
-//! pointer in r8–r11: 20 instructions per written pixel and 12 per hidden one.
+//! the three accumulators, the index and both line ends in low registers and the three steps
+//! in r8–r10: 19 instructions per written pixel and 12 per hidden one.
 //!
 //! The routines compute exactly what the portable code in [`crate::raster`] computes
 //! (`span_packed` for `DepthTest::Less` and 5-6-5 channels, `ActiveTri::draw_row` for a fast
@@ -62,9 +62,9 @@ macro_rules! restore_registers_and_return {
 /// (`raster::pack_zrgb`: the depth is the high half of z, red and blue are the halves of rb
 /// with 11 fraction bits each, green is the top 6 bits of g; rounding biases added), r8, r9,
 /// r10 = their per-pixel steps (all wrapping, so these are the bits the portable loop
-/// extracts), r11 = count of *hidden* pixels so far (fewer than the written ones in a
-/// typical frame — the torus has a few dozen — so the count costs the rare path).
-/// Uses r5, r6. A hidden pixel branches to label 3, which must be placed (with
+/// extracts). *Hidden* pixels are counted by the hidden path (`hidden_pixel!`: fewer than the
+/// written ones in a typical frame — the torus has a few dozen — so the count costs the rare
+/// path). Uses r5, r6. A hidden pixel branches to label 3, which must be placed (with
 /// `hidden_pixel!`) after an unconditional branch within 256 bytes of the loop, right before
 /// the code that follows the loop. 19 instructions per written pixel, 12 per hidden one.
 macro_rules! pixel_loop {
@@ -92,24 +92,27 @@ macro_rules! pixel_loop {
     };
 }
 
-/// The pixel loop's hidden-pixel path: counts it in `$count` (a high register), then the
-/// loop's own steps `$steps` and end test (repeated here rather than branched back to), so
-/// that its last pixel falls through to what follows. Uses r5.
+/// The pixel loop's hidden-pixel path: counts it with `$count` (three instructions that add
+/// one to the count, using r5), then the loop's own steps `$steps` and end test (repeated
+/// here rather than branched back to), so that its last pixel falls through to what follows.
 macro_rules! hidden_pixel {
-    ($count:literal, $steps:expr) => {
-        concat!(
-            "3:\n",
-            "mov r5, ",
-            $count,
-            "\n",
-            "adds r5, #1\n",
-            "mov ",
-            $count,
-            ", r5\n",
-            $steps,
-            "adds r0, #2\n",
-            "bne 1b\n",
-        )
+    ($count:expr, $steps:expr) => {
+        concat!("3:\n", $count, $steps, "adds r0, #2\n", "bne 1b\n",)
+    };
+}
+
+/// For [`hidden_pixel`]: adds one to the count in the high register `$r`. Uses r5.
+macro_rules! count_in {
+    ($r:literal) => {
+        concat!("mov r5, ", $r, "\n", "adds r5, #1\n", "mov ", $r, ", r5\n")
+    };
+}
+
+/// For [`hidden_pixel`] in the row routine: adds one to the hidden count in its stack frame.
+/// Uses r5.
+macro_rules! count_on_stack {
+    () => {
+        "ldr r5, [sp, #20]\nadds r5, #1\nstr r5, [sp, #20]\n"
     };
 }
 
@@ -150,7 +153,7 @@ core::arch::global_asm!(
     "mov r11, r5",
     pixel_loop!(),
     "b 4f",
-    hidden_pixel!("r11", gouraud_steps!()),
+    hidden_pixel!(count_in!("r11"), gouraud_steps!()),
     // Written = run length − hidden.
     "4:",
     "mov r0, r12",
@@ -196,7 +199,7 @@ core::arch::global_asm!(
     "adds r0, #2",
     "bne 1b",
     "b 4f",
-    hidden_pixel!("lr", "adds r2, r2, r3\n"),
+    hidden_pixel!(count_in!("lr"), "adds r2, r2, r3\n"),
     // Written = run length − hidden.
     "4:",
     "mov r0, r12",
@@ -210,8 +213,9 @@ core::arch::global_asm!(
 
 /// One row of the triangle in r3 (r5 = its left edge's `w << 16`, with `left.c ≥ 0`) for the
 /// row routine: loads its three per-pixel steps into r8–r10 (kept after the span: the row step
-/// reuses them), draws the span `left.c..min(right.c, width)` with [`pixel_loop`] (r11 counts
-/// hidden pixels, lr twice the fragments, across the routine's call) and ends with
+/// reuses them), draws the span `left.c..min(right.c, width)` with [`pixel_loop`] (the stack
+/// frame counts hidden pixels, lr twice the fragments, across the routine's call; r11 is
+/// twice the width) and ends with
 /// r0 = r12 = the triangle. Reads the stack frame of `scanline3d_rows565`. On a row it draws,
 /// `right.c ≥ left.c ≥ 0`, so both biased columns (`raster::EdgeDda`) give twice the column
 /// as `(w << 17) >> 16`.
@@ -254,7 +258,7 @@ macro_rules! span_run {
             "negs r0, r6\n",
             pixel_loop!(),
             "b 5f\n",
-            hidden_pixel!("r11", gouraud_steps!()),
+            hidden_pixel!(count_on_stack!(), gouraud_steps!()),
             "5:\n",
             "mov r0, r12\n",
         )
@@ -307,16 +311,10 @@ macro_rules! row_span_left_clamped {
     };
 }
 
-/// For [`row_span`]: r5 = min(r5, twice the width) (signed). Uses r1.
+/// For [`row_span`]: r5 = min(r5, r11 = twice the width) (signed).
 macro_rules! clamp_right {
     () => {
-        concat!(
-            "ldr r1, [sp, #20]\n",
-            "cmp r5, r1\n",
-            "ble 4f\n",
-            "mov r5, r1\n",
-            "4:\n",
-        )
+        concat!("cmp r5, r11\n", "ble 4f\n", "mov r5, r11\n", "4:\n",)
     };
 }
 
@@ -461,9 +459,9 @@ core::arch::global_asm!(
     // The context's first six words are copied to the stack, each a single load away, with
     // the indices as slot addresses and the colour offset as the colour line: [sp] = tris,
     // [sp, #4] = slot n, [sp, #8] = slot i, [sp, #12] = the depth line, [sp, #16] = the
-    // colour line, [sp, #20] = twice the width; [sp, #24] = the context. r11 counts hidden
-    // pixels and lr twice the fragments for the whole call (the return address is on the
-    // stack).
+    // colour line, [sp, #20] = the count of hidden pixels (where the context has twice the
+    // width, which goes to r11); [sp, #24] = the context. lr counts twice the fragments for
+    // the whole call (the return address is on the stack).
     "push {{r0}}",
     "ldm r0!, {{r1, r2, r3, r4, r5, r6}}",
     "movs r7, #{size}",
@@ -472,10 +470,10 @@ core::arch::global_asm!(
     "muls r3, r7, r3",
     "adds r3, r1, r3",
     "adds r5, r5, r4",
+    "mov r11, r6",
+    "movs r6, #0",
     "push {{r1, r2, r3, r4, r5, r6}}",
-    "movs r7, #0",
-    "mov lr, r7",
-    "mov r11, r7",
+    "mov lr, r6",
     "b 10f",
     ".p2align 2",
     ".ltorg",
@@ -701,7 +699,7 @@ core::arch::global_asm!(
     "mov r2, lr",
     "lsrs r2, r2, #1",
     "str r2, [r1, #{cfrag}]",
-    "mov r2, r11",
+    "ldr r2, [sp, #20]",
     "str r2, [r1, #{chidden}]",
     "add sp, #28",
     restore_registers_and_return!(),
