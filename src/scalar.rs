@@ -360,8 +360,9 @@ pub fn recip_norm(a: u64) -> (i32, u32) {
     let x1 = (x0 as i32 + (((x0 >> 1) as i32 * (e >> 10)) >> 21)) as u32;
     // 2^61 / a32 ≈ x1 · 2^13, then m' = m + m·(2^61 − a32·m)/2^61.
     let m0 = (x1 as u64) << 13;
-    let err = (1i64 << 61) - mul_wide_u(a32, m0 as u32) as i64; // |err| < 2^47
-                                                                // The correction is below 2¹⁷ in magnitude (|err| < 2⁴⁷, m0 ≤ 2³⁰), so m1 fits an i32.
+    // |err| < 2^47, so the correction is below 2¹⁷ in magnitude (m0 ≤ 2³⁰) and m1 fits an
+    // i32.
+    let err = (1i64 << 61) - mul_wide_u(a32, m0 as u32) as i64;
     let m1 = m0 as i32 + (mul_wide(m0 as i32, (err >> 30) as i32) >> 31) as i32;
     // 1/a = m1 · 2^-(61 + s − 32).
     (m1.clamp(1, 1 << 30), 29 + s)
@@ -375,14 +376,7 @@ pub fn mul_q32(n: i64, k: u32) -> i64 {
     let hi = n >> 32; // signed
     let lo = n as u32;
     if hi == hi as i16 as i64 && k < 1 << 16 {
-        // Screen scales (8 × the viewport size): |hi·k| < 2³¹, one 32-bit product. (Written
-        // as a 32 × 16-bit `mul_wide16`, LLVM turned it back into a library 64-bit multiply.)
-        // The low word's rounded part in two 16-bit products: lo·k = t·2¹⁶ + r with
-        // t = (lo >> 16)·k + ((lo & 0xffff)·k >> 16) < 2³² − 2¹⁶ and r < 2¹⁶, and r cannot
-        // carry the rounding, so (lo·k + 2³¹) >> 32 = (t + 2¹⁵) >> 16.
-        let t = (lo >> 16) * k + (((lo & 0xffff) * k) >> 16);
-        let l = (t + (1 << 15)) >> 16;
-        return (hi as i32 * k as i32) as i64 + l as i64;
+        return mul_q32_short(hi, lo, k);
     }
     let l = (mul_wide_u(lo, k) + (1 << 31)) >> 32;
     if hi == 0 {
@@ -394,6 +388,29 @@ pub fn mul_q32(n: i64, k: u32) -> i64 {
         return mul_wide16(k as i32, hi as i32) + l as i64;
     }
     (hi.saturating_mul(k as i64)).saturating_add(l as i64)
+}
+
+/// [`mul_q32`] of `n = hi·2³² + lo` for `hi` in the `i16` range and `k < 2¹⁶` (screen scales,
+/// 8 × the viewport size): `|hi·k| < 2³¹`, one 32-bit product. (Written as a 32 × 16-bit
+/// `mul_wide16`, LLVM turned it back into a library 64-bit multiply.) The low word's rounded
+/// part in two 16-bit products: `lo·k = t·2¹⁶ + r` with
+/// `t = (lo >> 16)·k + ((lo & 0xffff)·k >> 16) < 2³² − 2¹⁶` and `r < 2¹⁶`, and `r` cannot
+/// carry the rounding, so `(lo·k + 2³¹) >> 32 = (t + 2¹⁵) >> 16`.
+#[inline(always)]
+fn mul_q32_short(hi: i64, lo: u32, k: u32) -> i64 {
+    let t = (lo >> 16) * k + (((lo & 0xffff) * k) >> 16);
+    let l = (t + (1 << 15)) >> 16;
+    (hi as i32 * k as i32) as i64 + l as i64
+}
+
+/// `(p + 2^(s−1)) >> s` (arithmetic, `0 < s < 32`) as its high and low words, in 32-bit
+/// shifts: the common case of the fixed-point [`Scalar::ndc`].
+#[inline(always)]
+fn round_shr_words(p: i64, s: u32) -> (i32, u32) {
+    let (hi, lo) = ((p >> 32) as i32, p as u32);
+    let (lo, c) = lo.overflowing_add(1 << (s - 1));
+    let hi = hi + c as i32;
+    (hi >> s, (lo >> s) | ((hi as u32) << (32 - s)))
 }
 
 /// Rounds and saturates an `f64` to `i64` (NaN → 0).
@@ -709,11 +726,8 @@ macro_rules! impl_fx {
                 let s = r.shift as i32 - NDC_FRAC_BITS as i32;
                 if s > 0 && s < 32 {
                     // Every positive 32-bit w: shift = 29 + bitlen(w) ≤ 60, so s ≤ 28.
-                    let (hi, lo) = ((p >> 32) as i32, p as u32);
-                    let (lo, c) = lo.overflowing_add(1 << (s - 1));
-                    let hi = hi + c as i32;
-                    let lo = (lo >> s) | ((hi as u32) << (32 - s));
-                    (((hi >> s) as i64) << 32) | lo as i64
+                    let (hi, lo) = round_shr_words(p, s as u32);
+                    ((hi as i64) << 32) | lo as i64
                 } else if s > 0 {
                     round_shr64(p, s as u32)
                 } else {
@@ -731,19 +745,14 @@ macro_rules! impl_fx {
                 let s = r.shift as i32 - NDC_FRAC_BITS as i32;
                 if s > 0 && s < 32 && k < 1 << 16 {
                     let p = mul_wide(v.0.to_bits(), r.mantissa);
-                    let (hi, lo) = ((p >> 32) as i32, p as u32);
-                    let (lo, c) = lo.overflowing_add(1 << (s - 1));
-                    let hi = hi + c as i32;
-                    let (mut lo, mut hi) = ((lo >> s) | ((hi as u32) << (32 - s)), hi >> s);
+                    let (mut hi, mut lo) = round_shr_words(p, s as u32);
                     if negate {
                         // −(hi·2³² + lo), |·| < 2⁶¹.
                         hi = (!hi).wrapping_add((lo == 0) as i32);
                         lo = lo.wrapping_neg();
                     }
                     if hi == hi as i16 as i32 {
-                        let t = (lo >> 16) * k + (((lo & 0xffff) * k) >> 16);
-                        let l = (t + (1 << 15)) >> 16;
-                        return (hi * k as i32) as i64 + l as i64;
+                        return mul_q32_short(hi as i64, lo, k);
                     }
                 }
                 let n = Self::ndc(v, r);

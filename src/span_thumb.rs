@@ -362,6 +362,20 @@ macro_rules! row_step_at {
     };
 }
 
+/// The row routine's move to the next entry of the active list (slot address i += 84) and
+/// back to its loop head, label 15. Repeated after each row step rather than branched to:
+/// a branch fewer a row.
+macro_rules! next_triangle {
+    () => {
+        concat!(
+            "ldr r1, [sp, #8]\n",
+            "adds r1, #{size}\n",
+            "str r1, [sp, #8]\n",
+            "b 15b\n",
+        )
+    };
+}
+
 /// The row routine's step of the right (`$x` = `r`) edge of the triangle in r0
 /// (`raster::EdgeDda`): w += s; when that is negative, w += dy·2¹⁶ + 1. Uses r1 and r2. (The
 /// left edge's step is spelled out in the routine, where each outcome has its own row step.)
@@ -629,10 +643,7 @@ core::arch::global_asm!(
     "stm r5!, {{r1, r2, r3, r4}}",
     "adds r5, #{row_after_edges}",
     row_step_at!("r5", "r4", ""),
-    "ldr r1, [sp, #8]",
-    "adds r1, #{size}",
-    "str r1, [sp, #8]",
-    "b 15b",
+    next_triangle!(),
     "19:",
     "b 20b",
     "9:",
@@ -644,10 +655,7 @@ core::arch::global_asm!(
     "stm r5!, {{r1, r2, r3, r4}}",
     "adds r5, #{row_after_edges}",
     row_step_at!("r5", "r4", "add r1, r8\nadd r2, r9\nadd r3, r10\n"),
-    "ldr r1, [sp, #8]",
-    "adds r1, #{size}",
-    "str r1, [sp, #8]",
-    "b 15b",
+    next_triangle!(),
     // After the switch with the middle vertex right (the right edge is the new one, not
     // stepped): the left edge steps, and the rows with it.
     "29:",
@@ -659,10 +667,7 @@ core::arch::global_asm!(
     row_step!(""),
     // The next triangle.
     "31:",
-    "ldr r1, [sp, #8]",
-    "adds r1, #{size}",
-    "str r1, [sp, #8]",
-    "b 15b",
+    next_triangle!(),
     "8:",
     "ldrh r2, [r0, #{ldy}]",
     "lsls r2, r2, #16",
@@ -670,10 +675,7 @@ core::arch::global_asm!(
     "adds r1, r1, r2",
     "str r1, [r0, #{lw}]",
     row_step!("add r1, r8\nadd r2, r9\nadd r3, r10\n"),
-    "ldr r1, [sp, #8]",
-    "adds r1, #{size}",
-    "str r1, [sp, #8]",
-    "b 15b",
+    next_triangle!(),
     // A counted row with left.c < 0 (a triangle across the left border): as `draw_row`, the
     // span starts at column 0 with the attributes moved by gx·(−left.c), then the row steps
     // as any other.
