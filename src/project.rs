@@ -171,10 +171,30 @@ impl Viewport {
     /// Returns `None` when `w` is not positive (such a point must have been clipped).
     #[must_use]
     pub fn project<S: Scalar>(&self, p: [S; 4], rgb: [u16; 3]) -> Option<ScreenVertex> {
-        let [x, y, z, w] = p;
-        if w.partial_cmp(&S::ZERO) != Some(core::cmp::Ordering::Greater) {
+        if p[3].partial_cmp(&S::ZERO) != Some(core::cmp::Ordering::Greater) {
             return None;
         }
+        let (sx, sy) = (8 * self.width, 8 * self.height);
+        let [x, y, z] = match S::screen_words(&p, sx, sy) {
+            Some(words) => words,
+            None => self.screen_words(p),
+        };
+        let mut v = ScreenVertex {
+            x: x as i16,
+            y: y as i16,
+            z: (z >> 8) as u16,
+            zf: z as u8,
+            rgb_hi: [0; 3],
+            flags: 0,
+        };
+        v.set_color(rgb);
+        Some(v)
+    }
+
+    /// [`Viewport::project`]'s screen words for `w > 0`: x and y in subpixels, clamped to
+    /// ±[`COORD_LIMIT`], and the depth as unsigned 16.8 (0..=65535·2⁸).
+    fn screen_words<S: Scalar>(&self, p: [S; 4]) -> [i32; 3] {
+        let [x, y, z, w] = p;
         let r = S::recip(w);
         // x_sub = (ndc_x + 1) · width/2 · 16 = ndc_x · 8·width + 8·width.
         let (sx, sy) = (8 * self.width as i64, 8 * self.height as i64);
@@ -186,16 +206,56 @@ impl Viewport {
         let pz = mul_q32(nz.clamp(0, 1 << NDC_FRAC_BITS), dz as u32);
         // 16.12 to 16.8, rounded (at most 65535·2⁸).
         let z = (pz.clamp(0, dz) + 8) >> 4;
-        let mut v = ScreenVertex {
-            x: px.clamp(-lim, lim) as i16,
-            y: py.clamp(-lim, lim) as i16,
-            z: (z >> 8) as u16,
-            zf: z as u8,
-            rgb_hi: [0; 3],
-            flags: 0,
+        [
+            px.clamp(-lim, lim) as i32,
+            py.clamp(-lim, lim) as i32,
+            z as i32,
+        ]
+    }
+
+    /// Cortex-M only, for the benchmark firmware: [`Viewport::project`]'s screen words from
+    /// the Q16.16 assembly routine against the portable ones, on `n` pseudo-random clip-space
+    /// points (w from 2⁻¹⁶ to 2¹⁵, coordinates up to 16·w and beyond the guard band, depths
+    /// in front of, inside and behind the depth range) and a few screen sizes. Returns the
+    /// first point `[x, y, z, w]` (Q16.16 bits) and width whose words differ.
+    #[cfg(all(target_arch = "arm", target_os = "none"))]
+    #[doc(hidden)]
+    #[must_use]
+    pub fn projection_self_test(n: u32) -> Option<([i32; 4], u32)> {
+        use crate::scalar::Fx;
+        use fixed::types::I16F16;
+        let mut state = 0x2545_f491u32;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            state
         };
-        v.set_color(rgb);
-        Some(v)
+        for i in 0..n {
+            let (r1, r2, r3) = (next(), next(), next());
+            let w = ((r1 >> 1) >> (r1 % 31)).max(1) as i32;
+            // Coordinates up to 2^k·w, every sign: mostly inside the guard band (k ≤ 3).
+            let coord = |r: u32| {
+                let k = [0u32, 1, 2, 3, 3, 4, 5, 8][(r >> 29) as usize];
+                let m = (w as i64) << k;
+                ((r as i64 % (2 * m + 1)) - m).clamp(i32::MIN as i64, i32::MAX as i64) as i32
+            };
+            let (x, y) = (coord(r2), coord(r3));
+            let z = coord(r1.rotate_left(7) ^ r3);
+            let width = [240u32, 320, 128, 1024][(i % 4) as usize];
+            let vp = Viewport {
+                width,
+                height: [240u32, 240, 160, 1024][(i % 4) as usize],
+            };
+            let p = [x, y, z, w].map(|b| Fx(I16F16::from_bits(b)));
+            let want = vp.screen_words(p);
+            if let Some(got) = crate::span_thumb::project_i16f16(&p, 8 * vp.width, 8 * vp.height) {
+                if got != want {
+                    return Some(([x, y, z, w], width));
+                }
+            }
+        }
+        None
     }
 }
 

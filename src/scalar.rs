@@ -175,6 +175,16 @@ pub trait Scalar:
     /// `i32` (NaN → 0).
     #[must_use]
     fn to_fixed_i32(self, frac: u32) -> i32;
+    /// The screen words that [`crate::project::Viewport::project`] computes for a clip-space
+    /// point with `w > 0` and the scales `sx`, `sy` (8 × the viewport size), when the type has
+    /// a faster routine that gives the same values; `None` lets `project` compute them.
+    #[doc(hidden)]
+    #[must_use]
+    #[inline(always)]
+    fn screen_words(p: &[Self; 4], sx: u32, sy: u32) -> Option<[i32; 3]> {
+        let _ = (p, sx, sy);
+        None
+    }
 }
 
 /// The exact 64-bit product of two `i32`, from four 16 × 16-bit products.
@@ -318,7 +328,7 @@ fn bitlen64(a: u64) -> u32 {
 /// less 2¹⁶ (so it fits a `u16`): the seed of [`recip_norm`], relative error ≤ 2⁻⁸ over the
 /// interval
 /// (half its width over its start, 2⁷/2¹⁵). 256 bytes of flash.
-const RECIP_SEED: [u16; 128] = {
+pub(crate) const RECIP_SEED: [u16; 128] = {
     let mut t = [0u16; 128];
     let mut i = 0;
     while i < 128 {
@@ -556,7 +566,7 @@ pub struct FxRecip {
 }
 
 macro_rules! impl_fx {
-    ($t:ident, $frac:expr, $name:expr $(, $thumb_transform:path, $thumb_dir:path)?) => {
+    ($t:ident, $frac:expr, $name:expr $(, $thumb_transform:path, $thumb_dir:path, $thumb_project:path)?) => {
         impl Fx<$t> {
             /// Builds a value from a float literal (rounds to nearest, saturates).
             #[must_use]
@@ -720,6 +730,7 @@ macro_rules! impl_fx {
                 let (mantissa, shift) = recip_norm(w.0.to_bits().max(1) as u64);
                 FxRecip { mantissa, shift }
             }
+            #[inline(always)]
             fn ndc(v: Self, r: FxRecip) -> i64 {
                 // v/w = v_bits / w_bits = v_bits · mantissa · 2^-shift; |product| < 2^61.
                 let p = mul_wide(v.0.to_bits(), r.mantissa);
@@ -758,6 +769,23 @@ macro_rules! impl_fx {
                 let n = Self::ndc(v, r);
                 mul_q32(if negate { -n } else { n }, k)
             }
+            #[inline(always)]
+            fn screen_words(p: &[Self; 4], sx: u32, sy: u32) -> Option<[i32; 3]> {
+                $(
+                    // Thumb-1 assembly where LLVM has no 32 × 32 → 64-bit multiply (ARMv6-M).
+                    #[cfg(all(
+                        target_arch = "arm",
+                        target_os = "none",
+                        not(target_has_atomic = "32")
+                    ))]
+                    return $thumb_project(p, sx, sy);
+                )?
+                #[allow(unreachable_code)]
+                {
+                    let _ = (p, sx, sy);
+                    None
+                }
+            }
             fn to_fixed_i32(self, frac: u32) -> i32 {
                 let b = self.0.to_bits() as i64;
                 let v = if frac >= $frac {
@@ -777,7 +805,8 @@ impl_fx!(
     16,
     "I16F16",
     crate::span_thumb::transform_i16f16,
-    crate::span_thumb::transform_dir_i16f16
+    crate::span_thumb::transform_dir_i16f16,
+    crate::span_thumb::project_i16f16
 );
 impl_fx!(I20F12, 12, "I20F12");
 impl_fx!(I12F20, 20, "I12F20");

@@ -438,14 +438,19 @@ fn transform_matches_rows() -> bool {
     true
 }
 
-/// The assembly edge setup gives the portable one's edges on 20 000 pseudo-random edges (the
-/// benchmark scenes' hashes check it too, but only on the edges they have). Prints the first
+/// The assembly edge setup gives the portable one's edges on 20 000 pseudo-random edges, and
+/// the assembly projection the portable one's screen words on 20 000 pseudo-random points (the
+/// benchmark scenes' hashes check them too, but only on the cases they have). Prints the first
 /// mismatch. Not inlined, so that its locals are not part of `main`'s frame during the
 /// renders (on the 16 KB part every byte of it counts).
 #[inline(never)]
 fn edges_match_portable() -> bool {
     if let Some(e) = scanline3d::raster::edge_setup_self_test(20_000) {
         hprintln!("EDGE MISMATCH {:?}", e);
+        return false;
+    }
+    if let Some(e) = scanline3d::project::Viewport::projection_self_test(20_000) {
+        hprintln!("PROJECTION MISMATCH {:?}", e);
         return false;
     }
     true
