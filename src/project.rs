@@ -47,6 +47,13 @@ pub struct ScreenVertex {
     pub(crate) flags: u16,
 }
 
+/// Byte offsets of [`ScreenVertex::rgb_hi`] and [`ScreenVertex::flags`], for the Cortex-M0
+/// triangle setup (`span_thumb`).
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+pub(crate) const RGB_HI_OFFSET: usize = core::mem::offset_of!(ScreenVertex, rgb_hi);
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+pub(crate) const FLAGS_OFFSET: usize = core::mem::offset_of!(ScreenVertex, flags);
+
 /// Mask of [`ScreenVertex::flags`] bits that belong to the renderer (the rest is colour).
 pub(crate) const FLAG_MASK: u16 = (1 << 10) - 1;
 

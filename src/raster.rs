@@ -330,6 +330,82 @@ pub fn edge_setup_self_test(n: u32) -> Option<[i32; 5]> {
     None
 }
 
+/// Cortex-M only, for the benchmark firmware: the assembly Gouraud setup
+/// (`span_thumb::gouraud_setup`) against the portable [`attribute_words`] for RGB565 on `n`
+/// pseudo-random triangles (small and large, every orientation, any depths and colours,
+/// first rows and left edges at and around the first vertex). Returns the first mismatching
+/// triangle's vertices `[x, y, depth, colour]` (the colour's three 10-bit channels packed)
+/// and `[row, left column, left step]`.
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+#[doc(hidden)]
+#[allow(clippy::type_complexity)]
+pub fn gouraud_setup_self_test(n: u32) -> Option<([[i32; 4]; 3], [i32; 3])> {
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    let mut state = 0x6a09_e667u32;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state
+    };
+    let lim = crate::project::COORD_LIMIT;
+    for i in 0..n {
+        let size = [64u32, 512, 4096, 2 * lim as u32][(i % 4) as usize];
+        let (ox, oy) = ((next() % 4096) as i32 - 2048, (next() % 4096) as i32 - 2048);
+        let mut v = [ScreenVertex::default(); 3];
+        for p in &mut v {
+            let r = next();
+            p.x = (ox + (r % (size + 1)) as i32 - size as i32 / 2).clamp(-lim, lim) as i16;
+            p.y = (oy + ((r >> 16) % (size + 1)) as i32 - size as i32 / 2).clamp(-lim, lim) as i16;
+            let d = next();
+            p.z = d as u16;
+            p.zf = (d >> 16) as u8;
+            let c = next();
+            p.set_color([
+                (c & 1023) as u16,
+                (c >> 10 & 1023) as u16,
+                (c >> 20 & 1023) as u16,
+            ]);
+        }
+        v.sort_unstable_by_key(|p| p.y);
+        let [a, b, c] = &v;
+        let det = (b.x as i32 - a.x as i32) * (c.y as i32 - a.y as i32)
+            - (c.x as i32 - a.x as i32) * (b.y as i32 - a.y as i32);
+        if det == 0 {
+            continue;
+        }
+        let r = next();
+        let row = first_pixel(a.y as i32) + (r % 16) as i32;
+        let left_c = (a.x as i32 >> 4) + ((r >> 8) % 64) as i32 - 32;
+        let left_sq = ((r >> 16) % 512) as i32 - 256;
+        let tri = Sorted {
+            v: [a, b, c],
+            det,
+            row,
+            left_c,
+            left_sq,
+        };
+        let mut want = ActiveTri::EMPTY;
+        attribute_words::<Rgb565>(&mut want, &tri, false, true, [0; 3]);
+        let mut rec = ActiveTri::EMPTY;
+        if crate::span_thumb::gouraud_setup(&mut rec, &tri)
+            && [rec.gx, rec.row, rec.inc] != [want.gx, want.row, want.inc]
+        {
+            let word = |p: &ScreenVertex| {
+                let c = p.color();
+                [
+                    p.x as i32,
+                    p.y as i32,
+                    p.depth(),
+                    c[0] as i32 | (c[1] as i32) << 10 | (c[2] as i32) << 20,
+                ]
+            };
+            return Some(([word(a), word(b), word(c)], [row, left_c, left_sq]));
+        }
+    }
+    None
+}
+
 /// Bias of the column in [`EdgeDda::w`]: every column an edge takes on a row where it is used
 /// (|c| ≤ 1025), and every sum `c + sq` on the way to the next such row, is in
 /// `−2¹⁵..2¹⁵`, so the biased column is a 16-bit unsigned half that never carries into `e`.
@@ -715,6 +791,170 @@ pub(crate) mod offsets {
     pub const EDGE_DY: usize = offset_of!(super::Edge, dy);
 }
 
+/// A triangle's vertices sorted by y, with what [`attribute_words`] needs of its setup
+/// (seven words in this order: the Cortex-M0 setup, `span_thumb::gouraud_setup`, reads them).
+#[repr(C)]
+pub(crate) struct Sorted<'v> {
+    /// The vertices, top to bottom.
+    pub v: [&'v ScreenVertex; 3],
+    /// Twice the signed area, `(b − a) × (c − a)` in subpixels² (nonzero, |·| < 2³¹).
+    pub det: i32,
+    /// The first row to draw.
+    pub row: i32,
+    /// The left edge's column on that row.
+    pub left_c: i32,
+    /// The left edge's whole step in columns per row.
+    pub left_sq: i32,
+}
+
+/// Sets the attribute words of a triangle set up on `tri.row` ([`ActiveTri::gx`], `row` and
+/// `inc` of `rec`): the planes of depth and colour, their gradients, their values at the centre of
+/// the first pixel of the first row and their steps from row to row along the left edge;
+/// packed for the span loops when `fast` and not `flat`. On ARMv6-M, where the assembly
+/// (`span_thumb::gouraud_setup`) takes the common case, out of line: inlined, its spills
+/// would grow the frame of [`ActiveTri::setup`] (on a 16 KB part the stack has no room).
+#[cfg_attr(
+    all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")),
+    inline(never)
+)]
+#[cfg_attr(
+    not(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32"))),
+    inline(always)
+)]
+fn attribute_words<C: TargetColor>(
+    rec: &mut ActiveTri,
+    tri: &Sorted<'_>,
+    flat: bool,
+    fast: bool,
+    flat_rgb: [u16; 3],
+) {
+    let [a, b, c] = tri.v;
+    let (ax, ay, bx, by, cx, cy) = (
+        a.x as i32, a.y as i32, b.x as i32, b.y as i32, c.x as i32, c.y as i32,
+    );
+    let (dx1, dy1) = (bx - ax, by - ay);
+    let (dx2, dy2) = (cx - ax, cy - ay);
+    // Barycentric gradient coefficients, 16·(dy2, dy1, dx2, dx1)/det, with a shared
+    // exponent: gx = da1·bx1 − da2·bx2, gy = da2·by1 − da1·by2.
+    let inv = Reciprocal::new(tri.det as i64);
+    let vmax = dy2
+        .unsigned_abs()
+        .max(dy1.unsigned_abs())
+        .max(dx1.unsigned_abs())
+        .max(dx2.unsigned_abs());
+    let l = crate::scalar::bitlen32(vmax); // ≤ 16
+    let coef = |v: i32| -> i32 {
+        let q = mul_shr_16(inv.m, v, l);
+        if inv.neg {
+            -q
+        } else {
+            q
+        }
+    };
+    let (bx1, bx2, by1, by2) = (coef(dy2), coef(dy1), coef(dx1), coef(dx2));
+    // g = S · 2^(l + 4 − e), S = Σ da·b.
+    let shift = inv.e as i32 - (l as i32 + 4);
+    let scale = |s: i64| scale_gradient(s, shift);
+
+    let n_attrs = if flat { 1 } else { 4 };
+    // The coefficients rounded to 16 bits (|c| ≤ 2^15) for the colour gradients.
+    let c16 = [bx1, bx2, by1, by2].map(|v| (v + (1 << 14)) >> 15);
+    let (ca, cb, cc) = (a.color(), b.color(), c.color());
+    let mut a0 = [0i32; 4];
+    let mut gx = [0i32; 4];
+    let mut gy = [0i32; 4];
+    {
+        let (v0, v1, v2) = (a.depth(), b.depth(), c.depth());
+        let (da1, da2) = (v1 - v0, v2 - v0); // |da| < 2^28
+        a0[0] = v0;
+        gx[0] = scale(mul_wide(da1, bx1) - mul_wide(da2, bx2));
+        gy[0] = scale(mul_wide(da2, by1) - mul_wide(da1, by2));
+    }
+    // Constant trip counts (with a break), so that the channels are unrolled: with a
+    // variable count LLVM kept the arrays in memory and the loop cost about twice as much.
+    for k in 1..4 {
+        if flat {
+            break;
+        }
+        // Colours are 10-bit channels scaled by a constant power of two: the products are
+        // 32 × 16-bit, shifted afterwards (the same values).
+        let sh = COLOR_FRAC_BITS - vertex_frac_bits(C::CHANNEL_MAX[k - 1]);
+        let c0 = ca[k - 1] as i32;
+        let (d1, d2) = (cb[k - 1] as i32 - c0, cc[k - 1] as i32 - c0); // |d| < 2^11
+        a0[k] = c0 << sh;
+        // The gradients from the coefficients rounded to 16 bits: sums of single 32-bit
+        // products (|d·c| < 2^26), rounded once by a 32-bit shift. The largest
+        // coefficient is at least 2^28, so rounding them to multiples of 2^15 moves a value
+        // anywhere in the triangle by a few 2^-14 of the channel's change across it: under
+        // 2^-8 of a unit for a 5-bit channel, which flips a rounding only next to a half
+        // (`tests/accuracy.rs` bounds the image against f64). Slivers thin enough to need
+        // a left shift of more than 3 keep the exact 64-bit sums.
+        let r = shift - 15 - sh as i32;
+        if r >= -3 {
+            let round = |v: i32| -> i32 {
+                if r > 0 {
+                    // v / 2^r rounded half up, as `round_shr_sat` (r ≤ 62).
+                    ((v >> (r - 1).min(31)) + 1) >> 1
+                } else {
+                    // |v| < 2^27, so |v·2^3| < 2^30 = GRAD_LIMIT.
+                    v << -r
+                }
+            };
+            gx[k] = round(c16[0] * d1 - c16[1] * d2);
+            gy[k] = round(c16[2] * d2 - c16[3] * d1);
+        } else {
+            [gx[k], gy[k]] = sliver_color_gradients([bx1, bx2, by1, by2], d1, d2, sh, shift);
+        }
+    }
+    // Evaluate every attribute plane at the centre of pixel (left.c, row).
+    let dx = SUBPIXELS * tri.left_c + SUBPIXELS / 2 - ax;
+    let dy = SUBPIXELS * tri.row + SUBPIXELS / 2 - ay;
+    let short_d = dx == dx as i16 as i32 && dy == dy as i16 as i32;
+    let mut row_v = [0i32; 4];
+    let mut inc = [0i32; 4];
+    for k in 0..4 {
+        if k == n_attrs {
+            break;
+        }
+        let p = if short_d {
+            mul_wide16(gx[k], dx) + mul_wide16(gy[k], dy)
+        } else {
+            mul_wide(gx[k], dx) + mul_wide(gy[k], dy)
+        };
+        let d = p >> crate::project::SUBPIXEL_BITS;
+        row_v[k] = a0[k].wrapping_add(d as i32);
+        inc[k] = gy[k].wrapping_add(gx[k].wrapping_mul(tri.left_sq));
+    }
+    if flat {
+        // Final channel values, rounded from the vertex bytes.
+        let mut ch = [0u8; 3];
+        for k in 0..3 {
+            let f = vertex_frac_bits(C::CHANNEL_MAX[k]);
+            ch[k] = ((flat_rgb[k] as u32 + (1 << (f - 1))) >> f) as u8;
+        }
+        gx[1] = i32::from_le_bytes([ch[0], ch[1], ch[2], 0]);
+    }
+    if fast && !flat {
+        // Pack once here, so that rows and spans step three words and convert nothing.
+        let [z, rb, g] = pack_zrgb::<C>(
+            row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1)),
+            row_v[1],
+            row_v[2].wrapping_add(1 << (COLOR_FRAC_BITS - 1)),
+            row_v[3],
+        );
+        row_v = [z, rb.wrapping_add(packed_rb_half::<C>() as i32), g, 0];
+        let [z, rb, g] = pack_zrgb::<C>(gx[0], gx[1], gx[2], gx[3]);
+        gx = [z, rb, g, 0];
+        let [z, rb, g] = pack_zrgb::<C>(inc[0], inc[1], inc[2], inc[3]);
+        inc = [z, rb, g, 0];
+    } else if fast {
+        row_v[0] = row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
+    }
+    rec.gx = gx;
+    rec.row = row_v;
+    rec.inc = inc;
+}
+
 impl ActiveTri {
     /// An inactive record to set up in place (see [`ActiveTri::setup`]).
     pub(crate) const EMPTY: ActiveTri = ActiveTri {
@@ -792,106 +1032,6 @@ impl ActiveTri {
             (long, short)
         };
 
-        // Barycentric gradient coefficients, 16·(dy2, dy1, dx2, dx1)/det, with a shared
-        // exponent: gx = da1·bx1 − da2·bx2, gy = da2·by1 − da1·by2.
-        let inv = Reciprocal::new(det as i64);
-        let vmax = dy2
-            .unsigned_abs()
-            .max(dy1.unsigned_abs())
-            .max(dx1.unsigned_abs())
-            .max(dx2.unsigned_abs());
-        let l = crate::scalar::bitlen32(vmax); // ≤ 16
-        let coef = |v: i32| -> i32 {
-            let q = mul_shr_16(inv.m, v, l);
-            if inv.neg {
-                -q
-            } else {
-                q
-            }
-        };
-        let (bx1, bx2, by1, by2) = (coef(dy2), coef(dy1), coef(dx1), coef(dx2));
-        // g = S · 2^(l + 4 − e), S = Σ da·b.
-        let shift = inv.e as i32 - (l as i32 + 4);
-        let scale = |s: i64| scale_gradient(s, shift);
-
-        let n_attrs = if flat { 1 } else { 4 };
-        // The coefficients rounded to 16 bits (|c| ≤ 2^15) for the colour gradients.
-        let c16 = [bx1, bx2, by1, by2].map(|v| (v + (1 << 14)) >> 15);
-        let (ca, cb, cc) = (a.color(), b.color(), c.color());
-        let mut a0 = [0i32; 4];
-        let mut gx = [0i32; 4];
-        let mut gy = [0i32; 4];
-        {
-            let (v0, v1, v2) = (a.depth(), b.depth(), c.depth());
-            let (da1, da2) = (v1 - v0, v2 - v0); // |da| < 2^28
-            a0[0] = v0;
-            gx[0] = scale(mul_wide(da1, bx1) - mul_wide(da2, bx2));
-            gy[0] = scale(mul_wide(da2, by1) - mul_wide(da1, by2));
-        }
-        // Constant trip counts (with a break), so that the channels are unrolled: with a
-        // variable count LLVM kept the arrays in memory and the loop cost about twice as much.
-        for k in 1..4 {
-            if flat {
-                break;
-            }
-            // Colours are 10-bit channels scaled by a constant power of two: the products are
-            // 32 × 16-bit, shifted afterwards (the same values).
-            let sh = COLOR_FRAC_BITS - vertex_frac_bits(C::CHANNEL_MAX[k - 1]);
-            let c0 = ca[k - 1] as i32;
-            let (d1, d2) = (cb[k - 1] as i32 - c0, cc[k - 1] as i32 - c0); // |d| < 2^11
-            a0[k] = c0 << sh;
-            // The gradients from the coefficients rounded to 16 bits: sums of single 32-bit
-            // products (|d·c| < 2^26), rounded once by a 32-bit shift. The largest
-            // coefficient is at least 2^28, so rounding them to multiples of 2^15 moves a value
-            // anywhere in the triangle by a few 2^-14 of the channel's change across it: under
-            // 2^-8 of a unit for a 5-bit channel, which flips a rounding only next to a half
-            // (`tests/accuracy.rs` bounds the image against f64). Slivers thin enough to need
-            // a left shift of more than 3 keep the exact 64-bit sums.
-            let r = shift - 15 - sh as i32;
-            if r >= -3 {
-                let round = |v: i32| -> i32 {
-                    if r > 0 {
-                        // v / 2^r rounded half up, as `round_shr_sat` (r ≤ 62).
-                        ((v >> (r - 1).min(31)) + 1) >> 1
-                    } else {
-                        // |v| < 2^27, so |v·2^3| < 2^30 = GRAD_LIMIT.
-                        v << -r
-                    }
-                };
-                gx[k] = round(c16[0] * d1 - c16[1] * d2);
-                gy[k] = round(c16[2] * d2 - c16[3] * d1);
-            } else {
-                [gx[k], gy[k]] = sliver_color_gradients([bx1, bx2, by1, by2], d1, d2, sh, shift);
-            }
-        }
-        // Evaluate every attribute plane at the centre of pixel (left.c, row).
-        let dx = SUBPIXELS * left.c as i32 + SUBPIXELS / 2 - ax;
-        let dy = SUBPIXELS * row + SUBPIXELS / 2 - ay;
-        let short_d = dx == dx as i16 as i32 && dy == dy as i16 as i32;
-        let mut row_v = [0i32; 4];
-        let mut inc = [0i32; 4];
-        for k in 0..4 {
-            if k == n_attrs {
-                break;
-            }
-            let p = if short_d {
-                mul_wide16(gx[k], dx) + mul_wide16(gy[k], dy)
-            } else {
-                mul_wide(gx[k], dx) + mul_wide(gy[k], dy)
-            };
-            let d = p >> crate::project::SUBPIXEL_BITS;
-            row_v[k] = a0[k].wrapping_add(d as i32);
-            inc[k] = gy[k].wrapping_add(gx[k].wrapping_mul(left.sq as i32));
-        }
-        if flat {
-            // Final channel values, rounded from the vertex bytes.
-            let mut ch = [0u8; 3];
-            for k in 0..3 {
-                let f = vertex_frac_bits(C::CHANNEL_MAX[k]);
-                ch[k] = ((flat_rgb[k] as u32 + (1 << (f - 1))) >> f) as u8;
-            }
-            gx[1] = i32::from_le_bytes([ch[0], ch[1], ch[2], 0]);
-        }
         let (x_lo, x_hi) = (ax.min(bx).min(cx), ax.max(bx).max(cx));
         let small = (x_hi - x_lo) + (cy - ay) <= 1024 * SUBPIXELS;
         let fast = small
@@ -900,21 +1040,22 @@ impl ActiveTri {
             } else {
                 mode.fast_gouraud
             };
-        if fast && !flat {
-            // Pack once here, so that rows and spans step three words and convert nothing.
-            let [z, rb, g] = pack_zrgb::<C>(
-                row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1)),
-                row_v[1],
-                row_v[2].wrapping_add(1 << (COLOR_FRAC_BITS - 1)),
-                row_v[3],
-            );
-            row_v = [z, rb.wrapping_add(packed_rb_half::<C>() as i32), g, 0];
-            let [z, rb, g] = pack_zrgb::<C>(gx[0], gx[1], gx[2], gx[3]);
-            gx = [z, rb, g, 0];
-            let [z, rb, g] = pack_zrgb::<C>(inc[0], inc[1], inc[2], inc[3]);
-            inc = [z, rb, g, 0];
-        } else if fast {
-            row_v[0] = row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
+        let tri = Sorted {
+            v: [a, b, c],
+            det,
+            row,
+            left_c: left.c as i32,
+            left_sq: left.sq as i32,
+        };
+        #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+        let done = fast
+            && !flat
+            && C::CHANNEL_MAX == [31, 63, 31]
+            && crate::span_thumb::gouraud_setup(self, &tri);
+        #[cfg(not(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32"))))]
+        let done = false;
+        if !done {
+            attribute_words::<C>(self, &tri, flat, fast, flat_rgb);
         }
         let flags = (mid_left as u8 * MID_LEFT) | (flat as u8 * FLAT) | (fast as u8 * FAST);
         let ((lw, ldy), (rw, rdy)) = (left.dda(), right.dda());
@@ -927,9 +1068,6 @@ impl ActiveTri {
         self.cx = cx as i16;
         self.cy = cy as i16;
         self.flags = flags;
-        self.gx = gx;
-        self.row = row_v;
-        self.inc = inc;
         if fast && !flat && row < row_mid && row_mid < row_end {
             self.set_pending(Edge::new(bx, by, cx, cy, row_mid));
         }

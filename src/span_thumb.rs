@@ -22,7 +22,8 @@
 #![allow(unsafe_code)]
 
 use crate::color::TargetColor;
-use crate::raster::{offsets as o, ActiveList, ActiveTri, Edge};
+use crate::project::ScreenVertex;
+use crate::raster::{offsets as o, ActiveList, ActiveTri, Edge, Sorted};
 use crate::scalar::Fx;
 use fixed::types::I16F16;
 
@@ -911,6 +912,119 @@ core::arch::global_asm!(
     ".size scanline3d_xform_q16, . - scanline3d_xform_q16",
 );
 
+/// `scalar::recip_norm(a)` for `0 < a < 2³¹` in r4, with `scalar::RECIP_SEED` in r2: r6 = the
+/// mantissa m in [1, 2³⁰], r5 = s, the bit length of `a` (1/a = m·2^-(29 + s)). A table seed,
+/// one Newton step in 32-bit products and one in 64-bit ones, as the portable code. Uses
+/// r0–r3 and r7; about 75 instructions.
+macro_rules! recip_norm {
+    () => {
+        concat!(
+            // `scalar::recip_norm(w)`. r4 = w normalized (bit 31 set), r5 = s = its bit length.
+            "movs r5, #32\n",
+            "lsrs r6, r4, #16\n",
+            "bne 1f\n",
+            "lsls r4, r4, #16\n",
+            "subs r5, #16\n",
+            "1:\n",
+            "lsrs r6, r4, #24\n",
+            "bne 1f\n",
+            "lsls r4, r4, #8\n",
+            "subs r5, #8\n",
+            "1:\n",
+            "lsrs r6, r4, #28\n",
+            "bne 1f\n",
+            "lsls r4, r4, #4\n",
+            "subs r5, #4\n",
+            "1:\n",
+            "lsrs r6, r4, #30\n",
+            "bne 1f\n",
+            "lsls r4, r4, #2\n",
+            "subs r5, #2\n",
+            "1:\n",
+            "cmp r4, #0\n",
+            "blt 1f\n",
+            "lsls r4, r4, #1\n",
+            "subs r5, #1\n",
+            "1:\n",
+            // x0 = seed[(a32 >> 24) & 127] + 2¹⁶; e = −d·x0 (d = a32 >> 16);
+            // x1 = x0 + ((x0 >> 1)·(e >> 10) >> 21); m0 = x1 << 13 (r6).
+            "lsrs r6, r4, #23\n",
+            "movs r7, #254\n",
+            "ands r6, r7\n",
+            "ldrh r6, [r2, r6]\n",
+            "movs r7, #1\n",
+            "lsls r7, r7, #16\n",
+            "adds r6, r6, r7\n",
+            "lsrs r7, r4, #16\n",
+            "muls r7, r6, r7\n",
+            "negs r7, r7\n",
+            "asrs r7, r7, #10\n",
+            "lsrs r3, r6, #1\n",
+            "muls r7, r3, r7\n",
+            "asrs r7, r7, #21\n",
+            "adds r6, r6, r7\n",
+            "lsls r6, r6, #13\n",
+            // r1:r7 = a32·m0 (unsigned): al·bl, al·bh (< 2³⁰) and ah·bl (< 2³², their sum may
+            // carry), ah·bh.
+            "uxth r0, r4\n",
+            "lsrs r1, r4, #16\n",
+            "uxth r2, r6\n",
+            "lsrs r3, r6, #16\n",
+            "mov r7, r0\n",
+            "muls r7, r2, r7\n",
+            "muls r0, r3, r0\n",
+            "muls r2, r1, r2\n",
+            "muls r1, r3, r1\n",
+            "adds r0, r0, r2\n",
+            "movs r2, #0\n",
+            "adcs r2, r2\n",
+            "lsls r2, r2, #16\n",
+            "adds r1, r1, r2\n",
+            "lsls r2, r0, #16\n",
+            "lsrs r0, r0, #16\n",
+            "adds r7, r7, r2\n",
+            "adcs r1, r0\n",
+            // err = 2⁶¹ − a32·m0 (|err| < 2⁴⁷); t = err >> 30 (r2).
+            "movs r2, #1\n",
+            "lsls r2, r2, #29\n",
+            "negs r7, r7\n",
+            "sbcs r2, r1\n",
+            "lsls r2, r2, #2\n",
+            "lsrs r7, r7, #30\n",
+            "orrs r2, r7\n",
+            // m1 = m0 + (m0·t >> 31) (the signed product from four halves), clamped to [1, 2³⁰].
+            "uxth r0, r6\n",
+            "lsrs r1, r6, #16\n",
+            "uxth r3, r2\n",
+            "asrs r2, r2, #16\n",
+            "mov r4, r0\n",
+            "muls r4, r3, r4\n",
+            "muls r3, r1, r3\n",
+            "muls r1, r2, r1\n",
+            "muls r0, r2, r0\n",
+            "adds r0, r0, r3\n",
+            "lsls r3, r0, #16\n",
+            "asrs r0, r0, #16\n",
+            "adds r4, r4, r3\n",
+            "adcs r1, r0\n",
+            "lsls r1, r1, #1\n",
+            "lsrs r4, r4, #31\n",
+            "orrs r1, r4\n",
+            "adds r6, r6, r1\n",
+            "cmp r6, #1\n",
+            "bge 1f\n",
+            "movs r6, #1\n",
+            "1:\n",
+            "movs r0, #1\n",
+            "lsls r0, r0, #30\n",
+            "cmp r6, r0\n",
+            "ble 1f\n",
+            "mov r6, r0\n",
+            "1:\n",
+        )
+    };
+}
+
 /// For [`scanline3d_project_q16`]: `v·m`, rounded to `ns` fraction bits fewer, as
 /// `scalar::round_shr_words(mul_wide(v, m), ns)` — the Q16.16 `ndc` of `v` — for the word
 /// at byte offset `$off` of the point (r8) and the reciprocal's mantissa `m` in r6
@@ -1026,112 +1140,11 @@ core::arch::global_asm!(
     "mov r8, r0",
     "mov r9, r1",
     "mov r10, r3",
-    // `scalar::recip_norm(w)`. r4 = w normalized (bit 31 set), r5 = s = its bit length.
-    "movs r5, #32",
-    "lsrs r6, r4, #16",
-    "bne 1f",
-    "lsls r4, r4, #16",
-    "subs r5, #16",
-    "1:",
-    "lsrs r6, r4, #24",
-    "bne 1f",
-    "lsls r4, r4, #8",
-    "subs r5, #8",
-    "1:",
-    "lsrs r6, r4, #28",
-    "bne 1f",
-    "lsls r4, r4, #4",
-    "subs r5, #4",
-    "1:",
-    "lsrs r6, r4, #30",
-    "bne 1f",
-    "lsls r4, r4, #2",
-    "subs r5, #2",
-    "1:",
-    "cmp r4, #0",
-    "blt 1f",
-    "lsls r4, r4, #1",
-    "subs r5, #1",
-    "1:",
+    recip_norm!(),
     // The quotients' shift is ns = 29 + s − 32; the portable code handles ns ≤ 0.
     "cmp r5, #4",
     "bge 1f",
     "b 9f",
-    "1:",
-    // x0 = seed[(a32 >> 24) & 127] + 2¹⁶; e = −d·x0 (d = a32 >> 16);
-    // x1 = x0 + ((x0 >> 1)·(e >> 10) >> 21); m0 = x1 << 13 (r6).
-    "lsrs r6, r4, #23",
-    "movs r7, #254",
-    "ands r6, r7",
-    "ldrh r6, [r2, r6]",
-    "movs r7, #1",
-    "lsls r7, r7, #16",
-    "adds r6, r6, r7",
-    "lsrs r7, r4, #16",
-    "muls r7, r6, r7",
-    "negs r7, r7",
-    "asrs r7, r7, #10",
-    "lsrs r3, r6, #1",
-    "muls r7, r3, r7",
-    "asrs r7, r7, #21",
-    "adds r6, r6, r7",
-    "lsls r6, r6, #13",
-    // r1:r7 = a32·m0 (unsigned): al·bl, al·bh (< 2³⁰) and ah·bl (< 2³², their sum may
-    // carry), ah·bh.
-    "uxth r0, r4",
-    "lsrs r1, r4, #16",
-    "uxth r2, r6",
-    "lsrs r3, r6, #16",
-    "mov r7, r0",
-    "muls r7, r2, r7",
-    "muls r0, r3, r0",
-    "muls r2, r1, r2",
-    "muls r1, r3, r1",
-    "adds r0, r0, r2",
-    "movs r2, #0",
-    "adcs r2, r2",
-    "lsls r2, r2, #16",
-    "adds r1, r1, r2",
-    "lsls r2, r0, #16",
-    "lsrs r0, r0, #16",
-    "adds r7, r7, r2",
-    "adcs r1, r0",
-    // err = 2⁶¹ − a32·m0 (|err| < 2⁴⁷); t = err >> 30 (r2).
-    "movs r2, #1",
-    "lsls r2, r2, #29",
-    "negs r7, r7",
-    "sbcs r2, r1",
-    "lsls r2, r2, #2",
-    "lsrs r7, r7, #30",
-    "orrs r2, r7",
-    // m1 = m0 + (m0·t >> 31) (the signed product from four halves), clamped to [1, 2³⁰].
-    "uxth r0, r6",
-    "lsrs r1, r6, #16",
-    "uxth r3, r2",
-    "asrs r2, r2, #16",
-    "mov r4, r0",
-    "muls r4, r3, r4",
-    "muls r3, r1, r3",
-    "muls r1, r2, r1",
-    "muls r0, r2, r0",
-    "adds r0, r0, r3",
-    "lsls r3, r0, #16",
-    "asrs r0, r0, #16",
-    "adds r4, r4, r3",
-    "adcs r1, r0",
-    "lsls r1, r1, #1",
-    "lsrs r4, r4, #31",
-    "orrs r1, r4",
-    "adds r6, r6, r1",
-    "cmp r6, #1",
-    "bge 1f",
-    "movs r6, #1",
-    "1:",
-    "movs r0, #1",
-    "lsls r0, r0, #30",
-    "cmp r6, r0",
-    "ble 1f",
-    "mov r6, r0",
     "1:",
     // r5 = ns, r12 = 2^(ns − 1), lr = 32 − ns, r11 = COORD_LIMIT.
     "subs r5, #3",
@@ -1195,6 +1208,559 @@ core::arch::global_asm!(
     restore_registers_and_return!(),
     ".size scanline3d_project_q16, . - scanline3d_project_q16",
     lim_bits = const 14,
+);
+
+/// For [`scanline3d_gouraud_setup`]: r0:r4 (high, low word) = r0·r1, signed, for
+/// `|r0| < 2²⁸` and `|r1| ≤ 2³⁰` (a depth difference and a gradient coefficient): then
+/// ah·bl + al·bh is below 2³¹ in magnitude and is added once. Uses r1–r3. 17 instructions.
+macro_rules! mul_depth {
+    () => {
+        concat!(
+            "uxth r2, r0\n",
+            "asrs r0, r0, #16\n",
+            "uxth r3, r1\n",
+            "asrs r1, r1, #16\n",
+            "mov r4, r2\n",
+            "muls r4, r3, r4\n",
+            "muls r3, r0, r3\n",
+            "muls r0, r1, r0\n",
+            "muls r1, r2, r1\n",
+            "adds r1, r1, r3\n",
+            "lsls r2, r1, #16\n",
+            "asrs r1, r1, #16\n",
+            "adds r4, r4, r2\n",
+            "adcs r0, r1\n",
+        )
+    };
+}
+
+/// For [`scanline3d_gouraud_setup`]: the depth gradient
+/// `raster::scale_gradient(a·b − c·d, shift)` for the frame words at `$a`, `$b`, `$c`, `$d`,
+/// stored at `$out`: the difference of two [`mul_depth`] products, rounded half up by
+/// `shift − 1` (in `gs_k`, 10..=54) then 1, saturated to ±2³⁰ as `scalar::round_shr_sat`.
+/// Uses r0–r7.
+macro_rules! depth_gradient {
+    ($a:literal, $b:literal, $c:literal, $d:literal, $out:literal) => {
+        concat!(
+            "ldr r0, [sp, #", $a, "]\n",
+            "ldr r1, [sp, #", $b, "]\n",
+            mul_depth!(),
+            "mov r6, r0\n",
+            "mov r5, r4\n",
+            "ldr r0, [sp, #", $c, "]\n",
+            "ldr r1, [sp, #", $d, "]\n",
+            mul_depth!(),
+            "subs r5, r5, r4\n",
+            "sbcs r6, r0\n",
+            // t = the difference >> k (r6 = high, r5 = low word).
+            "ldr r7, [sp, #gs_k]\n",
+            "cmp r7, #32\n",
+            "bge 1f\n",
+            "lsrs r5, r5, r7\n",
+            "movs r0, #32\n",
+            "subs r0, r0, r7\n",
+            "mov r1, r6\n",
+            "lsls r1, r1, r0\n",
+            "orrs r5, r1\n",
+            "asrs r6, r6, r7\n",
+            "b 2f\n",
+            "1:\n",
+            "mov r0, r7\n",
+            "subs r0, #32\n",
+            "asrs r6, r6, r0\n",
+            "mov r5, r6\n",
+            "asrs r6, r6, #31\n",
+            // |t| ≥ 2³¹: ±2³⁰ by its sign; else (t >> 1) + (t & 1) (the carry of the shift),
+            // which is within ±2³⁰.
+            "2:\n",
+            "asrs r0, r5, #31\n",
+            "cmp r0, r6\n",
+            "beq 3f\n",
+            "movs r5, #1\n",
+            "lsls r5, r5, #30\n",
+            "cmp r6, #0\n",
+            "bge 4f\n",
+            "negs r5, r5\n",
+            "b 4f\n",
+            "3:\n",
+            "asrs r5, r5, #1\n",
+            "movs r0, #0\n",
+            "adcs r5, r0\n",
+            "4:\n",
+            "str r5, [sp, #", $out, "]\n",
+        )
+    };
+}
+
+/// For [`scanline3d_gouraud_setup`]: the 10-bit colour channel `$k` of the vertex in r4
+/// (`ScreenVertex::color`: the byte's 8 bits, then 2 bits of the flags) into `$r`. Uses r3.
+macro_rules! vertex_channel {
+    ($r:literal, $rgb:literal, $fl:literal) => {
+        concat!(
+            "ldrb ",
+            $r,
+            ", [r4, #",
+            $rgb,
+            "]\n",
+            "lsls ",
+            $r,
+            ", ",
+            $r,
+            ", #2\n",
+            "ldrh r3, [r4, #{vfl}]\n",
+            "lsls r3, r3, #",
+            $fl,
+            "\n",
+            "lsrs r3, r3, #30\n",
+            "orrs ",
+            $r,
+            ", r3\n",
+        )
+    };
+}
+
+/// For [`scanline3d_gouraud_setup`]: r0 rounded by the channel's shift `r` (`gs_r`, minus
+/// `$less`) as the portable setup rounds a colour gradient: `((v >> (r − 1)) + 1) >> 1` for
+/// r > 0, `v << −r` otherwise. Uses r2.
+macro_rules! round_channel {
+    ($less:literal) => {
+        concat!(
+            "ldr r2, [sp, #gs_r]\n",
+            "subs r2, #",
+            $less,
+            "\n",
+            "ble 1f\n",
+            "subs r2, #1\n",
+            "asrs r0, r0, r2\n",
+            "adds r0, #1\n",
+            "asrs r0, r0, #1\n",
+            "b 2f\n",
+            "1:\n",
+            "negs r2, r2\n",
+            "lsls r0, r0, r2\n",
+            "2:\n",
+        )
+    };
+}
+
+/// For [`scanline3d_gouraud_setup`]: colour channel `$k` (`$rgb` = its byte's offset in a
+/// vertex, `$fl` = the left shift that brings its two low bits to the top of the flags, `$sh`
+/// = its shift to 20 fraction bits, `$less` = 1 for green, whose shift is one more): its value
+/// at the first vertex, `c0 << sh`, and its gradients from the 16-bit coefficients,
+/// `round(c0·d1 − c1·d2)` and `round(c2·d2 − c3·d1)`, into the frame. Uses r0–r7.
+macro_rules! channel_gradients {
+    ($rgb:literal, $fl:literal, $sh:literal, $less:literal, $a0:literal, $gx:literal, $gy:literal) => {
+        concat!(
+            "ldr r4, [sp, #gs_va]\n",
+            vertex_channel!("r5", $rgb, $fl),
+            "ldr r4, [sp, #gs_vb]\n",
+            vertex_channel!("r6", $rgb, $fl),
+            "subs r6, r6, r5\n",
+            "ldr r4, [sp, #gs_vc]\n",
+            vertex_channel!("r7", $rgb, $fl),
+            "subs r7, r7, r5\n",
+            "lsls r5, r5, #",
+            $sh,
+            "\n",
+            "str r5, [sp, #",
+            $a0,
+            "]\n",
+            "ldr r0, [sp, #gs_c16]\n",
+            "muls r0, r6, r0\n",
+            "ldr r1, [sp, #gs_c16 + 4]\n",
+            "muls r1, r7, r1\n",
+            "subs r0, r0, r1\n",
+            round_channel!($less),
+            "str r0, [sp, #",
+            $gx,
+            "]\n",
+            "ldr r0, [sp, #gs_c16 + 8]\n",
+            "muls r0, r7, r0\n",
+            "ldr r1, [sp, #gs_c16 + 12]\n",
+            "muls r1, r6, r1\n",
+            "subs r0, r0, r1\n",
+            round_channel!($less),
+            "str r0, [sp, #",
+            $gy,
+            "]\n",
+        )
+    };
+}
+
+/// For [`scanline3d_gouraud_setup`]: attribute `$k`'s value at the first pixel,
+/// `a0 + ((gx·dx + gy·dy) >> 4)` (the products as `scalar::mul_wide16`, the sum in 64 bits,
+/// the low word of the shifted sum), into `a0`'s slot, and its row step `gy + gx·sq` into
+/// the frame word `$inc`. Uses r0–r4.
+macro_rules! prestep {
+    ($gx:literal, $gy:literal, $a0:literal, $inc:literal) => {
+        concat!(
+            "ldr r0, [sp, #",
+            $gx,
+            "]\n",
+            "ldr r1, [sp, #gs_dx]\n",
+            "asrs r2, r0, #16\n",
+            "uxth r0, r0\n",
+            "muls r2, r1, r2\n",
+            "muls r0, r1, r0\n",
+            "ldr r3, [sp, #",
+            $gy,
+            "]\n",
+            "ldr r1, [sp, #gs_dy]\n",
+            "asrs r4, r3, #16\n",
+            "uxth r3, r3\n",
+            "muls r4, r1, r4\n",
+            "muls r3, r1, r3\n",
+            // r2 = the high products' sum (|·| < 2³⁰), r4:r0 = the low ones' (33 bits).
+            "adds r2, r2, r4\n",
+            "asrs r4, r0, #31\n",
+            "asrs r1, r3, #31\n",
+            "adds r0, r0, r3\n",
+            "adcs r4, r1\n",
+            "lsrs r0, r0, #4\n",
+            "lsls r4, r4, #28\n",
+            "orrs r0, r4\n",
+            "lsls r2, r2, #12\n",
+            "adds r0, r0, r2\n",
+            "ldr r1, [sp, #",
+            $a0,
+            "]\n",
+            "adds r0, r0, r1\n",
+            "str r0, [sp, #",
+            $a0,
+            "]\n",
+            "ldr r0, [sp, #",
+            $gx,
+            "]\n",
+            "ldr r1, [sp, #gs_lsq]\n",
+            "muls r0, r1, r0\n",
+            "ldr r1, [sp, #",
+            $gy,
+            "]\n",
+            "adds r0, r0, r1\n",
+            "str r0, [sp, #",
+            $inc,
+            "]\n",
+        )
+    };
+}
+
+/// For [`scanline3d_gouraud_setup`]: a bit length of a value below 2¹⁶ in r0 into r1. Uses r2.
+macro_rules! bitlen16 {
+    () => {
+        concat!(
+            "movs r1, #0\n",
+            "lsrs r2, r0, #8\n",
+            "beq 1f\n",
+            "movs r1, #8\n",
+            "mov r0, r2\n",
+            "1:\n",
+            "lsrs r2, r0, #4\n",
+            "beq 1f\n",
+            "adds r1, #4\n",
+            "mov r0, r2\n",
+            "1:\n",
+            "lsrs r2, r0, #2\n",
+            "beq 1f\n",
+            "adds r1, #2\n",
+            "mov r0, r2\n",
+            "1:\n",
+            "lsrs r2, r0, #1\n",
+            "beq 1f\n",
+            "adds r1, #1\n",
+            "mov r0, r2\n",
+            "1:\n",
+            "adds r1, r1, r0\n",
+        )
+    };
+}
+
+/// For [`scanline3d_gouraud_setup`]: the gradient coefficient in frame word `$f` (a
+/// coordinate difference v on entry): `±raster::mul_shr_16(m, v, l)` with r0 = m >> 15,
+/// r1 = m & 0x7fff, r2 = l, r3 = 15 − l, r4 = 0 or −1 (det < 0: negated), and its 16-bit
+/// rounding `(q + 2¹⁴) >> 15` (r5 = 2¹⁴) into `$c16`. Uses r6, r7.
+macro_rules! coefficient {
+    ($f:literal, $c16:literal) => {
+        concat!(
+            "ldr r6, [sp, #",
+            $f,
+            "]\n",
+            "mov r7, r6\n",
+            "muls r6, r0, r6\n",
+            "lsls r6, r6, r3\n",
+            "muls r7, r1, r7\n",
+            "asrs r7, r7, r2\n",
+            "adds r6, r6, r7\n",
+            "eors r6, r4\n",
+            "subs r6, r6, r4\n",
+            "str r6, [sp, #",
+            $f,
+            "]\n",
+            "adds r6, r6, r5\n",
+            "asrs r6, r6, #15\n",
+            "str r6, [sp, #",
+            $c16,
+            "]\n",
+        )
+    };
+}
+
+/// For [`scanline3d_gouraud_setup`]: `(r$v + 2⁸) >> 9` — a red or blue value or gradient
+/// (20 fraction bits) rounded to the 11 of a packed red-blue half (r6 = 2⁸).
+macro_rules! conv_rb {
+    ($r:literal) => {
+        concat!("adds ", $r, ", ", $r, ", r6\n", "asrs ", $r, ", ", $r, ", #9\n")
+    };
+}
+
+core::arch::global_asm!(
+    ".syntax unified",
+    ".thumb",
+    ".section .text.scanline3d_gouraud_setup,\"ax\",%progbits",
+    ".global scanline3d_gouraud_setup",
+    ".type scanline3d_gouraud_setup,%function",
+    ".p2align 2",
+    ".thumb_func",
+    // The frame (byte offsets from sp).
+    ".equ gs_bx1, 0",
+    ".equ gs_bx2, 4",
+    ".equ gs_by1, 8",
+    ".equ gs_by2, 12",
+    ".equ gs_gx, 16",
+    ".equ gs_gy, 32",
+    ".equ gs_a0, 48",
+    ".equ gs_va, 64",
+    ".equ gs_vb, 68",
+    ".equ gs_vc, 72",
+    ".equ gs_det, 76",
+    ".equ gs_row, 80",
+    ".equ gs_lc, 84",
+    ".equ gs_lsq, 88",
+    ".equ gs_rec, 92",
+    ".equ gs_k, 96",
+    ".equ gs_r, 100",
+    ".equ gs_dx, 104",
+    ".equ gs_dy, 108",
+    ".equ gs_da1, 112",
+    ".equ gs_da2, 116",
+    ".equ gs_c16, 120",
+    ".equ gs_frame, 136",
+    // r0 = `raster::Sorted` (seven words: the three vertices top to bottom, det, the row,
+    // the left edge's column and step), r1 = the record, r2 = `scalar::RECIP_SEED`. Writes
+    // the record's packed attribute words (`gx`, `row`, `inc`, twelve words from `gx` on) as
+    // `raster::attribute_words` computes them for a fast Gouraud triangle with RGB565
+    // channels and returns 1; or returns 0 with the record unchanged for what the portable
+    // code handles: a first pixel 2¹⁵ subpixels or more from the first vertex, and slivers
+    // whose colour gradients need the exact sums.
+    "scanline3d_gouraud_setup:",
+    "push {{r4, r5, r6, r7, lr}}",
+    "sub sp, #gs_frame",
+    "str r1, [sp, #gs_rec]",
+    "mov r12, r2",
+    "ldm r0!, {{r1, r2, r3, r4, r5, r6, r7}}",
+    "add r0, sp, #gs_va",
+    "stm r0!, {{r1, r2, r3, r4, r5, r6, r7}}",
+    // dx = 16·left.c + 8 − ax, dy = 16·row + 8 − ay, both within the i16 range.
+    "ldrh r2, [r1, #{vx}]",
+    "sxth r2, r2",
+    "ldrh r3, [r1, #{vy}]",
+    "sxth r3, r3",
+    "lsls r6, r6, #4",
+    "adds r6, #8",
+    "subs r6, r6, r2",
+    "sxth r0, r6",
+    "cmp r0, r6",
+    "beq 1f",
+    "b 8f",
+    "1:",
+    "str r6, [sp, #gs_dx]",
+    "lsls r5, r5, #4",
+    "adds r5, #8",
+    "subs r5, r5, r3",
+    "sxth r0, r5",
+    "cmp r0, r5",
+    "beq 1f",
+    "b 8f",
+    "1:",
+    "str r5, [sp, #gs_dy]",
+    // The coordinate differences into the coefficient words (bx1 ← dy2, bx2 ← dy1,
+    // by1 ← dx1, by2 ← dx2) and l = the bit length of the largest magnitude (of their OR).
+    "ldr r4, [sp, #gs_vb]",
+    "ldrh r0, [r4, #{vx}]",
+    "sxth r0, r0",
+    "subs r0, r0, r2",
+    "str r0, [sp, #gs_by1]",
+    "asrs r7, r0, #31",
+    "eors r0, r7",
+    "subs r0, r0, r7",
+    "mov r5, r0",
+    "ldrh r0, [r4, #{vy}]",
+    "sxth r0, r0",
+    "subs r0, r0, r3",
+    "str r0, [sp, #gs_bx2]",
+    "asrs r7, r0, #31",
+    "eors r0, r7",
+    "subs r0, r0, r7",
+    "orrs r5, r0",
+    "ldr r4, [sp, #gs_vc]",
+    "ldrh r0, [r4, #{vx}]",
+    "sxth r0, r0",
+    "subs r0, r0, r2",
+    "str r0, [sp, #gs_by2]",
+    "asrs r7, r0, #31",
+    "eors r0, r7",
+    "subs r0, r0, r7",
+    "orrs r5, r0",
+    "ldrh r0, [r4, #{vy}]",
+    "sxth r0, r0",
+    "subs r0, r0, r3",
+    "str r0, [sp, #gs_bx1]",
+    "asrs r7, r0, #31",
+    "eors r0, r7",
+    "subs r0, r0, r7",
+    "orrs r0, r5",
+    bitlen16!(),
+    "str r1, [sp, #gs_k]",
+    // 1/|det| = m·2^-(29 + s).
+    "ldr r4, [sp, #gs_det]",
+    "asrs r0, r4, #31",
+    "eors r4, r0",
+    "subs r4, r4, r0",
+    "mov r2, r12",
+    recip_norm!(),
+    // shift = 29 + s − (l + 4); k = shift − 1 (10..=54); the red and blue rounding
+    // r = shift − 15 − 15, green's one less: below −3 the portable code keeps exact sums.
+    "ldr r2, [sp, #gs_k]",
+    "adds r5, #25",
+    "subs r5, r5, r2",
+    "subs r0, r5, #1",
+    "str r0, [sp, #gs_k]",
+    "subs r5, #30",
+    "str r5, [sp, #gs_r]",
+    "adds r5, #2",
+    "bpl 1f",
+    "b 8f",
+    "1:",
+    // The coefficients and their 16-bit roundings.
+    "lsrs r0, r6, #15",
+    "movs r1, #0x7f",
+    "lsls r1, r1, #8",
+    "adds r1, #0xff",
+    "ands r1, r6",
+    "movs r3, #15",
+    "subs r3, r3, r2",
+    "ldr r4, [sp, #gs_det]",
+    "asrs r4, r4, #31",
+    "movs r5, #1",
+    "lsls r5, r5, #14",
+    coefficient!("gs_bx1", "gs_c16"),
+    coefficient!("gs_bx2", "gs_c16 + 4"),
+    coefficient!("gs_by1", "gs_c16 + 8"),
+    coefficient!("gs_by2", "gs_c16 + 12"),
+    // Depth (16.12): a0 = the first vertex's, da1 and da2 the others' differences from it.
+    "ldr r4, [sp, #gs_va]",
+    "ldrh r1, [r4, #{vz}]",
+    "lsls r1, r1, #12",
+    "ldrb r2, [r4, #{vzf}]",
+    "lsls r2, r2, #4",
+    "orrs r1, r2",
+    "str r1, [sp, #gs_a0]",
+    "ldr r4, [sp, #gs_vb]",
+    "ldrh r0, [r4, #{vz}]",
+    "lsls r0, r0, #12",
+    "ldrb r2, [r4, #{vzf}]",
+    "lsls r2, r2, #4",
+    "orrs r0, r2",
+    "subs r0, r0, r1",
+    "str r0, [sp, #gs_da1]",
+    "ldr r4, [sp, #gs_vc]",
+    "ldrh r0, [r4, #{vz}]",
+    "lsls r0, r0, #12",
+    "ldrb r2, [r4, #{vzf}]",
+    "lsls r2, r2, #4",
+    "orrs r0, r2",
+    "subs r0, r0, r1",
+    "str r0, [sp, #gs_da2]",
+    depth_gradient!("gs_da1", "gs_bx1", "gs_da2", "gs_bx2", "gs_gx"),
+    depth_gradient!("gs_da2", "gs_by1", "gs_da1", "gs_by2", "gs_gy"),
+    // Red, green, blue: 10-bit channels with 5, 4, 5 fraction bits, to 20.
+    channel_gradients!("{vrgb}", "20", "15", "0", "gs_a0 + 4", "gs_gx + 4", "gs_gy + 4"),
+    channel_gradients!("{vrgb} + 1", "18", "16", "1", "gs_a0 + 8", "gs_gx + 8", "gs_gy + 8"),
+    channel_gradients!("{vrgb} + 2", "16", "15", "0", "gs_a0 + 12", "gs_gx + 12", "gs_gy + 12"),
+    // Values at the first pixel (into a0) and row steps (into the coefficients' 16-bit
+    // roundings, no longer needed).
+    prestep!("gs_gx", "gs_gy", "gs_a0", "gs_c16"),
+    prestep!("gs_gx + 4", "gs_gy + 4", "gs_a0 + 4", "gs_c16 + 4"),
+    prestep!("gs_gx + 8", "gs_gy + 8", "gs_a0 + 8", "gs_c16 + 8"),
+    prestep!("gs_gx + 12", "gs_gy + 12", "gs_a0 + 12", "gs_c16 + 12"),
+    // Packed (`raster::pack_zrgb`): gradients, then values with their rounding biases, then
+    // row steps; each [depth << 4, red << 16 + blue (rounded to 11 fraction bits), green << 6,
+    // 0].
+    "ldr r7, [sp, #gs_rec]",
+    "adds r7, #{gx}",
+    "movs r6, #1",
+    "lsls r6, r6, #8",
+    "movs r5, #0",
+    "ldr r0, [sp, #gs_gx]",
+    "lsls r0, r0, #4",
+    "ldr r1, [sp, #gs_gx + 4]",
+    conv_rb!("r1"),
+    "lsls r1, r1, #16",
+    "ldr r2, [sp, #gs_gx + 12]",
+    conv_rb!("r2"),
+    "adds r1, r1, r2",
+    "ldr r2, [sp, #gs_gx + 8]",
+    "lsls r2, r2, #6",
+    "mov r3, r5",
+    "stm r7!, {{r0, r1, r2, r3}}",
+    "ldr r0, [sp, #gs_a0]",
+    "lsls r0, r0, #4",
+    "movs r4, #1",
+    "lsls r4, r4, #15",
+    "adds r0, r0, r4",
+    "ldr r1, [sp, #gs_a0 + 4]",
+    conv_rb!("r1"),
+    "lsls r1, r1, #16",
+    "ldr r2, [sp, #gs_a0 + 12]",
+    conv_rb!("r2"),
+    "adds r1, r1, r2",
+    "lsls r4, r6, #2",
+    "adds r1, r1, r4",
+    "lsls r4, r4, #16",
+    "adds r1, r1, r4",
+    "ldr r2, [sp, #gs_a0 + 8]",
+    "lsls r2, r2, #6",
+    "movs r4, #1",
+    "lsls r4, r4, #25",
+    "adds r2, r2, r4",
+    "mov r3, r5",
+    "stm r7!, {{r0, r1, r2, r3}}",
+    "ldr r0, [sp, #gs_c16]",
+    "lsls r0, r0, #4",
+    "ldr r1, [sp, #gs_c16 + 4]",
+    conv_rb!("r1"),
+    "lsls r1, r1, #16",
+    "ldr r2, [sp, #gs_c16 + 12]",
+    conv_rb!("r2"),
+    "adds r1, r1, r2",
+    "ldr r2, [sp, #gs_c16 + 8]",
+    "lsls r2, r2, #6",
+    "mov r3, r5",
+    "stm r7!, {{r0, r1, r2, r3}}",
+    "movs r0, #1",
+    "add sp, #gs_frame",
+    "pop {{r4, r5, r6, r7, pc}}",
+    "8:",
+    "movs r0, #0",
+    "add sp, #gs_frame",
+    "pop {{r4, r5, r6, r7, pc}}",
+    ".size scanline3d_gouraud_setup, . - scanline3d_gouraud_setup",
+    vx = const core::mem::offset_of!(ScreenVertex, x),
+    vy = const core::mem::offset_of!(ScreenVertex, y),
+    vz = const core::mem::offset_of!(ScreenVertex, z),
+    vzf = const core::mem::offset_of!(ScreenVertex, zf),
+    vrgb = const crate::project::RGB_HI_OFFSET,
+    vfl = const crate::project::FLAGS_OFFSET,
+    gx = const o::GX,
 );
 
 /// `(n / d, n % d)` for `0 ≤ n < 2³¹`, `d ≥ 1` by shift and subtract, one step per quotient
@@ -1419,10 +1985,29 @@ pub(crate) fn project_i16f16(p: &[Fx<I16F16>; 4], sx: u32, sy: u32) -> Option<[i
     (ok != 0).then_some(out)
 }
 
+/// `raster::attribute_words` of a fast Gouraud triangle with RGB565 channels
+/// (`C::CHANNEL_MAX == [31, 63, 31]`), written into `rec`'s `gx`, `row` and `inc` by
+/// [`scanline3d_gouraud_setup`]; false (nothing written) where it declines and the portable
+/// code computes them.
+#[inline(always)]
+pub(crate) fn gouraud_setup(rec: &mut ActiveTri, tri: &Sorted<'_>) -> bool {
+    const {
+        assert!(o::ROW == o::GX + 16 && o::INC == o::ROW + 16);
+        assert!(core::mem::size_of::<Sorted<'_>>() == 28);
+    };
+    let seed: &'static [u16; 128] = &crate::scalar::RECIP_SEED;
+    // SAFETY: `Sorted` is `repr(C)`, seven words (three vertex pointers, four `i32`), which the
+    // routine reads along with the three vertices (at the field offsets given to it) and the
+    // 128-entry seed table; it writes only the twelve words of `rec` from `gx` on (`gx`, `row`
+    // and `inc`, contiguous, as asserted above).
+    unsafe { scanline3d_gouraud_setup(tri as *const Sorted as *const u32, rec, seed.as_ptr()) != 0 }
+}
+
 extern "C" {
     fn scanline3d_edge_new(a: u32, b: u32, row: i32, out: *mut Edge) -> u32;
     fn scanline3d_xform_q16(m: *const i32, p: *const i32, out: *mut i32, rows: u32);
     fn scanline3d_project_q16(p: *const i32, scales: u32, seed: *const u16, out: *mut i32) -> u32;
+    fn scanline3d_gouraud_setup(tri: *const u32, rec: *mut ActiveTri, seed: *const u16) -> u32;
     fn scanline3d_fill128(start: *mut [u32; 4], end: *mut [u32; 4], word: u32);
     fn scanline3d_rows565(ctx: *mut RowCtx) -> u32;
     fn scanline3d_span565_less(

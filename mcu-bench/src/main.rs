@@ -438,8 +438,9 @@ fn transform_matches_rows() -> bool {
     true
 }
 
-/// The assembly edge setup gives the portable one's edges on 20 000 pseudo-random edges, and
-/// the assembly projection the portable one's screen words on 20 000 pseudo-random points (the
+/// The assembly edge setup gives the portable one's edges on 20 000 pseudo-random edges, the
+/// assembly projection the portable one's screen words on 20 000 pseudo-random points, and the
+/// assembly Gouraud setup the portable attribute words on 20 000 pseudo-random triangles (the
 /// benchmark scenes' hashes check them too, but only on the cases they have). Prints the first
 /// mismatch. Not inlined, so that its locals are not part of `main`'s frame during the
 /// renders (on the 16 KB part every byte of it counts).
@@ -451,6 +452,10 @@ fn edges_match_portable() -> bool {
     }
     if let Some(e) = scanline3d::project::Viewport::projection_self_test(20_000) {
         hprintln!("PROJECTION MISMATCH {:?}", e);
+        return false;
+    }
+    if let Some(e) = scanline3d::raster::gouraud_setup_self_test(20_000) {
+        hprintln!("SETUP MISMATCH {:?}", e);
         return false;
     }
     true
