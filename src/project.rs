@@ -28,8 +28,10 @@ pub const MAX_SCREEN: usize = 1024;
 
 /// A vertex after projection: snapped position, depth and colour.
 ///
-/// Size: 12 bytes (the vertex store is the largest part of a renderer's RAM).
+/// Size: 12 bytes (the vertex store is the largest part of a renderer's RAM). `repr(C)`: the
+/// Cortex-M0 triangle setup reads x and y as one word.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[repr(C)]
 pub struct ScreenVertex {
     /// x in subpixels (signed 12.4 fixed point; |x| ≤ [`COORD_LIMIT`]).
     pub x: i16,

@@ -406,6 +406,71 @@ pub fn gouraud_setup_self_test(n: u32) -> Option<([[i32; 4]; 3], [i32; 3])> {
     None
 }
 
+/// Cortex-M0 only, for the benchmark firmware: the assembly triangle setup
+/// (`span_thumb::setup565`) against [`ActiveTri::setup_portable`] for RGB565 on `n`
+/// pseudo-random Gouraud triangles (small, tall and wide ones, equal ys, first rows before,
+/// at and after the middle vertex, short screens). Returns the first mismatch's vertices
+/// `[x, y]` and `[row, height]`.
+#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+#[doc(hidden)]
+pub fn triangle_setup_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    let mut state = 0xbb67_ae85u32;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state
+    };
+    let mode = SpanMode::new::<Rgb565>(crate::DepthTest::Less, false);
+    let same = |a: &ActiveTri, b: &ActiveTri| {
+        (a.flags, a.routine_rows, a.dy, a.row_mid, a.row_end)
+            == (b.flags, b.routine_rows, b.dy, b.row_mid, b.row_end)
+            && (a.bx, a.by, a.cx, a.cy) == (b.bx, b.by, b.cx, b.cy)
+            && a.edges
+                .iter()
+                .zip(&b.edges)
+                .all(|(p, q)| (p.w, p.s) == (q.w, q.s))
+            && (a.gx, a.row, a.inc) == (b.gx, b.row, b.inc)
+    };
+    for i in 0..n {
+        let size = [48u32, 400, 4000, 16000][(i % 4) as usize];
+        let mut v = [ScreenVertex::default(); 3];
+        for p in &mut v {
+            let r = next();
+            p.x = ((r % size) as i32 - size as i32 / 2 + 1920) as i16;
+            p.y = (((r >> 16) % size) as i32 - size as i32 / 2 + 1920) as i16;
+            if i % 7 == 0 {
+                // Equal ys.
+                p.y &= !63;
+            }
+            let d = next();
+            p.z = d as u16;
+            p.zf = (d >> 16) as u8;
+            let c = next();
+            p.set_color([
+                (c & 1023) as u16,
+                (c >> 10 & 1023) as u16,
+                (c >> 20 & 1023) as u16,
+            ]);
+        }
+        let t = TriRecord { v: [0, 1, 2] };
+        let y_min = v.iter().map(|p| p.y as i32).min().unwrap_or(0);
+        let r = next();
+        let row = (first_pixel(y_min) + (r % 64) as i32 - 2).max(0);
+        let height = [240, 60, 1024, 128][(r >> 8) as usize % 4];
+        let mut want = ActiveTri::EMPTY;
+        let kept = want.setup_portable::<Rgb565>(&t, &v, row, height, mode);
+        let mut got = ActiveTri::EMPTY;
+        if let Some(k) = crate::span_thumb::setup565(&mut got, &t, &v, row, height) {
+            if k != kept || (kept && !same(&got, &want)) {
+                return Some((v.map(|p| [p.x, p.y]), [row, height]));
+            }
+        }
+    }
+    None
+}
+
 /// Bias of the column in [`EdgeDda::w`]: every column an edge takes on a row where it is used
 /// (|c| ≤ 1025), and every sum `c + sq` on the way to the next such row, is in
 /// `−2¹⁵..2¹⁵`, so the biased column is a 16-bit unsigned half that never carries into `e`.
@@ -778,6 +843,9 @@ pub(crate) mod offsets {
     pub const MID_LEFT: u8 = super::MID_LEFT;
     pub const ROW_MID: usize = offset_of!(ActiveTri, row_mid);
     pub const ROW_END: usize = offset_of!(ActiveTri, row_end);
+    pub const BX: usize = offset_of!(ActiveTri, bx);
+    pub const CX: usize = offset_of!(ActiveTri, cx);
+    pub const FAST: u8 = super::FAST;
     /// The pending short edge of a fast Gouraud triangle ([`ActiveTri::set_pending`]): its
     /// `w` word in the fourth `gx` word, `s` in the fourth `row` word, `dy` in the fourth
     /// `inc` word.
@@ -980,6 +1048,26 @@ impl ActiveTri {
     /// [`SpanMode`]. Returns false (leaving `self` unspecified) if the triangle covers no row
     /// from `row` on.
     pub(crate) fn setup<C: TargetColor>(
+        &mut self,
+        t: &TriRecord,
+        verts: &[ScreenVertex],
+        row: i32,
+        height: i32,
+        mode: SpanMode,
+    ) -> bool {
+        #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+        if mode.fast_gouraud && C::CHANNEL_MAX == [31, 63, 31] {
+            if let Some(kept) = crate::span_thumb::setup565(self, t, verts, row, height) {
+                return kept;
+            }
+        }
+        self.setup_portable::<C>(t, verts, row, height, mode)
+    }
+
+    /// [`ActiveTri::setup`] in portable code (on ARMv6-M, for what `span_thumb::setup565`
+    /// declines).
+    #[inline(always)]
+    fn setup_portable<C: TargetColor>(
         &mut self,
         t: &TriRecord,
         verts: &[ScreenVertex],

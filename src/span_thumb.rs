@@ -1763,6 +1763,361 @@ core::arch::global_asm!(
     gx = const o::GX,
 );
 
+/// For [`scanline3d_setup565`]: the edge in the frame's `Edge` (sp + 28) into slot r6 (0 = left,
+/// 1 = right) of the record (frame word 40), in the row loops' form (`raster::Edge::dda`):
+/// `w = e·2¹⁶ + c + 2¹⁵`, `s = sq − sr·2¹⁶` and `dy`; the left edge's column and step also
+/// into the frame's `raster::Sorted` (words 5 and 6). Uses r0–r5, r7.
+macro_rules! edge_to_record {
+    () => {
+        concat!(
+            "add r3, sp, #28\n",
+            "ldrh r0, [r3, #{ee}]\n",
+            "lsls r0, r0, #16\n",
+            "ldrh r1, [r3, #{ec}]\n",
+            "sxth r1, r1\n",
+            "adds r0, r0, r1\n",
+            "movs r2, #128\n",
+            "lsls r2, r2, #8\n",
+            "adds r0, r0, r2\n",
+            "ldrh r2, [r3, #{esq}]\n",
+            "sxth r2, r2\n",
+            "cmp r6, #0\n",
+            "bne 1f\n",
+            "str r1, [sp, #20]\n",
+            "str r2, [sp, #24]\n",
+            "1:\n",
+            "ldrh r4, [r3, #{esr}]\n",
+            "lsls r4, r4, #16\n",
+            "subs r2, r2, r4\n",
+            "ldrh r4, [r3, #{edy}]\n",
+            "ldr r7, [sp, #40]\n",
+            "lsls r5, r6, #1\n",
+            "adds r5, r7, r5\n",
+            "strh r4, [r5, #{left_dy}]\n",
+            "lsls r5, r6, #3\n",
+            "adds r5, r7, r5\n",
+            "str r0, [r5, #{left_w}]\n",
+            "str r2, [r5, #{left_s}]\n",
+        )
+    };
+}
+
+/// For [`scanline3d_setup565`]: `raster::first_pixel(v)` = `(v + 7) >> 4` of `$v` into `$d`.
+macro_rules! first_pixel {
+    ($d:literal, $v:literal) => {
+        concat!("adds ", $d, ", ", $v, ", #7\n", "asrs ", $d, ", ", $d, ", #4\n")
+    };
+}
+
+/// For [`scanline3d_setup565`]: if the vertex at `$q` is above the one at `$p` (a smaller y,
+/// the halfword at offset 2), swaps the pointers. Uses r3, r4.
+macro_rules! sort_step {
+    ($p:literal, $q:literal) => {
+        concat!(
+            "ldrh r3, [",
+            $p,
+            ", #2]\n",
+            "sxth r3, r3\n",
+            "ldrh r4, [",
+            $q,
+            ", #2]\n",
+            "sxth r4, r4\n",
+            "cmp r4, r3\n",
+            "bge 1f\n",
+            "mov r3, ",
+            $p,
+            "\n",
+            "mov ",
+            $p,
+            ", ",
+            $q,
+            "\n",
+            "mov ",
+            $q,
+            ", r3\n",
+            "1:\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".syntax unified",
+    ".thumb",
+    ".section .text.scanline3d_setup565,\"ax\",%progbits",
+    ".global scanline3d_setup565",
+    ".type scanline3d_setup565,%function",
+    ".p2align 2",
+    ".thumb_func",
+    // r0 = the record, r1 = the arguments (`SetupArgs`: the vertex store and its length, the
+    // triangle's indices v0 | v1 << 16 and v2, the row, the screen height, the reciprocal
+    // seed). `raster::ActiveTri::setup` for a Gouraud triangle (no `FLAT_BIT`) whose setup is
+    // fast, with RGB565 channels and `DepthTest::Less`: returns 1 (set up, kept) or 2 (no row
+    // to draw from `row` on: not kept), or 0 for what the portable setup handles (a flat or
+    // large triangle, an edge or attribute setup the assembly declines); the record is then
+    // unspecified. Frame: `raster::Sorted` (words 0–6), an `Edge` (28), the record (40), the
+    // height (44), the sorted vertices' packed x | y << 16 (48, 52, 56), row_mid (60),
+    // row_end (64), the seed (68), mid_left (72).
+    "scanline3d_setup565:",
+    "push {{r4, r5, r6, r7, lr}}",
+    "sub sp, #76",
+    "str r0, [sp, #40]",
+    "ldm r1!, {{r2, r3, r4, r5, r6, r7}}",
+    "str r6, [sp, #16]",
+    "str r7, [sp, #44]",
+    "ldr r6, [r1]",
+    "str r6, [sp, #68]",
+    // The vertex pointers (indices checked against the store's length).
+    "lsls r0, r4, #16",
+    "bpl 1f",
+    "b 8f",
+    "1:",
+    "lsrs r0, r0, #16",
+    "lsrs r1, r4, #16",
+    "cmp r0, r3",
+    "bhs 7f",
+    "cmp r1, r3",
+    "bhs 7f",
+    "cmp r5, r3",
+    "blo 1f",
+    "7:",
+    "b 8f",
+    "1:",
+    "movs r6, #12",
+    "muls r0, r6, r0",
+    "adds r0, r0, r2",
+    "muls r1, r6, r1",
+    "adds r1, r1, r2",
+    "muls r5, r6, r5",
+    "adds r2, r2, r5",
+    // Sorted by y as the portable setup sorts them (the same swaps for equal ys).
+    sort_step!("r0", "r1"),
+    sort_step!("r1", "r2"),
+    sort_step!("r0", "r1"),
+    "mov r3, sp",
+    "stm r3!, {{r0, r1, r2}}",
+    "ldr r3, [r0]",
+    "ldr r4, [r1]",
+    "ldr r5, [r2]",
+    "add r0, sp, #48",
+    "stm r0!, {{r3, r4, r5}}",
+    "asrs r0, r3, #16",
+    "asrs r1, r4, #16",
+    "asrs r2, r5, #16",
+    // row_end = min(first_pixel(cy), height) > row, row_mid = first_pixel(by).
+    first_pixel!("r6", "r2"),
+    "ldr r7, [sp, #44]",
+    "cmp r6, r7",
+    "ble 1f",
+    "mov r6, r7",
+    "1:",
+    "ldr r7, [sp, #16]",
+    "cmp r7, r6",
+    "blt 1f",
+    "b 6f",
+    "1:",
+    "str r6, [sp, #64]",
+    first_pixel!("r6", "r1"),
+    "str r6, [sp, #60]",
+    // det = dx1·dy2 − dx2·dy1 ≠ 0 (32-bit: |d| ≤ 32 766).
+    "subs r1, r1, r0",
+    "subs r2, r2, r0",
+    "sxth r3, r3",
+    "sxth r4, r4",
+    "sxth r5, r5",
+    "subs r4, r4, r3",
+    "subs r5, r5, r3",
+    "mov r6, r4",
+    "muls r6, r2, r6",
+    "mov r7, r5",
+    "muls r7, r1, r7",
+    "subs r6, r6, r7",
+    "bne 1f",
+    "b 6f",
+    "1:",
+    "str r6, [sp, #12]",
+    // Fast only when (x_hi − x_lo) + (cy − ay) ≤ 1024 px.
+    "movs r0, #0",
+    "movs r3, #0",
+    "cmp r4, r3",
+    "ble 1f",
+    "mov r3, r4",
+    "1:",
+    "cmp r4, r0",
+    "bge 1f",
+    "mov r0, r4",
+    "1:",
+    "cmp r5, r3",
+    "ble 1f",
+    "mov r3, r5",
+    "1:",
+    "cmp r5, r0",
+    "bge 1f",
+    "mov r0, r5",
+    "1:",
+    "subs r3, r3, r0",
+    "adds r3, r3, r2",
+    "movs r0, #1",
+    "lsls r0, r0, #14",
+    "cmp r3, r0",
+    "ble 1f",
+    "b 8f",
+    "1:",
+    // mid_left = det < 0: the long edge is the right one (slot 1), else the left (slot 0).
+    "lsrs r6, r6, #31",
+    "str r6, [sp, #72]",
+    "ldr r0, [sp, #48]",
+    "ldr r1, [sp, #56]",
+    "ldr r2, [sp, #16]",
+    "add r3, sp, #28",
+    "bl scanline3d_edge_new",
+    "cmp r0, #0",
+    "bne 1f",
+    "b 8f",
+    "1:",
+    "ldr r6, [sp, #72]",
+    edge_to_record!(),
+    // The short edge: a → b before row_mid, b → c from it; the other slot.
+    "ldr r2, [sp, #16]",
+    "ldr r1, [sp, #60]",
+    "cmp r2, r1",
+    "bge 2f",
+    "ldr r0, [sp, #48]",
+    "ldr r1, [sp, #52]",
+    "b 3f",
+    "2:",
+    "ldr r0, [sp, #52]",
+    "ldr r1, [sp, #56]",
+    "3:",
+    "add r3, sp, #28",
+    "bl scanline3d_edge_new",
+    "cmp r0, #0",
+    "bne 1f",
+    "b 8f",
+    "1:",
+    "ldr r6, [sp, #72]",
+    "movs r0, #1",
+    "eors r6, r0",
+    edge_to_record!(),
+    // The attribute words.
+    "mov r0, sp",
+    "ldr r1, [sp, #40]",
+    "ldr r2, [sp, #68]",
+    "bl scanline3d_gouraud_setup",
+    "cmp r0, #0",
+    "bne 1f",
+    "b 8f",
+    "1:",
+    // The pending short edge b → c at row_mid, when row < row_mid < row_end
+    // (`ActiveTri::set_pending`: w, s and dy in the fourth words of gx, row and inc).
+    "ldr r2, [sp, #16]",
+    "ldr r1, [sp, #60]",
+    "cmp r2, r1",
+    "bge 4f",
+    "ldr r0, [sp, #64]",
+    "cmp r1, r0",
+    "bge 4f",
+    "ldr r0, [sp, #52]",
+    "ldr r1, [sp, #56]",
+    "ldr r2, [sp, #60]",
+    "add r3, sp, #28",
+    "bl scanline3d_edge_new",
+    "cmp r0, #0",
+    "bne 1f",
+    "b 8f",
+    "1:",
+    "add r3, sp, #28",
+    "ldrh r0, [r3, #{ee}]",
+    "lsls r0, r0, #16",
+    "ldrh r1, [r3, #{ec}]",
+    "sxth r1, r1",
+    "adds r0, r0, r1",
+    "movs r2, #128",
+    "lsls r2, r2, #8",
+    "adds r0, r0, r2",
+    "ldrh r1, [r3, #{esq}]",
+    "sxth r1, r1",
+    "ldrh r4, [r3, #{esr}]",
+    "lsls r4, r4, #16",
+    "subs r1, r1, r4",
+    "ldrh r2, [r3, #{edy}]",
+    "ldr r7, [sp, #40]",
+    "str r0, [r7, #{pend_w}]",
+    "str r1, [r7, #{pend_s}]",
+    "str r2, [r7, #{pend_dy}]",
+    "4:",
+    // bx, by and cx, cy as the packed words; row_mid and row_end.
+    "ldr r7, [sp, #40]",
+    "ldr r0, [sp, #52]",
+    "str r0, [r7, #{bx}]",
+    "ldr r0, [sp, #56]",
+    "str r0, [r7, #{cx}]",
+    "ldr r0, [sp, #60]",
+    "ldr r1, [sp, #64]",
+    "lsls r2, r1, #16",
+    "uxth r3, r0",
+    "orrs r2, r3",
+    "str r2, [r7, #{row_mid}]",
+    // `ActiveTri::set_routine_rows`: rows up to stop = row_mid − 1 when row ≤ it < row_end − 1,
+    // else row_end − 1; the count (at most 255) and LAST or SWITCH when it reaches stop.
+    "subs r1, #1",
+    "subs r0, #1",
+    "ldr r2, [sp, #16]",
+    "mov r3, r1",
+    "cmp r0, r2",
+    "blt 1f",
+    "cmp r0, r1",
+    "bge 1f",
+    "mov r3, r0",
+    "1:",
+    "ldr r4, [sp, #72]",
+    "adds r4, #{fast}",
+    "subs r5, r3, r2",
+    "cmp r5, #255",
+    "bls 2f",
+    "movs r5, #255",
+    "b 3f",
+    "2:",
+    "cmp r3, r1",
+    "bne 5f",
+    "adds r4, #{last}",
+    "b 3f",
+    "5:",
+    "adds r4, #{switch}",
+    "3:",
+    "strb r4, [r7, #{flags}]",
+    "strb r5, [r7, #{rows}]",
+    "movs r0, #1",
+    "b 9f",
+    "6:",
+    "movs r0, #2",
+    "b 9f",
+    "8:",
+    "movs r0, #0",
+    "9:",
+    "add sp, #76",
+    "pop {{r4, r5, r6, r7, pc}}",
+    ".size scanline3d_setup565, . - scanline3d_setup565",
+    ec = const o::EDGE_C,
+    esq = const o::EDGE_SQ,
+    ee = const o::EDGE_E,
+    esr = const o::EDGE_SR,
+    edy = const o::EDGE_DY,
+    left_dy = const o::LEFT_DY,
+    left_w = const o::LEFT + o::W,
+    left_s = const o::LEFT + o::S,
+    pend_w = const o::PEND_W,
+    pend_s = const o::PEND_S,
+    pend_dy = const o::PEND_DY,
+    bx = const o::BX,
+    cx = const o::CX,
+    row_mid = const o::ROW_MID,
+    fast = const o::FAST,
+    last = const o::LAST,
+    switch = const o::SWITCH,
+    flags = const o::FLAGS,
+    rows = const o::ROUTINE_ROWS,
+);
+
 /// `(n / d, n % d)` for `0 ≤ n < 2³¹`, `d ≥ 1` by shift and subtract, one step per quotient
 /// bit, as `raster::udiv_small`: `$q` = quotient, `$n` = remainder. Uses `$dd`, `$bit` and
 /// `$half`; labels 6–9.
@@ -2003,11 +2358,67 @@ pub(crate) fn gouraud_setup(rec: &mut ActiveTri, tri: &Sorted<'_>) -> bool {
     unsafe { scanline3d_gouraud_setup(tri as *const Sorted as *const u32, rec, seed.as_ptr()) != 0 }
 }
 
+/// The arguments of [`scanline3d_setup565`] (seven words).
+#[cfg(not(target_has_atomic = "32"))]
+#[repr(C)]
+struct SetupArgs {
+    verts: *const u32,
+    len: u32,
+    v01: u32,
+    v2: u32,
+    row: i32,
+    height: i32,
+    seed: *const u16,
+}
+
+/// `raster::ActiveTri::setup` by [`scanline3d_setup565`] for a Gouraud triangle on a strip
+/// whose mode is fast Gouraud (`DepthTest::Less`) with RGB565 channels: `Some(kept)`, or
+/// `None` (the record unspecified) for what the portable setup handles.
+#[cfg(not(target_has_atomic = "32"))]
+#[inline(always)]
+pub(crate) fn setup565(
+    rec: &mut ActiveTri,
+    t: &crate::raster::TriRecord,
+    verts: &[ScreenVertex],
+    row: i32,
+    height: i32,
+) -> Option<bool> {
+    const {
+        assert!(core::mem::offset_of!(ScreenVertex, x) == 0);
+        assert!(core::mem::offset_of!(ScreenVertex, y) == 2);
+        assert!(core::mem::size_of::<ScreenVertex>() == 12);
+        assert!(o::CX == o::BX + 4 && o::BX % 4 == 0 && o::ROW_END == o::ROW_MID + 2);
+        assert!(o::ROW_MID % 4 == 0 && o::RIGHT == o::LEFT + 8 && o::RIGHT_DY == o::LEFT_DY + 2);
+    };
+    let seed: &'static [u16; 128] = &crate::scalar::RECIP_SEED;
+    let args = SetupArgs {
+        verts: verts.as_ptr() as *const u32,
+        len: verts.len() as u32,
+        v01: t.v[0] as u32 | (t.v[1] as u32) << 16,
+        v2: t.v[2] as u32,
+        row,
+        height,
+        seed: seed.as_ptr(),
+    };
+    // SAFETY: the routine reads the arguments, the three vertices whose indices it has checked
+    // against the store's length (12-byte `repr(C)` records, x and y the first word, as
+    // asserted above) and the seed table; it writes the record's fields at the offsets given
+    // to it (not `ord`), and calls `scanline3d_edge_new` and `scanline3d_gouraud_setup` with
+    // buffers in its own frame.
+    match unsafe { scanline3d_setup565(rec, &args) } {
+        1 => Some(true),
+        2 => Some(false),
+        _ => None,
+    }
+}
+
 extern "C" {
     fn scanline3d_edge_new(a: u32, b: u32, row: i32, out: *mut Edge) -> u32;
     fn scanline3d_xform_q16(m: *const i32, p: *const i32, out: *mut i32, rows: u32);
     fn scanline3d_project_q16(p: *const i32, scales: u32, seed: *const u16, out: *mut i32) -> u32;
     fn scanline3d_gouraud_setup(tri: *const u32, rec: *mut ActiveTri, seed: *const u16) -> u32;
+    #[cfg(not(target_has_atomic = "32"))]
+    fn scanline3d_setup565(rec: *mut ActiveTri, args: *const SetupArgs) -> u32;
     fn scanline3d_fill128(start: *mut [u32; 4], end: *mut [u32; 4], word: u32);
     fn scanline3d_rows565(ctx: *mut RowCtx) -> u32;
     fn scanline3d_span565_less(
