@@ -385,12 +385,9 @@ pub fn gouraud_setup_self_test(n: u32) -> Option<([[i32; 4]; 3], [i32; 3])> {
             left_c,
             left_sq,
         };
-        let mut want = ActiveTri::EMPTY;
-        attribute_words::<Rgb565>(&mut want, &tri, false, true, [0; 3]);
+        let want = attribute_words::<Rgb565>(&tri, false, true, [0; 3]);
         let mut rec = ActiveTri::EMPTY;
-        if crate::span_thumb::gouraud_setup(&mut rec, &tri)
-            && [rec.gx, rec.row, rec.inc] != [want.gx, want.row, want.inc]
-        {
+        if crate::span_thumb::gouraud_setup(&mut rec, &tri) && [rec.gx, rec.row, rec.inc] != want {
             let word = |p: &ScreenVertex| {
                 let c = p.color();
                 [
@@ -875,27 +872,17 @@ pub(crate) struct Sorted<'v> {
     pub left_sq: i32,
 }
 
-/// Sets the attribute words of a triangle set up on `tri.row` ([`ActiveTri::gx`], `row` and
-/// `inc` of `rec`): the planes of depth and colour, their gradients, their values at the centre of
-/// the first pixel of the first row and their steps from row to row along the left edge;
-/// packed for the span loops when `fast` and not `flat`. On ARMv6-M, where the assembly
-/// (`span_thumb::gouraud_setup`) takes the common case, out of line: inlined, its spills
-/// would grow the frame of [`ActiveTri::setup`] (on a 16 KB part the stack has no room).
-#[cfg_attr(
-    all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")),
-    inline(never)
-)]
-#[cfg_attr(
-    not(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32"))),
-    inline(always)
-)]
+/// The attribute words of a triangle set up on `tri.row` ([`ActiveTri::gx`], `row` and
+/// `inc`): the planes of depth and colour, their gradients, their values at the centre of the
+/// first pixel of the first row and their steps from row to row along the left edge; packed
+/// for the span loops when `fast` and not `flat`.
+#[inline(always)]
 fn attribute_words<C: TargetColor>(
-    rec: &mut ActiveTri,
     tri: &Sorted<'_>,
     flat: bool,
     fast: bool,
     flat_rgb: [u16; 3],
-) {
+) -> [[i32; 4]; 3] {
     let [a, b, c] = tri.v;
     let (ax, ay, bx, by, cx, cy) = (
         a.x as i32, a.y as i32, b.x as i32, b.y as i32, c.x as i32, c.y as i32,
@@ -1018,9 +1005,23 @@ fn attribute_words<C: TargetColor>(
     } else if fast {
         row_v[0] = row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
     }
-    rec.gx = gx;
-    rec.row = row_v;
-    rec.inc = inc;
+    [gx, row_v, inc]
+}
+
+/// [`attribute_words`] into `rec`, out of line, on ARMv6-M: there the assembly
+/// (`span_thumb::setup565`) takes the common case, and inlined the portable words and their
+/// spills would grow the frame of [`ActiveTri::setup`] (on a 16 KB part the stack has no
+/// room).
+#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+#[inline(never)]
+fn set_attribute_words<C: TargetColor>(
+    rec: &mut ActiveTri,
+    tri: &Sorted<'_>,
+    flat: bool,
+    fast: bool,
+    flat_rgb: [u16; 3],
+) {
+    [rec.gx, rec.row, rec.inc] = attribute_words::<C>(tri, flat, fast, flat_rgb);
 }
 
 impl ActiveTri {
@@ -1066,7 +1067,7 @@ impl ActiveTri {
 
     /// [`ActiveTri::setup`] in portable code (on ARMv6-M, for what `span_thumb::setup565`
     /// declines).
-    #[inline(always)]
+    #[inline]
     fn setup_portable<C: TargetColor>(
         &mut self,
         t: &TriRecord,
@@ -1143,7 +1144,16 @@ impl ActiveTri {
         #[cfg(not(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32"))))]
         let done = false;
         if !done {
-            attribute_words::<C>(self, &tri, flat, fast, flat_rgb);
+            #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+            set_attribute_words::<C>(self, &tri, flat, fast, flat_rgb);
+            #[cfg(not(all(
+                target_arch = "arm",
+                target_os = "none",
+                not(target_has_atomic = "32")
+            )))]
+            {
+                [self.gx, self.row, self.inc] = attribute_words::<C>(&tri, flat, fast, flat_rgb);
+            }
         }
         let flags = (mid_left as u8 * MID_LEFT) | (flat as u8 * FLAT) | (fast as u8 * FAST);
         let ((lw, ldy), (rw, rdy)) = (left.dda(), right.dda());
