@@ -1319,33 +1319,27 @@ macro_rules! vertex_channel {
     };
 }
 
-/// For [`scanline3d_gouraud_setup`]: r0 rounded by the channel's shift `r` (`gs_r`, minus
-/// `$less`) as the portable setup rounds a colour gradient: `((v >> (r − 1)) + 1) >> 1` for
-/// r > 0, `v << −r` otherwise. Uses r2.
+/// For [`scanline3d_gouraud_setup`]: r0 (|r0| < 2²⁶) rounded by the channel's shift `r` as
+/// the portable setup rounds a colour gradient, `((v >> (r − 1)) + 1) >> 1` for r > 0 and
+/// `v << −r` for −3 ≤ r ≤ 0: both are `(((v << 4) >> (r + 3)) + 1) >> 1` (for r ≤ 0 the shifted
+/// value is even). `gs_r` holds r + 3 for red and blue; `$green` subtracts one for green.
+/// Uses r2.
 macro_rules! round_channel {
-    ($less:literal) => {
+    ($green:literal) => {
         concat!(
             "ldr r2, [sp, #gs_r]\n",
-            "subs r2, #",
-            $less,
-            "\n",
-            "ble 1f\n",
-            "subs r2, #1\n",
+            $green,
+            "lsls r0, r0, #4\n",
             "asrs r0, r0, r2\n",
             "adds r0, #1\n",
             "asrs r0, r0, #1\n",
-            "b 2f\n",
-            "1:\n",
-            "negs r2, r2\n",
-            "lsls r0, r0, r2\n",
-            "2:\n",
         )
     };
 }
 
 /// For [`scanline3d_gouraud_setup`]: colour channel `$k` (`$rgb` = its byte's offset in a
 /// vertex, `$fl` = the left shift that brings its two low bits to the top of the flags, `$sh`
-/// = its shift to 20 fraction bits, `$less` = 1 for green, whose shift is one more): its value
+/// = its shift to 20 fraction bits, `$less` = [`round_channel`]'s adjustment for green): its value
 /// at the first vertex, `c0 << sh`, and its gradients from the 16-bit coefficients,
 /// `round(c0·d1 − c1·d2)` and `round(c2·d2 − c3·d1)`, into the frame. Uses r0–r7.
 macro_rules! channel_gradients {
@@ -1388,9 +1382,10 @@ macro_rules! channel_gradients {
 }
 
 /// For [`scanline3d_gouraud_setup`]: attribute `$k`'s value at the first pixel,
-/// `a0 + ((gx·dx + gy·dy) >> 4)` (the products as `scalar::mul_wide16`, the sum in 64 bits,
-/// the low word of the shifted sum), into `a0`'s slot, and its row step `gy + gx·sq` into
-/// the frame word `$inc`. Uses r0–r4.
+/// `a0 + ((gx·dx + gy·dy) >> 4)` (the low word of the exact shifted sum), into `a0`'s slot,
+/// and its row step `gy + gx·sq` into the frame word `$inc`. With g = gh·2¹⁶ + gl and gl the
+/// signed low half: |gl·dx| ≤ 2³⁰, and dy > −2¹⁵ (rows are on the screen, ay ≤ 2¹⁴), so the
+/// low products' sum fits an `i32` and the sum is `(Σ gh·d)·2¹⁶ + Σ gl·d`. Uses r0–r4.
 macro_rules! prestep {
     ($gx:literal, $gy:literal, $a0:literal, $inc:literal) => {
         concat!(
@@ -1398,28 +1393,24 @@ macro_rules! prestep {
             $gx,
             "]\n",
             "ldr r1, [sp, #gs_dx]\n",
-            "asrs r2, r0, #16\n",
-            "uxth r0, r0\n",
+            "sxth r2, r0\n",
+            "subs r0, r0, r2\n",
+            "asrs r0, r0, #16\n",
             "muls r2, r1, r2\n",
             "muls r0, r1, r0\n",
             "ldr r3, [sp, #",
             $gy,
             "]\n",
             "ldr r1, [sp, #gs_dy]\n",
-            "asrs r4, r3, #16\n",
-            "uxth r3, r3\n",
+            "sxth r4, r3\n",
+            "subs r3, r3, r4\n",
+            "asrs r3, r3, #16\n",
             "muls r4, r1, r4\n",
             "muls r3, r1, r3\n",
-            // r2 = the high products' sum (|·| < 2³⁰), r4:r0 = the low ones' (33 bits).
-            "adds r2, r2, r4\n",
-            "asrs r4, r0, #31\n",
-            "asrs r1, r3, #31\n",
             "adds r0, r0, r3\n",
-            "adcs r4, r1\n",
-            "lsrs r0, r0, #4\n",
-            "lsls r4, r4, #28\n",
-            "orrs r0, r4\n",
-            "lsls r2, r2, #12\n",
+            "adds r2, r2, r4\n",
+            "lsls r0, r0, #12\n",
+            "asrs r2, r2, #4\n",
             "adds r0, r0, r2\n",
             "ldr r1, [sp, #",
             $a0,
@@ -1628,15 +1619,16 @@ core::arch::global_asm!(
     "mov r2, r12",
     recip_norm!(),
     // shift = 29 + s − (l + 4); k = shift − 1 (10..=54); the red and blue rounding
-    // r = shift − 15 − 15, green's one less: below −3 the portable code keeps exact sums.
+    // r = shift − 15 − 15 (gs_r = r + 3), green's one less: below −3 the portable code keeps
+    // exact sums.
     "ldr r2, [sp, #gs_k]",
     "adds r5, #25",
     "subs r5, r5, r2",
     "subs r0, r5, #1",
     "str r0, [sp, #gs_k]",
-    "subs r5, #30",
+    "subs r5, #27",
     "str r5, [sp, #gs_r]",
-    "adds r5, #2",
+    "subs r5, #1",
     "bpl 1f",
     "b 8f",
     "1:",
@@ -1683,9 +1675,9 @@ core::arch::global_asm!(
     depth_gradient!("gs_da1", "gs_bx1", "gs_da2", "gs_bx2", "gs_gx"),
     depth_gradient!("gs_da2", "gs_by1", "gs_da1", "gs_by2", "gs_gy"),
     // Red, green, blue: 10-bit channels with 5, 4, 5 fraction bits, to 20.
-    channel_gradients!("{vrgb}", "20", "15", "0", "gs_a0 + 4", "gs_gx + 4", "gs_gy + 4"),
-    channel_gradients!("{vrgb} + 1", "18", "16", "1", "gs_a0 + 8", "gs_gx + 8", "gs_gy + 8"),
-    channel_gradients!("{vrgb} + 2", "16", "15", "0", "gs_a0 + 12", "gs_gx + 12", "gs_gy + 12"),
+    channel_gradients!("{vrgb}", "20", "15", "", "gs_a0 + 4", "gs_gx + 4", "gs_gy + 4"),
+    channel_gradients!("{vrgb} + 1", "18", "16", "subs r2, #1\n", "gs_a0 + 8", "gs_gx + 8", "gs_gy + 8"),
+    channel_gradients!("{vrgb} + 2", "16", "15", "", "gs_a0 + 12", "gs_gx + 12", "gs_gy + 12"),
     // Values at the first pixel (into a0) and row steps (into the coefficients' 16-bit
     // roundings, no longer needed).
     prestep!("gs_gx", "gs_gy", "gs_a0", "gs_c16"),
@@ -1763,40 +1755,30 @@ core::arch::global_asm!(
     gx = const o::GX,
 );
 
-/// For [`scanline3d_setup565`]: the edge in the frame's `Edge` (sp + 28) into slot r6 (0 = left,
-/// 1 = right) of the record (frame word 40), in the row loops' form (`raster::Edge::dda`):
-/// `w = e·2¹⁶ + c + 2¹⁵`, `s = sq − sr·2¹⁶` and `dy`; the left edge's column and step also
-/// into the frame's `raster::Sorted` (words 5 and 6). Uses r0–r5, r7.
+/// For [`scanline3d_setup565`]: the edge that [`scanline3d_edge_dda`] returned (r1 = w,
+/// r2 = s, r3 = dy) into slot r6 (0 = left, 1 = right) of the record; the left edge's column
+/// (`(w & 0xffff) − 2¹⁵`) and step (`s` as an `i16`) also into the frame's `raster::Sorted`.
+/// Uses r4, r5, r7.
 macro_rules! edge_to_record {
     () => {
         concat!(
-            "add r3, sp, #28\n",
-            "ldrh r0, [r3, #{ee}]\n",
-            "lsls r0, r0, #16\n",
-            "ldrh r1, [r3, #{ec}]\n",
-            "sxth r1, r1\n",
-            "adds r0, r0, r1\n",
-            "movs r2, #128\n",
-            "lsls r2, r2, #8\n",
-            "adds r0, r0, r2\n",
-            "ldrh r2, [r3, #{esq}]\n",
-            "sxth r2, r2\n",
             "cmp r6, #0\n",
             "bne 1f\n",
-            "str r1, [sp, #20]\n",
-            "str r2, [sp, #24]\n",
+            "uxth r4, r1\n",
+            "movs r5, #128\n",
+            "lsls r5, r5, #8\n",
+            "subs r4, r4, r5\n",
+            "str r4, [sp, #su_lc]\n",
+            "sxth r4, r2\n",
+            "str r4, [sp, #su_lsq]\n",
             "1:\n",
-            "ldrh r4, [r3, #{esr}]\n",
-            "lsls r4, r4, #16\n",
-            "subs r2, r2, r4\n",
-            "ldrh r4, [r3, #{edy}]\n",
-            "ldr r7, [sp, #40]\n",
+            "ldr r7, [sp, #su_rec]\n",
             "lsls r5, r6, #1\n",
             "adds r5, r7, r5\n",
-            "strh r4, [r5, #{left_dy}]\n",
+            "strh r3, [r5, #{left_dy}]\n",
             "lsls r5, r6, #3\n",
             "adds r5, r7, r5\n",
-            "str r0, [r5, #{left_w}]\n",
+            "str r1, [r5, #{left_w}]\n",
             "str r2, [r5, #{left_s}]\n",
         )
     };
@@ -1848,24 +1830,37 @@ core::arch::global_asm!(
     ".type scanline3d_setup565,%function",
     ".p2align 2",
     ".thumb_func",
+    ".equ su_det, 12",
+    ".equ su_row, 16",
+    ".equ su_lc, 20",
+    ".equ su_lsq, 24",
+    ".equ su_rec, 28",
+    ".equ su_h, 32",
+    ".equ su_a, 36",
+    ".equ su_b, 40",
+    ".equ su_c, 44",
+    ".equ su_mid, 48",
+    ".equ su_end, 52",
+    ".equ su_seed, 56",
+    ".equ su_left, 60",
+    ".equ su_frame, 64",
     // r0 = the record, r1 = the arguments (`SetupArgs`: the vertex store and its length, the
     // triangle's indices v0 | v1 << 16 and v2, the row, the screen height, the reciprocal
     // seed). `raster::ActiveTri::setup` for a Gouraud triangle (no `FLAT_BIT`) whose setup is
     // fast, with RGB565 channels and `DepthTest::Less`: returns 1 (set up, kept) or 2 (no row
     // to draw from `row` on: not kept), or 0 for what the portable setup handles (a flat or
     // large triangle, an edge or attribute setup the assembly declines); the record is then
-    // unspecified. Frame: `raster::Sorted` (words 0–6), an `Edge` (28), the record (40), the
-    // height (44), the sorted vertices' packed x | y << 16 (48, 52, 56), row_mid (60),
-    // row_end (64), the seed (68), mid_left (72).
+    // unspecified. Frame (the `su_` offsets): `raster::Sorted` (words 0–6), the record, the
+    // height, the sorted vertices' packed x | y << 16, row_mid, row_end, the seed, mid_left.
     "scanline3d_setup565:",
     "push {{r4, r5, r6, r7, lr}}",
-    "sub sp, #76",
-    "str r0, [sp, #40]",
+    "sub sp, #su_frame",
+    "str r0, [sp, #su_rec]",
     "ldm r1!, {{r2, r3, r4, r5, r6, r7}}",
-    "str r6, [sp, #16]",
-    "str r7, [sp, #44]",
+    "str r6, [sp, #su_row]",
+    "str r7, [sp, #su_h]",
     "ldr r6, [r1]",
-    "str r6, [sp, #68]",
+    "str r6, [sp, #su_seed]",
     // The vertex pointers (indices checked against the store's length).
     "lsls r0, r4, #16",
     "bpl 1f",
@@ -1898,26 +1893,26 @@ core::arch::global_asm!(
     "ldr r3, [r0]",
     "ldr r4, [r1]",
     "ldr r5, [r2]",
-    "add r0, sp, #48",
+    "add r0, sp, #su_a",
     "stm r0!, {{r3, r4, r5}}",
     "asrs r0, r3, #16",
     "asrs r1, r4, #16",
     "asrs r2, r5, #16",
     // row_end = min(first_pixel(cy), height) > row, row_mid = first_pixel(by).
     first_pixel!("r6", "r2"),
-    "ldr r7, [sp, #44]",
+    "ldr r7, [sp, #su_h]",
     "cmp r6, r7",
     "ble 1f",
     "mov r6, r7",
     "1:",
-    "ldr r7, [sp, #16]",
+    "ldr r7, [sp, #su_row]",
     "cmp r7, r6",
     "blt 1f",
     "b 6f",
     "1:",
-    "str r6, [sp, #64]",
+    "str r6, [sp, #su_end]",
     first_pixel!("r6", "r1"),
-    "str r6, [sp, #60]",
+    "str r6, [sp, #su_mid]",
     // det = dx1·dy2 − dx2·dy1 ≠ 0 (32-bit: |d| ≤ 32 766).
     "subs r1, r1, r0",
     "subs r2, r2, r0",
@@ -1934,7 +1929,7 @@ core::arch::global_asm!(
     "bne 1f",
     "b 6f",
     "1:",
-    "str r6, [sp, #12]",
+    "str r6, [sp, #su_det]",
     // Fast only when (x_hi − x_lo) + (cy − ay) ≤ 1024 px.
     "movs r0, #0",
     "movs r3, #0",
@@ -1964,44 +1959,42 @@ core::arch::global_asm!(
     "1:",
     // mid_left = det < 0: the long edge is the right one (slot 1), else the left (slot 0).
     "lsrs r6, r6, #31",
-    "str r6, [sp, #72]",
-    "ldr r0, [sp, #48]",
-    "ldr r1, [sp, #56]",
-    "ldr r2, [sp, #16]",
-    "add r3, sp, #28",
-    "bl scanline3d_edge_new",
+    "str r6, [sp, #su_left]",
+    "ldr r0, [sp, #su_a]",
+    "ldr r1, [sp, #su_c]",
+    "ldr r2, [sp, #su_row]",
+    "bl scanline3d_edge_dda",
     "cmp r0, #0",
     "bne 1f",
     "b 8f",
     "1:",
-    "ldr r6, [sp, #72]",
+    "ldr r6, [sp, #su_left]",
     edge_to_record!(),
     // The short edge: a → b before row_mid, b → c from it; the other slot.
-    "ldr r2, [sp, #16]",
-    "ldr r1, [sp, #60]",
+    "ldr r2, [sp, #su_row]",
+    "ldr r1, [sp, #su_mid]",
     "cmp r2, r1",
     "bge 2f",
-    "ldr r0, [sp, #48]",
-    "ldr r1, [sp, #52]",
+    "ldr r0, [sp, #su_a]",
+    "ldr r1, [sp, #su_b]",
     "b 3f",
     "2:",
-    "ldr r0, [sp, #52]",
-    "ldr r1, [sp, #56]",
+    "ldr r0, [sp, #su_b]",
+    "ldr r1, [sp, #su_c]",
     "3:",
-    "add r3, sp, #28",
-    "bl scanline3d_edge_new",
+    "bl scanline3d_edge_dda",
     "cmp r0, #0",
     "bne 1f",
     "b 8f",
     "1:",
-    "ldr r6, [sp, #72]",
+    "ldr r6, [sp, #su_left]",
     "movs r0, #1",
     "eors r6, r0",
     edge_to_record!(),
     // The attribute words.
     "mov r0, sp",
-    "ldr r1, [sp, #40]",
-    "ldr r2, [sp, #68]",
+    "ldr r1, [sp, #su_rec]",
+    "ldr r2, [sp, #su_seed]",
     "bl scanline3d_gouraud_setup",
     "cmp r0, #0",
     "bne 1f",
@@ -2009,50 +2002,34 @@ core::arch::global_asm!(
     "1:",
     // The pending short edge b → c at row_mid, when row < row_mid < row_end
     // (`ActiveTri::set_pending`: w, s and dy in the fourth words of gx, row and inc).
-    "ldr r2, [sp, #16]",
-    "ldr r1, [sp, #60]",
+    "ldr r2, [sp, #su_row]",
+    "ldr r1, [sp, #su_mid]",
     "cmp r2, r1",
     "bge 4f",
-    "ldr r0, [sp, #64]",
+    "ldr r0, [sp, #su_end]",
     "cmp r1, r0",
     "bge 4f",
-    "ldr r0, [sp, #52]",
-    "ldr r1, [sp, #56]",
-    "ldr r2, [sp, #60]",
-    "add r3, sp, #28",
-    "bl scanline3d_edge_new",
+    "ldr r0, [sp, #su_b]",
+    "ldr r1, [sp, #su_c]",
+    "ldr r2, [sp, #su_mid]",
+    "bl scanline3d_edge_dda",
     "cmp r0, #0",
     "bne 1f",
     "b 8f",
     "1:",
-    "add r3, sp, #28",
-    "ldrh r0, [r3, #{ee}]",
-    "lsls r0, r0, #16",
-    "ldrh r1, [r3, #{ec}]",
-    "sxth r1, r1",
-    "adds r0, r0, r1",
-    "movs r2, #128",
-    "lsls r2, r2, #8",
-    "adds r0, r0, r2",
-    "ldrh r1, [r3, #{esq}]",
-    "sxth r1, r1",
-    "ldrh r4, [r3, #{esr}]",
-    "lsls r4, r4, #16",
-    "subs r1, r1, r4",
-    "ldrh r2, [r3, #{edy}]",
-    "ldr r7, [sp, #40]",
-    "str r0, [r7, #{pend_w}]",
-    "str r1, [r7, #{pend_s}]",
-    "str r2, [r7, #{pend_dy}]",
+    "ldr r7, [sp, #su_rec]",
+    "str r1, [r7, #{pend_w}]",
+    "str r2, [r7, #{pend_s}]",
+    "str r3, [r7, #{pend_dy}]",
     "4:",
     // bx, by and cx, cy as the packed words; row_mid and row_end.
-    "ldr r7, [sp, #40]",
-    "ldr r0, [sp, #52]",
+    "ldr r7, [sp, #su_rec]",
+    "ldr r0, [sp, #su_b]",
     "str r0, [r7, #{bx}]",
-    "ldr r0, [sp, #56]",
+    "ldr r0, [sp, #su_c]",
     "str r0, [r7, #{cx}]",
-    "ldr r0, [sp, #60]",
-    "ldr r1, [sp, #64]",
+    "ldr r0, [sp, #su_mid]",
+    "ldr r1, [sp, #su_end]",
     "lsls r2, r1, #16",
     "uxth r3, r0",
     "orrs r2, r3",
@@ -2061,7 +2038,7 @@ core::arch::global_asm!(
     // else row_end − 1; the count (at most 255) and LAST or SWITCH when it reaches stop.
     "subs r1, #1",
     "subs r0, #1",
-    "ldr r2, [sp, #16]",
+    "ldr r2, [sp, #su_row]",
     "mov r3, r1",
     "cmp r0, r2",
     "blt 1f",
@@ -2069,7 +2046,7 @@ core::arch::global_asm!(
     "bge 1f",
     "mov r3, r0",
     "1:",
-    "ldr r4, [sp, #72]",
+    "ldr r4, [sp, #su_left]",
     "adds r4, #{fast}",
     "subs r5, r3, r2",
     "cmp r5, #255",
@@ -2094,14 +2071,9 @@ core::arch::global_asm!(
     "8:",
     "movs r0, #0",
     "9:",
-    "add sp, #76",
+    "add sp, #su_frame",
     "pop {{r4, r5, r6, r7, pc}}",
     ".size scanline3d_setup565, . - scanline3d_setup565",
-    ec = const o::EDGE_C,
-    esq = const o::EDGE_SQ,
-    ee = const o::EDGE_E,
-    esr = const o::EDGE_SR,
-    edy = const o::EDGE_DY,
     left_dy = const o::LEFT_DY,
     left_w = const o::LEFT + o::W,
     left_s = const o::LEFT + o::S,
@@ -2136,6 +2108,81 @@ macro_rules! udiv_small {
     };
 }
 
+/// The steps of `raster::Edge::new_portable` for [`scanline3d_edge_new`] and
+/// [`scanline3d_edge_dda`]: from r0 = xa | ya << 16, r1 = xb | yb << 16, r2 = row, with r4–r7
+/// and lr saved, to `$q` with r0 = sq, r6 = sr, r7 = dy (r3 untouched so far), then to `$c`
+/// with r1 = c, r5 = e; a row outside 0 ≤ k ≤ dy + 16 (k = 16·row + 8 − ya) branches to
+/// label 2.
+macro_rules! edge_steps {
+    ($q:expr, $c:expr) => {
+        concat!(
+            "push {{r4, r5, r6, r7, lr}}\n",
+            "sxth r4, r0\n",
+            "asrs r5, r0, #16\n",
+            "sxth r6, r1\n",
+            "asrs r7, r1, #16\n",
+            // dy = max(1, yb − ya), dx = xb − xa.
+            "subs r7, r7, r5\n",
+            "bgt 1f\n",
+            "movs r7, #1\n",
+            "1:\n",
+            "subs r6, r6, r4\n",
+            // k = 16·row + 8 − ya, in 0..=dy + 16 (unsigned, so k < 0 fails too).
+            "lsls r2, r2, #4\n",
+            "adds r2, #8\n",
+            "subs r2, r2, r5\n",
+            "movs r5, r7\n",
+            "adds r5, #16\n",
+            "cmp r2, r5\n",
+            "bhi 2f\n",
+            // r12 = k, lr = xa, r3 = the edge (no stack beyond the saved registers: this runs at
+            // the deepest point of a frame, which on a 16 KB part sets the largest frame size).
+            "mov r12, r2\n",
+            "mov lr, r4\n",
+            // (sq, sr) = floor division of dx by dy: for dx < 0 (mask r5 = −1) from !dx:
+            // sq = !q, sr = dy − 1 − r. Stored at once with dy.
+            "asrs r5, r6, #31\n",
+            "eors r6, r5\n",
+            udiv_small!("r6", "r7", "r0", "r1", "r2", "r4"),
+            "eors r0, r5\n",
+            "cmp r5, #0\n",
+            "beq 3f\n",
+            "subs r6, r7, r6\n",
+            "subs r6, #1\n",
+            "3:\n",
+            $q,
+            // lr = xa − 8 + k·sq; (qb, rb) = (k·sr) / dy.
+            "mov r1, r12\n",
+            "muls r0, r1\n",
+            "mov r2, lr\n",
+            "adds r0, r0, r2\n",
+            "subs r0, #8\n",
+            "mov lr, r0\n",
+            "mov r4, r12\n",
+            "muls r4, r6\n",
+            udiv_small!("r4", "r7", "r0", "r1", "r2", "r5"),
+            // t = xa − 8 + k·sq + qb; r = dy·(t & 15) + rb; q = t >> 4.
+            "mov r1, lr\n",
+            "adds r1, r1, r0\n",
+            "movs r2, #15\n",
+            "ands r2, r1\n",
+            "muls r2, r7\n",
+            "adds r2, r2, r4\n",
+            "asrs r1, r1, #4\n",
+            // r = 0: (c, e) = (q, 0); else (q + 1, (16·dy − r) >> 4).
+            "movs r5, #0\n",
+            "cmp r2, #0\n",
+            "beq 4f\n",
+            "adds r1, #1\n",
+            "lsls r5, r7, #4\n",
+            "subs r5, r5, r2\n",
+            "asrs r5, r5, #4\n",
+            "4:\n",
+            $c,
+        )
+    };
+}
+
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
@@ -2148,74 +2195,10 @@ core::arch::global_asm!(
     // write. `raster::Edge::new_portable`'s steps for 0 ≤ k ≤ dy + 16 (k = 16·row + 8 − ya):
     // returns 1 having written the edge, or 0 (nothing written) for any other row.
     "scanline3d_edge_new:",
-    "push {{r4, r5, r6, r7, lr}}",
-    "sxth r4, r0",
-    "asrs r5, r0, #16",
-    "sxth r6, r1",
-    "asrs r7, r1, #16",
-    // dy = max(1, yb − ya), dx = xb − xa.
-    "subs r7, r7, r5",
-    "bgt 1f",
-    "movs r7, #1",
-    "1:",
-    "subs r6, r6, r4",
-    // k = 16·row + 8 − ya, in 0..=dy + 16 (unsigned, so k < 0 fails too).
-    "lsls r2, r2, #4",
-    "adds r2, #8",
-    "subs r2, r2, r5",
-    "movs r5, r7",
-    "adds r5, #16",
-    "cmp r2, r5",
-    "bhi 2f",
-    // r12 = k, lr = xa, r3 = the edge (no stack beyond the saved registers: this runs at
-    // the deepest point of a frame, which on a 16 KB part sets the largest frame size).
-    "mov r12, r2",
-    "mov lr, r4",
-    // (sq, sr) = floor division of dx by dy: for dx < 0 (mask r5 = −1) from !dx:
-    // sq = !q, sr = dy − 1 − r. Stored at once with dy.
-    "asrs r5, r6, #31",
-    "eors r6, r5",
-    udiv_small!("r6", "r7", "r0", "r1", "r2", "r4"),
-    "eors r0, r5",
-    "cmp r5, #0",
-    "beq 3f",
-    "subs r6, r7, r6",
-    "subs r6, #1",
-    "3:",
-    "strh r0, [r3, #{sq}]",
-    "strh r6, [r3, #{sr}]",
-    "strh r7, [r3, #{dy}]",
-    // lr = xa − 8 + k·sq; (qb, rb) = (k·sr) / dy.
-    "mov r1, r12",
-    "muls r0, r1",
-    "mov r2, lr",
-    "adds r0, r0, r2",
-    "subs r0, #8",
-    "mov lr, r0",
-    "mov r4, r12",
-    "muls r4, r6",
-    udiv_small!("r4", "r7", "r0", "r1", "r2", "r5"),
-    // t = xa − 8 + k·sq + qb; r = dy·(t & 15) + rb; q = t >> 4.
-    "mov r1, lr",
-    "adds r1, r1, r0",
-    "movs r2, #15",
-    "ands r2, r1",
-    "muls r2, r7",
-    "adds r2, r2, r4",
-    "asrs r1, r1, #4",
-    // r = 0: (c, e) = (q, 0); else (q + 1, (16·dy − r) >> 4).
-    "movs r5, #0",
-    "cmp r2, #0",
-    "beq 4f",
-    "adds r1, #1",
-    "lsls r5, r7, #4",
-    "subs r5, r5, r2",
-    "asrs r5, r5, #4",
-    "4:",
-    "strh r1, [r3, #{c}]",
-    "strh r5, [r3, #{e}]",
-    "movs r0, #1",
-    "pop {{r4, r5, r6, r7, pc}}",
+    edge_steps!(
+        "strh r0, [r3, #{sq}]\nstrh r6, [r3, #{sr}]\nstrh r7, [r3, #{dy}]\n",
+        "strh r1, [r3, #{c}]\nstrh r5, [r3, #{e}]\nmovs r0, #1\npop {{r4, r5, r6, r7, pc}}\n"
+    ),
     "2:",
     "movs r0, #0",
     "pop {{r4, r5, r6, r7, pc}}",
@@ -2225,6 +2208,28 @@ core::arch::global_asm!(
     e = const o::EDGE_E,
     sr = const o::EDGE_SR,
     dy = const o::EDGE_DY,
+);
+
+core::arch::global_asm!(
+    ".syntax unified",
+    ".thumb",
+    ".section .text.scanline3d_edge_dda,\"ax\",%progbits",
+    ".global scanline3d_edge_dda",
+    ".type scanline3d_edge_dda,%function",
+    ".p2align 2",
+    ".thumb_func",
+    // For the assembly triangle setup: [`scanline3d_edge_new`] with the edge returned in the
+    // row loops' form (`raster::Edge::dda`): r0 = 1, r1 = w = e·2¹⁶ + c + 2¹⁵,
+    // r2 = s = sq − sr·2¹⁶, r3 = dy; or r0 = 0 for a row outside the edge's.
+    "scanline3d_edge_dda:",
+    edge_steps!(
+        "lsls r3, r6, #16\nsubs r3, r0, r3\n",
+        "lsls r5, r5, #16\nadds r1, r1, r5\nmovs r2, #128\nlsls r2, r2, #8\nadds r1, r1, r2\nmov r2, r3\nmov r3, r7\nmovs r0, #1\npop {{r4, r5, r6, r7, pc}}\n"
+    ),
+    "2:",
+    "movs r0, #0",
+    "pop {{r4, r5, r6, r7, pc}}",
+    ".size scanline3d_edge_dda, . - scanline3d_edge_dda",
 );
 
 /// `raster::Edge::new` for a row from the edge's first sample on (`0 ≤ k ≤ dy + 16`, the
