@@ -830,6 +830,48 @@ macro_rules! q16_product {
     };
 }
 
+/// One row of [`scanline3d_xform_q16`] (r5 = the row), its result stored at byte offset
+/// `$out` of the result: `sat32((Σ a·b + (c << 16) + 2¹⁵) >> 16)`, c the row's last entry
+/// masked by [sp, #4] (zero for a direction). Uses r0–r4, r6, r7.
+macro_rules! xform_row {
+    ($out:literal) => {
+        concat!(
+            // r7:r6 = (c << 16) + 2^15.
+            "ldr r0, [r5, #12]\n",
+            "ldr r1, [sp, #4]\n",
+            "ands r0, r1\n",
+            "lsls r6, r0, #16\n",
+            "asrs r7, r0, #16\n",
+            "movs r4, #1\n",
+            "lsls r4, r4, #15\n",
+            "adds r6, r6, r4\n",
+            "movs r4, #0\n",
+            "adcs r7, r4\n",
+            q16_product!("0", "r8", "r9"),
+            q16_product!("4", "r10", "r11"),
+            q16_product!("8", "r12", "lr"),
+            // r6 = the sum >> 16 when it fits an i32, else i32::MIN or i32::MAX by its sign.
+            "lsrs r6, r6, #16\n",
+            "lsls r0, r7, #16\n",
+            "orrs r6, r0\n",
+            "asrs r7, r7, #16\n",
+            "asrs r0, r6, #31\n",
+            "cmp r0, r7\n",
+            "beq 2f\n",
+            "movs r6, #1\n",
+            "lsls r6, r6, #31\n",
+            "cmp r7, #0\n",
+            "blt 2f\n",
+            "subs r6, #1\n",
+            "2:\n",
+            "ldr r0, [sp, #8]\n",
+            "str r6, [r0, #",
+            $out,
+            "]\n",
+        )
+    };
+}
+
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
@@ -848,7 +890,7 @@ core::arch::global_asm!(
     "scanline3d_xform_q16:",
     save_registers!(),
     // [sp, #8] = the result pointer, [sp, #4] = the mask of the last column (all ones for a
-    // point, zero for a direction), [sp] = rows left.
+    // point, zero for a direction), [sp] = the number of rows. The rows are unrolled.
     "push {{r2}}",
     "subs r4, r3, #4",
     "mvns r4, r4",
@@ -870,43 +912,17 @@ core::arch::global_asm!(
     "mov r12, r4",
     "mov lr, r3",
     "mov r5, r0",
-    "1:",
-    // r7:r6 = (c << 16) + 2^15, c = the last column (zero for a direction).
-    "ldr r0, [r5, #12]",
-    "ldr r1, [sp, #4]",
-    "ands r0, r1",
-    "lsls r6, r0, #16",
-    "asrs r7, r0, #16",
-    "movs r4, #1",
-    "lsls r4, r4, #15",
-    "adds r6, r6, r4",
-    "movs r4, #0",
-    "adcs r7, r4",
-    q16_product!("0", "r8", "r9"),
-    q16_product!("4", "r10", "r11"),
-    q16_product!("8", "r12", "lr"),
-    // r6 = the sum >> 16 when it fits an i32, else i32::MIN or i32::MAX by its sign.
-    "lsrs r6, r6, #16",
-    "lsls r0, r7, #16",
-    "orrs r6, r0",
-    "asrs r7, r7, #16",
-    "asrs r0, r6, #31",
-    "cmp r0, r7",
-    "beq 2f",
-    "movs r6, #1",
-    "lsls r6, r6, #31",
-    "cmp r7, #0",
-    "blt 2f",
-    "subs r6, #1",
-    "2:",
-    "ldr r0, [sp, #8]",
-    "stm r0!, {{r6}}",
-    "str r0, [sp, #8]",
+    xform_row!("0"),
     "adds r5, #16",
+    xform_row!("4"),
+    "adds r5, #16",
+    xform_row!("8"),
     "ldr r0, [sp, #0]",
-    "subs r0, #1",
-    "str r0, [sp, #0]",
-    "bne 1b",
+    "cmp r0, #4",
+    "bne 3f",
+    "adds r5, #16",
+    xform_row!("12"),
+    "3:",
     "add sp, #12",
     restore_registers_and_return!(),
     ".size scanline3d_xform_q16, . - scanline3d_xform_q16",
