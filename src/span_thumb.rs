@@ -1043,7 +1043,7 @@ macro_rules! recip_norm {
 
 /// For [`scanline3d_project_q16`]: `v·m`, rounded to `ns` fraction bits fewer, as
 /// `scalar::round_shr_words(mul_wide(v, m), ns)` — the Q16.16 `ndc` of `v` — for the word
-/// at byte offset `$off` of the point (r8) and the reciprocal's mantissa `m` in r6
+/// at byte offset `$off` of the point (frame word 0) and the reciprocal's mantissa `m` in r6
 /// (0 < m ≤ 2³⁰). r5 = ns, r12 = 2^(ns − 1), lr = 32 − ns. Out: r0 = high word (signed),
 /// r4 = low word. Uses r1–r3. With v = vh·2¹⁶ + vl and m likewise (mh ≤ 2¹⁴): vl·ml is
 /// added unsigned, vl·mh (< 2³⁰) unsigned and vh·ml (|·| < 2³¹) signed, each shifted by 16,
@@ -1051,7 +1051,7 @@ macro_rules! recip_norm {
 macro_rules! ndc_words {
     ($off:literal) => {
         concat!(
-            "mov r0, r8\n",
+            "ldr r0, [sp, #0]\n",
             "ldr r0, [r0, #",
             $off,
             "]\n",
@@ -1088,9 +1088,9 @@ macro_rules! ndc_words {
 }
 
 /// For [`scanline3d_project_q16`]: the screen coordinate of the quotient r0:r4 (high, low
-/// word) for the scale `k` that `$k` extracts from r9 into r1, stored at byte offset `$out`
-/// of the result (r10): `clamp(hi·k + ((lo·k + 2³¹) >> 32) + k, ±COORD_LIMIT)` (the limit in
-/// r11), as `Viewport::project` computes it through `scalar::mul_q32_short`; a high word
+/// word) for the scale `k` that `$k` extracts from frame word 1 into r1, stored at byte
+/// offset `$out` of the result (frame word 2): `clamp(hi·k + ((lo·k + 2³¹) >> 32) + k,
+/// ±COORD_LIMIT)` (the limit in frame word 3), as `Viewport::project` computes it through `scalar::mul_q32_short`; a high word
 /// beyond the `i16` range branches to label 9 (declined). Uses r1–r3.
 macro_rules! screen_coordinate {
     ($k:literal, $out:literal) => {
@@ -1100,7 +1100,7 @@ macro_rules! screen_coordinate {
             "beq 1f\n",
             "b 9f\n",
             "1:\n",
-            "mov r1, r9\n",
+            "ldr r1, [sp, #4]\n",
             $k,
             // t = (lo >> 16)·k + ((lo & 0xffff)·k >> 16); (lo·k + 2³¹) >> 32 = (t + 2¹⁵) >> 16.
             "lsrs r2, r4, #16\n",
@@ -1115,7 +1115,7 @@ macro_rules! screen_coordinate {
             "muls r0, r1, r0\n",
             "adds r0, r0, r2\n",
             "adds r0, r0, r1\n",
-            "mov r2, r11\n",
+            "ldr r2, [sp, #12]\n",
             "cmp r0, r2\n",
             "ble 1f\n",
             "mov r0, r2\n",
@@ -1125,7 +1125,7 @@ macro_rules! screen_coordinate {
             "bge 1f\n",
             "mov r0, r2\n",
             "1:\n",
-            "mov r1, r10\n",
+            "ldr r1, [sp, #8]\n",
             "str r0, [r1, #",
             $out,
             "]\n",
@@ -1147,22 +1147,23 @@ core::arch::global_asm!(
     // Returns 1, or 0 (nothing written but maybe some of the words) for the cases the
     // portable code handles: w ≤ 2⁻¹³ and quotients beyond the guard band.
     "scanline3d_project_q16:",
-    save_registers!(),
+    "push {{r4, r5, r6, r7, lr}}",
+    "sub sp, #16",
+    "str r0, [sp, #0]",
+    "str r1, [sp, #4]",
+    "str r3, [sp, #8]",
     "ldr r4, [r0, #12]",
     "cmp r4, #0",
     "bgt 1f",
     "b 9f",
     "1:",
-    "mov r8, r0",
-    "mov r9, r1",
-    "mov r10, r3",
     recip_norm!(),
     // The quotients' shift is ns = 29 + s − 32; the portable code handles ns ≤ 0.
     "cmp r5, #4",
     "bge 1f",
     "b 9f",
     "1:",
-    // r5 = ns, r12 = 2^(ns − 1), lr = 32 − ns, r11 = COORD_LIMIT.
+    // r5 = ns, r12 = 2^(ns − 1), lr = 32 − ns, frame word 3 = COORD_LIMIT.
     "subs r5, #3",
     "movs r1, #1",
     "subs r0, r5, #1",
@@ -1175,7 +1176,7 @@ core::arch::global_asm!(
     "movs r0, #1",
     "lsls r0, r0, r1",
     "subs r0, #1",
-    "mov r11, r0",
+    "str r0, [sp, #12]",
     // x: + ndc·sx + sx.
     ndc_words!("0"),
     screen_coordinate!("uxth r1, r1\n", "0"),
@@ -1215,13 +1216,15 @@ core::arch::global_asm!(
     "adds r2, #255",
     "lsls r2, r2, #8",
     "3:",
-    "mov r1, r10",
+    "ldr r1, [sp, #8]",
     "str r2, [r1, #8]",
     "movs r0, #1",
-    restore_registers_and_return!(),
+    "add sp, #16",
+    "pop {{r4, r5, r6, r7, pc}}",
     "9:",
     "movs r0, #0",
-    restore_registers_and_return!(),
+    "add sp, #16",
+    "pop {{r4, r5, r6, r7, pc}}",
     ".size scanline3d_project_q16, . - scanline3d_project_q16",
     lim_bits = const 14,
 );
