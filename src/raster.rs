@@ -666,11 +666,8 @@ pub(crate) struct ActiveTri {
     /// (0..=255; 0 for every other triangle). Set at setup and after every portable row
     /// ([`ActiveTri::set_routine_rows`]); the routine counts it down.
     routine_rows: u8,
-    /// Not this triangle's data: entry `i` of [`ActiveList`]'s order lives in slot `i`, in
-    /// bytes that would otherwise be padding: the index of the entry's slot (`0..N`) minus `i`
-    /// (an `i16`, −N < · < N), so that the all-zero records of a new list are the identity
-    /// order and the entry's record is `84·ord` bytes from slot `i`'s.
-    ord: i16,
+    /// Unused (explicit padding, so that the record has no implicit padding bytes).
+    spare: i16,
     /// The left and right edges.
     edges: [EdgeDda; 2],
     /// `dy` of the left and right edges (see [`EdgeDda`]).
@@ -707,19 +704,17 @@ pub(crate) struct ActiveTri {
     inc: [i32; 4],
 }
 
-// The order entry and the routine's row count fill what was padding: an active triangle stays
+// The routine's row count and a spare halfword fill what was padding: an active triangle stays
 // 84 bytes.
 const _: () = assert!(core::mem::size_of::<ActiveTri>() == 84);
 // Five 16-bit fields and no padding (the Cortex-M edge setup writes all of them).
 const _: () = assert!(core::mem::size_of::<Edge>() == 10);
 
-/// The active triangles of the current row: up to `N` records that stay where they were set
-/// up, and their drawing order as a permutation of slot indices (kept in the records' spare
-/// bytes, see [`ActiveTri`]). Adding or removing a triangle moves two bytes, not a record:
-/// on a Cortex-M0 a record copy is a library `memcpy` of about a hundred instructions.
-/// Removal has the order semantics of `swap_remove` (the last triangle takes the removed
-/// one's place), so the drawing order is that of a plain vector. Slots are added when the
-/// list first grows past them and then reused, frame after frame.
+/// The active triangles of the current row: up to `N` records in drawing order. Removal is
+/// `swap_remove` (the last record moves into the removed one's slot: on a Cortex-M0 the row
+/// routine does it with six `ldm`/`stm` pairs, once per triangle, where an order kept apart
+/// from the records cost a lookup on every row). Slots are added when the list first grows
+/// past them and then reused, frame after frame.
 #[derive(Debug)]
 pub(crate) struct ActiveList<const N: usize> {
     /// The slots used so far (never shrinks; a vector, so a new list is built without
@@ -746,20 +741,13 @@ impl<const N: usize> ActiveList<N> {
         self.len = 0;
     }
 
-    /// Most slots whose index differences fit the order entries.
+    /// Most slots (the renderer's limit on `ACTIVE`).
     pub(crate) const MAX: usize = 1 << 15;
-
-    /// The slot of list entry `i` (`i < slots.len()`).
-    #[inline(always)]
-    fn slot(&self, i: usize) -> usize {
-        (i as isize + self.slots[i].ord as isize) as usize
-    }
 
     /// Entry `i` of the list (`i < len`).
     #[inline(always)]
     pub(crate) fn get_mut(&mut self, i: usize) -> &mut ActiveTri {
-        let s = self.slot(i);
-        &mut self.slots[s]
+        &mut self.slots[i]
     }
 
     /// Sets up a triangle in the next free slot with `f`, which returns whether it is kept.
@@ -770,11 +758,9 @@ impl<const N: usize> ActiveList<N> {
             return false;
         }
         if self.len == self.slots.len() {
-            // A new slot: its zero order entry makes it entry `len`'s own (identity).
             let _ = self.slots.push(ActiveTri::EMPTY);
         }
-        let s = self.slot(self.len);
-        if f(&mut self.slots[s]) {
+        if f(&mut self.slots[self.len]) {
             self.len += 1;
         }
         true
@@ -784,14 +770,14 @@ impl<const N: usize> ActiveList<N> {
     #[inline(always)]
     pub(crate) fn swap_remove(&mut self, i: usize) {
         let last = self.len - 1;
-        let (a, b) = (self.slot(i), self.slot(last));
-        self.slots[i].ord = (b as isize - i as isize) as i16;
-        self.slots[last].ord = (a as isize - last as isize) as i16;
+        if i != last {
+            self.slots[i] = self.slots[last].clone();
+        }
         self.len = last;
     }
 
-    /// The list length after the Cortex-M row routine removed finished triangles (the order
-    /// entries it swapped are those of [`ActiveList::swap_remove`]); `n ≤ len`.
+    /// The list length after the Cortex-M row routine removed finished triangles (as
+    /// [`ActiveList::swap_remove`] does); `n ≤ len`.
     #[cfg(all(target_arch = "arm", target_os = "none"))]
     #[inline(always)]
     pub(crate) fn set_len_after_routine(&mut self, n: usize) {
@@ -804,7 +790,7 @@ impl<const N: usize> ActiveList<N> {
     #[cfg(all(target_arch = "arm", target_os = "none"))]
     #[inline(always)]
     pub(crate) fn routine_may_draw(&self, i: usize) -> bool {
-        let t = &self.slots[self.slot(i)];
+        let t = &self.slots[i];
         t.routine_rows != 0 || t.flags & (LAST_IN_ROUTINE | SWITCH_IN_ROUTINE) != 0
     }
 
@@ -830,7 +816,6 @@ pub(crate) mod offsets {
     pub const GX: usize = offset_of!(ActiveTri, gx);
     pub const ROW: usize = offset_of!(ActiveTri, row);
     pub const INC: usize = offset_of!(ActiveTri, inc);
-    pub const ORD: usize = offset_of!(ActiveTri, ord);
     pub const ROUTINE_ROWS: usize = offset_of!(ActiveTri, routine_rows);
     pub const FLAGS: usize = offset_of!(ActiveTri, flags);
     pub const LAST_BIT: u32 = super::LAST_IN_ROUTINE.trailing_zeros();
@@ -1029,7 +1014,7 @@ impl ActiveTri {
     pub(crate) const EMPTY: ActiveTri = ActiveTri {
         flags: 0,
         routine_rows: 0,
-        ord: 0,
+        spare: 0,
         edges: [EdgeDda { w: 0, s: 0 }; 2],
         dy: [1; 2],
         row_mid: 0,

@@ -510,23 +510,24 @@ core::arch::global_asm!(
     "lsls r5, r5, #16",
     "bpl 12b",
     row_span!(),
-    // Entries i and last = n − 1 swap slots: with d = last − i (the slot addresses' distance
-    // over 84, an exact division: a product with the inverse of 21 modulo 2³²),
-    // ord_i = ord_last + d and ord_last = ord_i − d (16-bit stores wrap alike).
+    // The last record (slot n − 1) moves into slot i, as `ActiveList::swap_remove`: 21 words
+    // through r0 and r3–r7.
     "ldr r1, [sp, #8]",
     "ldr r2, [sp, #4]",
     "subs r2, #{size}",
     "str r2, [sp, #4]",
-    "ldrh r4, [r1, #{ord}]",
-    "ldrh r5, [r2, #{ord}]",
-    "subs r6, r2, r1",
-    "lsrs r6, r6, #2",
-    "ldr r3, ={inv21}",
-    "muls r6, r3, r6",
-    "adds r5, r5, r6",
-    "subs r4, r4, r6",
-    "strh r5, [r1, #{ord}]",
-    "strh r4, [r2, #{ord}]",
+    "cmp r1, r2",
+    "bne 27f",
+    "b 10f",
+    "27:",
+    "ldm r2!, {{r0, r3, r4, r5, r6, r7}}",
+    "stm r1!, {{r0, r3, r4, r5, r6, r7}}",
+    "ldm r2!, {{r0, r3, r4, r5, r6, r7}}",
+    "stm r1!, {{r0, r3, r4, r5, r6, r7}}",
+    "ldm r2!, {{r0, r3, r4, r5, r6, r7}}",
+    "stm r1!, {{r0, r3, r4, r5, r6, r7}}",
+    "ldm r2!, {{r0, r3, r4}}",
+    "stm r1!, {{r0, r3, r4}}",
     "b 10f",
     "12:",
     "movs r0, #1",
@@ -606,12 +607,8 @@ core::arch::global_asm!(
     "ldr r2, [sp, #4]",
     "cmp r1, r2",
     "bhs 11b",
-    // Entry i's record is 84·ord bytes from slot i (`ActiveList`).
-    "ldrh r3, [r1, #{ord}]",
-    "sxth r3, r3",
-    "movs r4, #{size}",
-    "muls r3, r4, r3",
-    "adds r3, r1, r3",
+    // Entry i's record is slot i (`ActiveList`).
+    "mov r3, r1",
     // Qualifies: rows left on the triangle's routine count (a fast Gouraud row that neither
     // switches its short edge nor ends it); left.c < 0 goes to 18. The count goes down by
     // one.
@@ -713,7 +710,6 @@ core::arch::global_asm!(
     chidden = const core::mem::offset_of!(RowCtx, hidden),
     size = const core::mem::size_of::<ActiveTri>(),
     inv21 = const INV21,
-    ord = const o::ORD,
     rrows = const o::ROUTINE_ROWS,
     flags = const o::FLAGS,
     last_shift = const 31 - o::LAST_BIT,
@@ -755,7 +751,7 @@ const _: () = {
     assert!(o::ROW >= o::RIGHT + o::S + 4 && o::ROW - (o::RIGHT + o::S + 4) <= 255);
     assert!(o::INC + 12 <= 255);
     assert!(core::mem::size_of::<ActiveTri>() <= 255);
-    assert!(o::ORD % 2 == 0 && o::ORD <= 62 && o::ROUTINE_ROWS <= 31 && o::FLAGS <= 31);
+    assert!(o::ROUTINE_ROWS <= 31 && o::FLAGS <= 31);
 };
 
 core::arch::global_asm!(
@@ -2544,7 +2540,7 @@ const _: () = assert!(21u32.wrapping_mul(INV21) == 1 && core::mem::size_of::<Act
 /// What the row routine reads and updates (`#[repr(C)]`: the assembly uses the offsets).
 #[repr(C)]
 struct RowCtx {
-    /// The active list's slots (records and order entries).
+    /// The active list's records, in drawing order.
     tris: *mut ActiveTri,
     n: usize,
     i: usize,
@@ -2596,14 +2592,12 @@ pub(crate) fn rows565<C: TargetColor, const N: usize>(
         fragments: 0,
         hidden: 0,
     };
-    // SAFETY: the routine reads the order entries of slots `start..n` and reads and writes
-    // the records they name (slot indices below `N`, a permutation kept by `ActiveList`,
-    // which stays one: removing swaps two entries below `n` and lowers `n`), at
-    // the field offsets asserted above (`#[repr(C)]`), and pixels `left.c..min(right.c,
-    // width)` of both lines only for records it checked to have `left.c ≥ 0`, with `width` at
-    // most both lengths;
-    // colours are written as `u16` words, which `rgb565_words` showed is the representation
-    // of `C`. It never goes past `n`.
+    // SAFETY: the routine reads and writes the records of slots `start..n` (below `N`) and
+    // moves the last of them into a removed one's slot, at the field offsets asserted above
+    // (`#[repr(C)]`), and pixels `left.c..min(right.c, width)` of both lines only for records
+    // it checked to have `left.c ≥ 0`, with `width` at most both lengths; colours are written
+    // as `u16` words, which `rgb565_words` showed is the representation of `C`. It never goes
+    // past `n`.
     unsafe { scanline3d_rows565(&mut ctx) };
     active.set_len_after_routine(ctx.n);
     Some((
