@@ -233,13 +233,7 @@ impl Viewport {
     pub fn projection_self_test(n: u32) -> Option<([i32; 4], u32)> {
         use crate::scalar::Fx;
         use fixed::types::I16F16;
-        let mut state = 0x2545_f491u32;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 17;
-            state ^= state << 5;
-            state
-        };
+        let mut next = crate::raster::xorshift32(0x2545_f491);
         for i in 0..n {
             let (r1, r2, r3) = (next(), next(), next());
             let w = ((r1 >> 1) >> (r1 % 31)).max(1) as i32;

@@ -294,19 +294,40 @@ impl Edge {
     }
 }
 
+/// Cortex-M only, for the benchmark firmware's self-tests: a xorshift32 generator from `seed`
+/// (nonzero), the same sequence on every core.
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+pub(crate) fn xorshift32(seed: u32) -> impl FnMut() -> u32 {
+    let mut state = seed;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state
+    }
+}
+
+/// For the self-tests: any depth and any 10-bit colour channels for `p`.
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+fn random_depth_and_colour(p: &mut ScreenVertex, next: &mut impl FnMut() -> u32) {
+    let d = next();
+    p.z = d as u16;
+    p.zf = (d >> 16) as u8;
+    let c = next();
+    p.set_color([
+        (c & 1023) as u16,
+        (c >> 10 & 1023) as u16,
+        (c >> 20 & 1023) as u16,
+    ]);
+}
+
 /// Cortex-M only, for the benchmark firmware: the assembly edge setup against the portable
 /// one on `n` pseudo-random edges (coordinates over the whole snapped range, rows at and past
 /// the upper vertex). Returns the inputs `[xa, ya, xb, yb, row]` of the first mismatch.
 #[cfg(all(target_arch = "arm", target_os = "none"))]
 #[doc(hidden)]
 pub fn edge_setup_self_test(n: u32) -> Option<[i32; 5]> {
-    let mut state = 0x9e37_79b9u32;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        state
-    };
+    let mut next = xorshift32(0x9e37_79b9u32);
     let lim = crate::project::COORD_LIMIT;
     for i in 0..n {
         let (r1, r2, r3) = (next(), next(), next());
@@ -341,13 +362,7 @@ pub fn edge_setup_self_test(n: u32) -> Option<[i32; 5]> {
 #[allow(clippy::type_complexity)]
 pub fn gouraud_setup_self_test(n: u32) -> Option<([[i32; 4]; 3], [i32; 3])> {
     use embedded_graphics_core::pixelcolor::Rgb565;
-    let mut state = 0x6a09_e667u32;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        state
-    };
+    let mut next = xorshift32(0x6a09_e667u32);
     let lim = crate::project::COORD_LIMIT;
     for i in 0..n {
         let size = [64u32, 512, 4096, 2 * lim as u32][(i % 4) as usize];
@@ -357,15 +372,7 @@ pub fn gouraud_setup_self_test(n: u32) -> Option<([[i32; 4]; 3], [i32; 3])> {
             let r = next();
             p.x = (ox + (r % (size + 1)) as i32 - size as i32 / 2).clamp(-lim, lim) as i16;
             p.y = (oy + ((r >> 16) % (size + 1)) as i32 - size as i32 / 2).clamp(-lim, lim) as i16;
-            let d = next();
-            p.z = d as u16;
-            p.zf = (d >> 16) as u8;
-            let c = next();
-            p.set_color([
-                (c & 1023) as u16,
-                (c >> 10 & 1023) as u16,
-                (c >> 20 & 1023) as u16,
-            ]);
+            random_depth_and_colour(p, &mut next);
         }
         v.sort_unstable_by_key(|p| p.y);
         let [a, b, c] = &v;
@@ -412,13 +419,7 @@ pub fn gouraud_setup_self_test(n: u32) -> Option<([[i32; 4]; 3], [i32; 3])> {
 #[doc(hidden)]
 pub fn triangle_setup_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
     use embedded_graphics_core::pixelcolor::Rgb565;
-    let mut state = 0xbb67_ae85u32;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        state
-    };
+    let mut next = xorshift32(0xbb67_ae85u32);
     let mode = SpanMode::new::<Rgb565>(crate::DepthTest::Less, false);
     let same = |a: &ActiveTri, b: &ActiveTri| {
         (a.flags, a.routine_rows, a.dy, a.row_mid, a.row_end)
@@ -441,15 +442,7 @@ pub fn triangle_setup_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
                 // Equal ys.
                 p.y &= !63;
             }
-            let d = next();
-            p.z = d as u16;
-            p.zf = (d >> 16) as u8;
-            let c = next();
-            p.set_color([
-                (c & 1023) as u16,
-                (c >> 10 & 1023) as u16,
-                (c >> 20 & 1023) as u16,
-            ]);
+            random_depth_and_colour(p, &mut next);
         }
         let t = TriRecord { v: [0, 1, 2] };
         let y_min = v.iter().map(|p| p.y as i32).min().unwrap_or(0);

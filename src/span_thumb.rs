@@ -1307,6 +1307,31 @@ macro_rules! depth_gradient {
     };
 }
 
+/// For [`scanline3d_gouraud_setup`]: the depth of the vertex whose pointer is in frame word
+/// `$v`, as `ScreenVertex::depth` (16.12: `z << 12 | zf << 4`), into `$r`. Uses r2, r4.
+macro_rules! vertex_depth {
+    ($v:literal, $r:literal) => {
+        concat!(
+            "ldr r4, [sp, #",
+            $v,
+            "]\n",
+            "ldrh ",
+            $r,
+            ", [r4, #{vz}]\n",
+            "lsls ",
+            $r,
+            ", ",
+            $r,
+            ", #12\n",
+            "ldrb r2, [r4, #{vzf}]\n",
+            "lsls r2, r2, #4\n",
+            "orrs ",
+            $r,
+            ", r2\n",
+        )
+    };
+}
+
 /// For [`scanline3d_gouraud_setup`]: the 10-bit colour channel `$k` of the vertex in r4
 /// (`ScreenVertex::color`: the byte's 8 bits, then 2 bits of the flags) into `$r`. Uses r3.
 macro_rules! vertex_channel {
@@ -1664,27 +1689,12 @@ core::arch::global_asm!(
     coefficient!("gs_by1", "gs_c16 + 8"),
     coefficient!("gs_by2", "gs_c16 + 12"),
     // Depth (16.12): a0 = the first vertex's, da1 and da2 the others' differences from it.
-    "ldr r4, [sp, #gs_va]",
-    "ldrh r1, [r4, #{vz}]",
-    "lsls r1, r1, #12",
-    "ldrb r2, [r4, #{vzf}]",
-    "lsls r2, r2, #4",
-    "orrs r1, r2",
+    vertex_depth!("gs_va", "r1"),
     "str r1, [sp, #gs_a0]",
-    "ldr r4, [sp, #gs_vb]",
-    "ldrh r0, [r4, #{vz}]",
-    "lsls r0, r0, #12",
-    "ldrb r2, [r4, #{vzf}]",
-    "lsls r2, r2, #4",
-    "orrs r0, r2",
+    vertex_depth!("gs_vb", "r0"),
     "subs r0, r0, r1",
     "str r0, [sp, #gs_da1]",
-    "ldr r4, [sp, #gs_vc]",
-    "ldrh r0, [r4, #{vz}]",
-    "lsls r0, r0, #12",
-    "ldrb r2, [r4, #{vzf}]",
-    "lsls r2, r2, #4",
-    "orrs r0, r2",
+    vertex_depth!("gs_vc", "r0"),
     "subs r0, r0, r1",
     "str r0, [sp, #gs_da2]",
     depth_gradient!("gs_da1", "gs_bx1", "gs_da2", "gs_bx2", "gs_gx"),
