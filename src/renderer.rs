@@ -21,7 +21,7 @@ use crate::project::{
 use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
-use crate::shade::{lit_color, PreparedLight, Shading};
+use crate::shade::{lit_color, lit_diffuse, PreparedLight, Shading};
 
 const INVALID: u16 = 1 << 7;
 const PROJECTED: u16 = 1 << 8;
@@ -284,8 +284,9 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         let p = mesh.positions()[i];
         let n = mesh.normals().map_or([S::ZERO; 3], |ns| ns[i]);
         let lit = if self.in_object {
-            // The same dot products without a normal transform per vertex.
-            lit_color(&self.obj.material, self.lights, n, [S::ZERO; 3])
+            // The same dot products without a normal transform per vertex (and no specular
+            // term: `in_object` requires none).
+            lit_diffuse(&self.obj.material, self.lights, n)
         } else {
             lit_color(
                 &self.obj.material,

@@ -168,6 +168,35 @@ pub(crate) fn lit_color<S: Scalar>(
     out
 }
 
+/// [`lit_color`] for a material without a specular term (`m.specular ≤ 0`): the same values,
+/// without the specular sums (fewer live values: on a Cortex-M0 the general version keeps
+/// them on the stack).
+pub(crate) fn lit_diffuse<S: Scalar>(
+    m: &Material<S>,
+    lights: &[PreparedLight<S>],
+    n: Vec3<S>,
+) -> [u16; 3] {
+    let mut diffuse = [m.ambient; 3];
+    for l in lights {
+        let ndl = dot(n, l.dir);
+        if ndl > S::ZERO {
+            let d = m.diffuse * ndl;
+            for c in 0..3 {
+                diffuse[c] = diffuse[c] + d * l.frac[c];
+            }
+        }
+    }
+    let mut out = [0u16; 3];
+    let top = S::from_i32(255);
+    for c in 0..3 {
+        // `lit_color` adds a zero specular sum here, which changes nothing.
+        let v = diffuse[c].mul_int(m.color[c] as i32);
+        let v = v.max(S::ZERO).min(top);
+        out[c] = v.to_fixed_i32(8).clamp(0, 255 << 8) as u16;
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
