@@ -179,6 +179,7 @@ impl Viewport {
     /// Projects a clip-space point with `w > 0` inside the guard band and the near/far planes.
     /// Returns `None` when `w` is not positive (such a point must have been clipped).
     #[must_use]
+    #[inline(always)]
     pub fn project<S: Scalar>(&self, p: [S; 4], rgb: [u16; 3]) -> Option<ScreenVertex> {
         if p[3].partial_cmp(&S::ZERO) != Some(core::cmp::Ordering::Greater) {
             return None;
@@ -198,6 +199,19 @@ impl Viewport {
         };
         v.set_color(rgb);
         Some(v)
+    }
+
+    /// [`Viewport::project`] out of line, for the clipped-polygon path of the geometry stage
+    /// (inlined there, it would grow that stage's deepest frame, which on a 16 KB part has no
+    /// room to spare).
+    #[must_use]
+    #[inline(never)]
+    pub(crate) fn project_out_of_line<S: Scalar>(
+        &self,
+        p: [S; 4],
+        rgb: [u16; 3],
+    ) -> Option<ScreenVertex> {
+        self.project(p, rgb)
     }
 
     /// [`Viewport::project`]'s screen words for `w > 0`: x and y in subpixels, clamped to

@@ -825,7 +825,7 @@ impl<
             } else {
                 pack_channels(v.rgb, C::CHANNEL_MAX)
             };
-            match vp.project(v.pos, rgb) {
+            match vp.project_out_of_line(v.pos, rgb) {
                 Some(mut sv) => {
                     sv.flags |= PROJECTED | LIT;
                     let index = self.verts.len() - stats.color_vertices as usize;
