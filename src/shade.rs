@@ -140,12 +140,7 @@ pub(crate) fn lit_color<S: Scalar>(
     let two = S::ONE + S::ONE;
     for l in lights {
         let ndl = dot(n, l.dir);
-        if ndl > S::ZERO {
-            let d = m.diffuse * ndl;
-            for c in 0..3 {
-                diffuse[c] = diffuse[c] + d * l.frac[c];
-            }
-        }
+        add_diffuse(&mut diffuse, m, l, ndl);
         if m.specular > S::ZERO {
             // R·V = 2(N·L)(N·V) − L·V.
             let r = sub(scale(n, two * ndl), l.dir);
@@ -159,11 +154,8 @@ pub(crate) fn lit_color<S: Scalar>(
         }
     }
     let mut out = [0u16; 3];
-    let top = S::from_i32(255);
     for c in 0..3 {
-        let v = diffuse[c].mul_int(m.color[c] as i32) + spec[c];
-        let v = v.max(S::ZERO).min(top);
-        out[c] = v.to_fixed_i32(8).clamp(0, 255 << 8) as u16;
+        out[c] = channel_8_8(diffuse[c].mul_int(m.color[c] as i32) + spec[c]);
     }
     out
 }
@@ -178,23 +170,33 @@ pub(crate) fn lit_diffuse<S: Scalar>(
 ) -> [u16; 3] {
     let mut diffuse = [m.ambient; 3];
     for l in lights {
-        let ndl = dot(n, l.dir);
-        if ndl > S::ZERO {
-            let d = m.diffuse * ndl;
-            for c in 0..3 {
-                diffuse[c] = diffuse[c] + d * l.frac[c];
-            }
-        }
+        add_diffuse(&mut diffuse, m, l, dot(n, l.dir));
     }
     let mut out = [0u16; 3];
-    let top = S::from_i32(255);
     for c in 0..3 {
         // `lit_color` adds a zero specular sum here, which changes nothing.
-        let v = diffuse[c].mul_int(m.color[c] as i32);
-        let v = v.max(S::ZERO).min(top);
-        out[c] = v.to_fixed_i32(8).clamp(0, 255 << 8) as u16;
+        out[c] = channel_8_8(diffuse[c].mul_int(m.color[c] as i32));
     }
     out
+}
+
+/// Adds light `l`'s diffuse term for `ndl = N·L` (nothing when it is not positive).
+#[inline(always)]
+fn add_diffuse<S: Scalar>(diffuse: &mut [S; 3], m: &Material<S>, l: &PreparedLight<S>, ndl: S) {
+    if ndl > S::ZERO {
+        let d = m.diffuse * ndl;
+        for c in 0..3 {
+            diffuse[c] = diffuse[c] + d * l.frac[c];
+        }
+    }
+}
+
+/// A lit channel (0..=255 in channel units) clamped and rounded to 8.8 fixed point
+/// (0..=65280).
+#[inline(always)]
+fn channel_8_8<S: Scalar>(v: S) -> u16 {
+    let v = v.max(S::ZERO).min(S::from_i32(255));
+    v.to_fixed_i32(8).clamp(0, 255 << 8) as u16
 }
 
 #[cfg(test)]

@@ -327,7 +327,7 @@ fn main() -> ! {
     if !transform_matches_rows() {
         debug::exit(debug::EXIT_FAILURE);
     }
-    if !edges_match_portable() {
+    if !assembly_matches_portable() {
         debug::exit(debug::EXIT_FAILURE);
     }
     timer::start();
@@ -446,7 +446,7 @@ fn transform_matches_rows() -> bool {
 /// mismatch. Not inlined, so that its locals are not part of `main`'s frame during the
 /// renders (on the 16 KB part every byte of it counts).
 #[inline(never)]
-fn edges_match_portable() -> bool {
+fn assembly_matches_portable() -> bool {
     if let Some(e) = scanline3d::raster::edge_setup_self_test(20_000) {
         hprintln!("EDGE MISMATCH {:?}", e);
         return false;
