@@ -530,6 +530,7 @@ pub(crate) const FLAT_BIT: u16 = 1 << 15;
 /// vertex store, the first one carrying [`FLAT_BIT`]. Records are sorted by first covered row
 /// after the geometry stage, so no list link is stored.
 #[derive(Copy, Clone, Debug)]
+#[repr(C)]
 pub(crate) struct TriRecord {
     /// Indices into the renderer's vertex store (below 2¹⁵); [`FLAT_BIT`] in `v[0]`.
     pub v: [u16; 3],

@@ -23,9 +23,15 @@ use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::{lit_color, lit_diffuse, PreparedLight, Shading};
 
-const INVALID: u16 = 1 << 7;
+/// [`ScreenVertex`] flag bits of the renderer (bits 0..=5 are the outcode of `clip`): a NaN,
+/// infinite or overflowed position; projected; lit (its colour is set).
+pub(crate) const INVALID: u16 = 1 << 7;
 const PROJECTED: u16 = 1 << 8;
-const LIT: u16 = 1 << 9;
+pub(crate) const LIT: u16 = 1 << 9;
+/// Set by [`cull_push`] on an unlit vertex of a stored front face: it needs lighting (the
+/// object's loop lights those after its triangles). A colour bit, free until the vertex is lit
+/// ([`ScreenVertex::set_color`] overwrites it).
+pub(crate) const NEEDS_LIGHT: u16 = 1 << 15;
 
 /// The strip being rendered, as a draw target covering the whole `W × H` screen: pixels outside
 /// the strip's rows are ignored. [`Renderer::render_overlaid`] hands it to an overlay
@@ -153,7 +159,10 @@ impl Probe for NoProbe {
 }
 
 /// What happened to the triangles and pixels of a frame.
+///
+/// `repr(C)`: on Cortex-M0 the triangle loop's assembly counts into it by field offset.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[repr(C)]
 pub struct Stats {
     /// Triangles in the scene's meshes.
     pub triangles_in: u32,
@@ -682,24 +691,62 @@ impl<
         }
         let flat = o.obj.material.shading == Shading::Flat;
         probe.enter(Stage::Triangles);
-        for tri in mesh.indices() {
-            let id = stats.triangles_in as u16;
-            stats.triangles_in += 1;
-            if tri.iter().any(|&i| i as usize >= positions.len()) {
+        // The triangles' ids follow on from the earlier objects' (counted once, not per
+        // triangle through `stats`).
+        let first_id = stats.triangles_in;
+        let tris = mesh.indices();
+        stats.triangles_in = first_id.wrapping_add(tris.len() as u32);
+        let (base, n) = (o.base, positions.len());
+        // Gouraud triangles of real colours go through `cull_push` (the common cases: cull,
+        // count and bucket; vertices of stored front faces are marked for lighting), which
+        // stops at a triangle that needs this loop's full path; flat ones and triangle ids
+        // take the full path throughout.
+        let fast = FAST_TRIANGLE_LOOP && !flat && C::triangle_id(0).is_none();
+        let mut k = 0;
+        loop {
+            if fast {
+                let view = (self.vw, self.vh);
+                let (store, heads, starts) = (&mut self.tris, &mut self.heads, &mut self.starts);
+                let Some(vs) = self.verts.get_mut(base..base + n) else {
+                    break;
+                };
+                let bins = Bins {
+                    store,
+                    heads,
+                    starts,
+                    view,
+                };
+                if cull_push(tris, &mut k, vs, base as u16, bins, stats, &mut need.1)
+                    == CullStop::Done
+                {
+                    break;
+                }
+            }
+            let Some(tri) = tris.get(k) else {
+                break;
+            };
+            let id = first_id.wrapping_add(k as u32) as u16;
+            k += 1;
+            // This object's vertices (all stored above; flat triangles' colour vertices
+            // follow them): an index check against them is also the store's bounds check.
+            let Some(vs) = self.verts.get(base..base + n) else {
+                return;
+            };
+            // Element by element: on a Cortex-M0 `array::map` stays a call (`try_from_fn`).
+            let (Some(a), Some(b), Some(c)) = (
+                vs.get(tri[0] as usize),
+                vs.get(tri[1] as usize),
+                vs.get(tri[2] as usize),
+            ) else {
                 stats.invalid += 1;
                 continue;
-            }
-            // Element by element: on a Cortex-M0 `array::map` stays a call (`try_from_fn`).
+            };
             let vi = [
-                o.base + tri[0] as usize,
-                o.base + tri[1] as usize,
-                o.base + tri[2] as usize,
+                base + tri[0] as usize,
+                base + tri[1] as usize,
+                base + tri[2] as usize,
             ];
-            let f = [
-                self.verts[vi[0]].flags,
-                self.verts[vi[1]].flags,
-                self.verts[vi[2]].flags,
-            ];
+            let f = [a.flags, b.flags, c.flags];
             if (f[0] | f[1] | f[2]) & INVALID != 0 {
                 stats.invalid += 1;
                 continue;
@@ -709,7 +756,7 @@ impl<
                 continue;
             }
             if (f[0] | f[1] | f[2]) & NEEDS_CLIP as u16 == 0 {
-                match facing(&self.verts[vi[0]], &self.verts[vi[1]], &self.verts[vi[2]]) {
+                match facing(a, b, c) {
                     Facing::Degenerate => {
                         stats.degenerate += 1;
                         continue;
@@ -760,9 +807,21 @@ impl<
                 self.clipped(o, tri, vi, flat, vp, g, id, stats, need, probe);
             }
         }
+        if fast {
+            // The vertices `cull_push` marked: lit once each, as the full path lights them.
+            probe.enter(Stage::Lighting);
+            for (i, v) in self.verts.iter_mut().skip(base).take(n).enumerate() {
+                if v.flags & (LIT | NEEDS_LIGHT) == NEEDS_LIGHT {
+                    v.set_color(o.vertex_color::<C>(i));
+                    v.flags |= LIT;
+                }
+            }
+            probe.enter(Stage::Triangles);
+        }
     }
 
     #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
     fn clipped<P: Probe, const L: usize>(
         &mut self,
         o: &ObjectSetup<'_, '_, S, L>,
@@ -866,37 +925,13 @@ impl<
         // stays a call on a Cortex-M0).
         let [i, j, k] = t.indices();
         let (a, b, c) = (&self.verts[i], &self.verts[j], &self.verts[k]);
-        let (ax, bx, cx) = (a.x as i32, b.x as i32, c.x as i32);
-        let (ay, by, cy) = (a.y as i32, b.y as i32, c.y as i32);
-        let (x0, x1) = (ax.min(bx).min(cx), ax.max(bx).max(cx));
-        let (y0, y1) = (ay.min(by).min(cy), ay.max(by).max(cy));
-        let (px0, px1, py0, py1) = (
-            first_pixel(x0),
-            first_pixel(x1),
-            first_pixel(y0),
-            first_pixel(y1),
-        );
-        if px0 >= px1 || py0 >= py1 {
-            stats.empty += 1;
-            return false;
-        }
-        if px1 <= 0 || py1 <= 0 || px0 >= self.vw as i32 || py0 >= self.vh as i32 {
-            stats.outside += 1;
-            return false;
-        }
-        need.1 += 1;
-        let row = bucket_row(y0);
-        let end = py1.min(self.vh as i32) as usize;
-        if self.tris.push(t).is_err() {
-            return true;
-        }
-        self.heads[row] += 1;
-        self.starts[row] += 1;
-        if end < self.vh {
-            self.starts[end] -= 1;
-        }
-        stats.drawn += 1;
-        true
+        let bins = Bins {
+            store: &mut self.tris,
+            heads: &mut self.heads,
+            starts: &mut self.starts,
+            view: (self.vw, self.vh),
+        };
+        bins.push(t, [a, b, c], stats, &mut need.1)
     }
 
     /// [`Renderer::render_strip`], reporting stage changes to `probe`.
@@ -1025,6 +1060,266 @@ impl<
     fn default() -> Self {
         Self::new()
     }
+}
+
+/// Where a stored triangle goes: the triangle store and the per-row counts of the bucket sort
+/// (see [`Renderer::sort_buckets`]), for a `view.0 × view.1` viewport (`view.1` ≤ the
+/// counts' length).
+pub(crate) struct Bins<'a, const T: usize> {
+    pub store: &'a mut Vec<TriRecord, T>,
+    pub heads: &'a mut [u16],
+    pub starts: &'a mut [i16],
+    pub view: (usize, usize),
+}
+
+impl<const T: usize> Bins<'_, T> {
+    /// Stores triangle `t` (vertices `v`) under its first covered row, or counts it as empty or
+    /// off-screen. Returns whether it is stored (or counted as needed when the store is full).
+    /// `needed` counts the triangles stored or that would have been (full store).
+    fn push(self, t: TriRecord, v: [&ScreenVertex; 3], n: &mut Stats, needed: &mut usize) -> bool {
+        let [a, b, c] = v;
+        let (ax, bx, cx) = (a.x as i32, b.x as i32, c.x as i32);
+        let (ay, by, cy) = (a.y as i32, b.y as i32, c.y as i32);
+        let (x0, x1) = (ax.min(bx).min(cx), ax.max(bx).max(cx));
+        let (y0, y1) = (ay.min(by).min(cy), ay.max(by).max(cy));
+        let (px0, px1, py0, py1) = (
+            first_pixel(x0),
+            first_pixel(x1),
+            first_pixel(y0),
+            first_pixel(y1),
+        );
+        if px0 >= px1 || py0 >= py1 {
+            n.empty += 1;
+            return false;
+        }
+        let (vw, vh) = self.view;
+        if px1 <= 0 || py1 <= 0 || px0 >= vw as i32 || py0 >= vh as i32 {
+            n.outside += 1;
+            return false;
+        }
+        *needed += 1;
+        let row = bucket_row(y0);
+        let end = py1.min(vh as i32) as usize;
+        if self.store.push(t).is_err() {
+            return true;
+        }
+        let (Some(h), Some(s)) = (self.heads.get_mut(row), self.starts.get_mut(row)) else {
+            return true;
+        };
+        *h = h.wrapping_add(1);
+        *s = s.wrapping_add(1);
+        if let Some(e) = self.starts.get_mut(end) {
+            if end < vh {
+                *e = e.wrapping_sub(1);
+            }
+        }
+        n.drawn += 1;
+        true
+    }
+}
+
+/// Whether objects' triangle loops go through [`cull_push`]: on Cortex-M0 (assembly) and on
+/// hosts (its portable twin, so that the tests exercise it). Not on Cortex-M4F, where LLVM's
+/// code for the full loop (13 general registers) is already fast: there the twin saved 6 k
+/// instructions on the torus but cost 18 k on the terrain and 11 k on the icosphere (measured
+/// with `scripts/mcu-bench`; 150 of the terrain's triangles stop the twin for the clipper).
+const FAST_TRIANGLE_LOOP: bool = cfg!(not(all(
+    target_arch = "arm",
+    target_os = "none",
+    target_has_atomic = "32"
+)));
+
+/// Why [`cull_push`] stopped.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum CullStop {
+    /// Every triangle is done.
+    Done,
+    /// The triangle at the cursor needs the object loop's full path: an index out of range, an
+    /// invalid vertex, or clipping.
+    Portable,
+}
+
+/// The common cases of an object's triangle loop for Gouraud triangles of real colours, from
+/// triangle `*k` on: each triangle whose vertices are valid and need no clipping is counted as
+/// outside, degenerate or culled, or (a front face) stored by [`Bins::push`], exactly as the
+/// full path does, and when stored its unlit vertices are marked [`NEEDS_LIGHT`]; `*k` moves
+/// past it. Stops at a triangle that needs the full path. `verts` are the object's vertices,
+/// `base` the store index of the first. On Cortex-M0 this is Thumb-1 assembly
+/// (`cull_thumb::cull_push`); elsewhere [`cull_push_portable`].
+#[inline(always)]
+fn cull_push<const T: usize>(
+    tris: &[[u16; 3]],
+    k: &mut usize,
+    verts: &mut [ScreenVertex],
+    base: u16,
+    bins: Bins<'_, T>,
+    n: &mut Stats,
+    needed: &mut usize,
+) -> CullStop {
+    #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+    return crate::cull_thumb::cull_push(tris, k, verts, base, bins, n, needed);
+    #[cfg(not(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32"))))]
+    return cull_push_portable(tris, k, verts, base, bins, n, needed);
+}
+
+/// [`cull_push`] in Rust.
+pub(crate) fn cull_push_portable<const T: usize>(
+    tris: &[[u16; 3]],
+    k: &mut usize,
+    verts: &mut [ScreenVertex],
+    base: u16,
+    bins: Bins<'_, T>,
+    n: &mut Stats,
+    needed: &mut usize,
+) -> CullStop {
+    while let Some(tri) = tris.get(*k) {
+        let (Some(a), Some(b), Some(c)) = (
+            verts.get(tri[0] as usize),
+            verts.get(tri[1] as usize),
+            verts.get(tri[2] as usize),
+        ) else {
+            return CullStop::Portable;
+        };
+        if (a.flags | b.flags | c.flags) & (INVALID | NEEDS_CLIP as u16) != 0 {
+            return CullStop::Portable;
+        }
+        let all = a.flags & b.flags & c.flags;
+        if all & 0x3f != 0 {
+            n.outside += 1;
+        } else {
+            match facing(a, b, c) {
+                Facing::Degenerate => n.degenerate += 1,
+                Facing::Back => n.culled += 1,
+                Facing::Front => {
+                    let v = tri.map(|i| base.wrapping_add(i));
+                    let bins = Bins {
+                        store: &mut *bins.store,
+                        heads: &mut *bins.heads,
+                        starts: &mut *bins.starts,
+                        view: bins.view,
+                    };
+                    let stored = bins.push(TriRecord { v }, [a, b, c], n, needed);
+                    if stored && all & LIT == 0 {
+                        for &i in tri {
+                            if let Some(v) = verts.get_mut(i as usize) {
+                                if v.flags & LIT == 0 {
+                                    v.flags |= NEEDS_LIGHT;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        *k += 1;
+    }
+    CullStop::Done
+}
+
+/// Cortex-M0 only, for the benchmark firmware: the assembly triangle loop
+/// (`cull_thumb::cull_push`) against [`cull_push_portable`] on `n` pseudo-random objects of
+/// 24 triangles over 16 vertices (indices out of range, invalid, clipped, outside, unlit and
+/// lit vertices; coordinates across the whole range and near one another; off-screen, empty
+/// and degenerate triangles; a store that fills up; viewports of every height up to 64 rows).
+/// Both are run to the end, skipping each triangle they stop at; returns the first object
+/// whose stops, store, row counts, counts or vertex marks differ, as its seed.
+#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+#[doc(hidden)]
+pub fn cull_self_test(n: u32) -> Option<u32> {
+    const ROWS: usize = 64;
+    let mut seeds = crate::raster::xorshift32(0x3c6e_f372);
+    for _ in 0..n {
+        let seed = seeds();
+        let mut next = crate::raster::xorshift32(seed | 1);
+        let spread = [40, 400, 4000, 2 * crate::project::COORD_LIMIT as u32][(next() % 4) as usize];
+        let mut verts = [ScreenVertex::default(); 16];
+        for v in &mut verts {
+            let r = next();
+            let c = |h: u32| {
+                let v = (h % spread) as i32 - spread as i32 / 2 + 1000;
+                v.clamp(-crate::project::COORD_LIMIT, crate::project::COORD_LIMIT) as i16
+            };
+            v.x = c(r & 0xffff);
+            v.y = c(r >> 16);
+            let f = next();
+            // Outcode bits now and then, the clipper's and invalid rarely, lit mostly.
+            let mut flags = if f % 4 == 0 {
+                (f >> 8) as u16 & 0x3f
+            } else {
+                0
+            };
+            if f % 23 == 0 {
+                flags |= 1 << (4 + (f >> 16) % 4);
+            }
+            if f % 5 != 0 {
+                // A lit vertex's colour bits are anything; an unlit one's are zero.
+                flags |= LIT | (f >> 16) as u16 & !crate::project::FLAG_MASK;
+            }
+            v.flags = flags;
+        }
+        let mut tris = [[0u16; 3]; 24];
+        for t in &mut tris {
+            let r = next();
+            *t = [r % 17, (r >> 8) % 17, (r >> 16) % 17].map(|i| i as u16);
+        }
+        let view = (
+            1 + (next() % 300) as usize,
+            1 + (next() % ROWS as u32) as usize,
+        );
+        let base = (next() % 1000) as u16;
+        let mut runs = [(); 2].map(|_| {
+            (
+                verts,
+                Vec::<TriRecord, 8>::new(),
+                [0u16; ROWS],
+                [0i16; ROWS],
+                Stats::default(),
+                0usize,
+                0u32,
+            )
+        });
+        for (which, (vs, store, heads, starts, counts, needed, stops)) in
+            runs.iter_mut().enumerate()
+        {
+            let mut k = 0;
+            for _ in 0..64 {
+                let bins = Bins {
+                    store,
+                    heads,
+                    starts,
+                    view,
+                };
+                let stop = if which == 0 {
+                    crate::cull_thumb::cull_push(&tris, &mut k, vs, base, bins, counts, needed)
+                } else {
+                    cull_push_portable(&tris, &mut k, vs, base, bins, counts, needed)
+                };
+                *stops = stops
+                    .wrapping_mul(31)
+                    .wrapping_add(stop as u32 * 32 + k as u32);
+                if stop == CullStop::Done {
+                    break;
+                }
+                k += 1;
+            }
+        }
+        let [a, b] = &runs;
+        let records = |s: &Vec<TriRecord, 8>| {
+            let mut r = [[0u16; 3]; 8];
+            for (d, t) in r.iter_mut().zip(s) {
+                *d = t.v;
+            }
+            (s.len(), r)
+        };
+        let flags = |v: &[ScreenVertex; 16]| v.map(|v| v.flags);
+        if (a.2, a.3, a.4, a.5, a.6) != (b.2, b.3, b.4, b.5, b.6)
+            || records(&a.1) != records(&b.1)
+            || flags(&a.0) != flags(&b.0)
+        {
+            return Some(seed);
+        }
+    }
+    None
 }
 
 /// The row bucket of a triangle whose topmost vertex is at `y_min` subpixels: its first covered
