@@ -61,30 +61,11 @@ macro_rules! count {
     };
 }
 
-/// `$p` = the object's vertex `$p` (an index < n) as an address, with the vertices at r4.
-/// Uses r5.
+/// `$p` = the object's vertex `$p` (an index < n) as an address, with the vertices at r4 and
+/// 12 (their size) in r6.
 macro_rules! vertex_address {
     ($p:literal) => {
-        concat!(
-            "lsls r5, ",
-            $p,
-            ", #1\n",
-            "adds ",
-            $p,
-            ", ",
-            $p,
-            ", r5\n",
-            "lsls ",
-            $p,
-            ", ",
-            $p,
-            ", #2\n",
-            "adds ",
-            $p,
-            ", r4, ",
-            $p,
-            "\n",
-        )
+        concat!("muls ", $p, ", r6\n", "adds ", $p, ", r4, ", $p, "\n")
     };
 }
 
@@ -162,6 +143,7 @@ core::arch::global_asm!(
     "cmp r3, r4",
     "bhs 91f",
     "ldr r4, [r7, #{verts}]",
+    "movs r6, #12",
     vertex_address!("r1"),
     vertex_address!("r2"),
     vertex_address!("r3"),
