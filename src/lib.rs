@@ -89,7 +89,7 @@ pub mod camera;
 pub mod clip;
 pub mod color;
 pub mod cull;
-#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+#[cfg(all(target_arch = "arm", target_os = "none"))]
 mod cull_thumb;
 pub mod demo;
 pub mod hash;

@@ -701,7 +701,7 @@ impl<
         // count and bucket; vertices of stored front faces are marked for lighting), which
         // stops at a triangle that needs this loop's full path; flat ones and triangle ids
         // take the full path throughout.
-        let fast = FAST_TRIANGLE_LOOP && !flat && C::triangle_id(0).is_none();
+        let fast = !flat && C::triangle_id(0).is_none();
         let mut k = 0;
         loop {
             if fast {
@@ -1118,17 +1118,6 @@ impl<const T: usize> Bins<'_, T> {
     }
 }
 
-/// Whether objects' triangle loops go through [`cull_push`]: on Cortex-M0 (assembly) and on
-/// hosts (its portable twin, so that the tests exercise it). Not on Cortex-M4F, where LLVM's
-/// code for the full loop (13 general registers) is already fast: there the twin saved 6 k
-/// instructions on the torus but cost 18 k on the terrain and 11 k on the icosphere (measured
-/// with `scripts/mcu-bench`; 150 of the terrain's triangles stop the twin for the clipper).
-const FAST_TRIANGLE_LOOP: bool = cfg!(not(all(
-    target_arch = "arm",
-    target_os = "none",
-    target_has_atomic = "32"
-)));
-
 /// Why [`cull_push`] stopped.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) enum CullStop {
@@ -1144,7 +1133,7 @@ pub(crate) enum CullStop {
 /// outside, degenerate or culled, or (a front face) stored by [`Bins::push`], exactly as the
 /// full path does, and when stored its unlit vertices are marked [`NEEDS_LIGHT`]; `*k` moves
 /// past it. Stops at a triangle that needs the full path. `verts` are the object's vertices,
-/// `base` the store index of the first. On Cortex-M0 this is Thumb-1 assembly
+/// `base` the store index of the first. On Cortex-M this is Thumb-1 assembly
 /// (`cull_thumb::cull_push`); elsewhere [`cull_push_portable`].
 #[inline(always)]
 fn cull_push<const T: usize>(
@@ -1156,9 +1145,9 @@ fn cull_push<const T: usize>(
     n: &mut Stats,
     needed: &mut usize,
 ) -> CullStop {
-    #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+    #[cfg(all(target_arch = "arm", target_os = "none"))]
     return crate::cull_thumb::cull_push(tris, k, verts, base, bins, n, needed);
-    #[cfg(not(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32"))))]
+    #[cfg(not(all(target_arch = "arm", target_os = "none")))]
     return cull_push_portable(tris, k, verts, base, bins, n, needed);
 }
 
@@ -1216,14 +1205,14 @@ pub(crate) fn cull_push_portable<const T: usize>(
     CullStop::Done
 }
 
-/// Cortex-M0 only, for the benchmark firmware: the assembly triangle loop
+/// Cortex-M only, for the benchmark firmware: the assembly triangle loop
 /// (`cull_thumb::cull_push`) against [`cull_push_portable`] on `n` pseudo-random objects of
 /// 24 triangles over 16 vertices (indices out of range, invalid, clipped, outside, unlit and
 /// lit vertices; coordinates across the whole range and near one another; off-screen, empty
 /// and degenerate triangles; a store that fills up; viewports of every height up to 64 rows).
 /// Both are run to the end, skipping each triangle they stop at; returns the first object
 /// whose stops, store, row counts, counts or vertex marks differ, as its seed.
-#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+#[cfg(all(target_arch = "arm", target_os = "none"))]
 #[doc(hidden)]
 pub fn cull_self_test(n: u32) -> Option<u32> {
     const ROWS: usize = 64;
