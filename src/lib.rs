@@ -105,6 +105,8 @@ pub mod shade;
 pub mod shapes;
 #[cfg(all(target_arch = "arm", target_os = "none"))]
 mod span_thumb;
+#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+mod vertex_thumb;
 
 pub use fixed;
 

@@ -28,10 +28,11 @@ pub const MAX_SCREEN: usize = 1024;
 
 /// A vertex after projection: snapped position, depth and colour.
 ///
-/// Size: 12 bytes (the vertex store is the largest part of a renderer's RAM). `repr(C)`: the
-/// Cortex-M0 triangle setup reads x and y as one word.
+/// Size: 12 bytes (the vertex store is the largest part of a renderer's RAM). `repr(C)`, aligned
+/// to 4 bytes: the Cortex-M assembly reads x and y as one word (an unaligned word load faults
+/// on a Cortex-M0).
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-#[repr(C)]
+#[repr(C, align(4))]
 pub struct ScreenVertex {
     /// x in subpixels (signed 12.4 fixed point; |x| ≤ [`COORD_LIMIT`]).
     pub x: i16,

@@ -26,7 +26,7 @@ use crate::shade::{lit_color, lit_diffuse, PreparedLight, Shading};
 /// [`ScreenVertex`] flag bits of the renderer (bits 0..=5 are the outcode of `clip`): a NaN,
 /// infinite or overflowed position; projected; lit (its colour is set).
 pub(crate) const INVALID: u16 = 1 << 7;
-const PROJECTED: u16 = 1 << 8;
+pub(crate) const PROJECTED: u16 = 1 << 8;
 pub(crate) const LIT: u16 = 1 << 9;
 /// Set by [`cull_push`] on an unlit vertex of a stored front face: it needs lighting (the
 /// object's loop lights those after its triangles). A colour bit, free until the vertex is lit
@@ -671,23 +671,32 @@ impl<
             return;
         }
         probe.enter(Stage::Vertices);
-        for &p in positions {
-            let clip = o.mvp.transform_point(p);
-            let mut flags = outcode(clip, g) as u16;
-            let mut sv = ScreenVertex::default();
-            if !clip.iter().all(|v| v.is_valid()) {
-                flags |= INVALID;
-            } else if flags & NEEDS_CLIP as u16 == 0 {
-                if let Some(v) = vp.project(clip, [0; 3]) {
-                    sv = v;
-                    let index = self.verts.len() - stats.color_vertices as usize;
-                    (sv.x, sv.y) = snapped(probe, index, v);
-                    flags |= PROJECTED;
+        if S::PROJECT_RUN {
+            let (sx, sy) = (8 * vp.width, 8 * vp.height);
+            let mut i = 0;
+            loop {
+                // A run of vertices the number type stores itself (Q16.16 on a Cortex-M0),
+                // then the probe's snapping for them; then one vertex here.
+                let first = self.verts.len();
+                let rest = positions.get(i..).unwrap_or(&[]);
+                let run = S::project_run(&o.mvp.m, rest, g, sx, sy, &mut self.verts);
+                for (k, v) in self.verts.iter_mut().enumerate().skip(first).take(run) {
+                    if v.flags & PROJECTED != 0 {
+                        let index = k - stats.color_vertices as usize;
+                        (v.x, v.y) = snapped(probe, index, *v);
+                    }
                 }
+                i += run;
+                let Some(&p) = positions.get(i) else {
+                    break;
+                };
+                i += 1;
+                self.push_vertex(o, vp, g, p, stats, probe);
             }
-            sv.flags = flags;
-            // Cannot fail: room was checked above.
-            let _ = self.verts.push(sv);
+        } else {
+            for &p in positions {
+                self.push_vertex(o, vp, g, p, stats, probe);
+            }
         }
         let flat = o.obj.material.shading == Shading::Flat;
         probe.enter(Stage::Triangles);
@@ -818,6 +827,27 @@ impl<
             }
             probe.enter(Stage::Triangles);
         }
+    }
+
+    /// The vertex loop's step: the record of position `p` of object `o` ([`vertex_record`]),
+    /// with the probe's snapping, stored (room was checked).
+    #[inline(always)]
+    fn push_vertex<P: Probe, const L: usize>(
+        &mut self,
+        o: &ObjectSetup<'_, '_, S, L>,
+        vp: &Viewport,
+        g: S,
+        p: Vec3<S>,
+        stats: &Stats,
+        probe: &mut P,
+    ) {
+        let mut sv = vertex_record(&o.mvp, vp, g, p);
+        if sv.flags & PROJECTED != 0 {
+            let index = self.verts.len() - stats.color_vertices as usize;
+            (sv.x, sv.y) = snapped(probe, index, sv);
+        }
+        // Cannot fail: room was checked.
+        let _ = self.verts.push(sv);
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -1060,6 +1090,90 @@ impl<
     fn default() -> Self {
         Self::new()
     }
+}
+
+/// The vertex store's record of position `p` transformed by `mvp`: its outcode (guard band
+/// `g`) and flags, and, unless it is to be clipped, invalid or has w ≤ 0, its projection on
+/// `vp` (before the probe's snapping) with no colour.
+#[inline(always)]
+fn vertex_record<S: Scalar>(mvp: &Mat4<S>, vp: &Viewport, g: S, p: Vec3<S>) -> ScreenVertex {
+    let clip = mvp.transform_point(p);
+    let mut flags = outcode(clip, g) as u16;
+    let mut sv = ScreenVertex::default();
+    if !clip.iter().all(|v| v.is_valid()) {
+        flags |= INVALID;
+    } else if flags & NEEDS_CLIP as u16 == 0 {
+        if let Some(v) = vp.project(clip, [0; 3]) {
+            sv = v;
+            flags |= PROJECTED;
+        }
+    }
+    sv.flags = flags;
+    sv
+}
+
+/// ARMv6-M only, for the benchmark firmware: the assembly vertex run (`Scalar::project_run`
+/// of `Fx<I16F16>`) against [`vertex_record`] on `n` pseudo-random objects of 16 positions:
+/// matrices and positions from small to near the transform's range, w from negative to
+/// large, points inside and outside the x/y planes, the guard band and the near and far
+/// planes. Runs until every position is done, taking each declined one itself; returns the
+/// first object with a differing record, as its seed.
+#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+#[doc(hidden)]
+pub fn vertex_self_test(n: u32) -> Option<u32> {
+    use crate::scalar::Fx;
+    use fixed::types::I16F16;
+    type Q = Fx<I16F16>;
+    let q = |b: i32| Fx(I16F16::from_bits(b));
+    let mut seeds = crate::raster::xorshift32(0xa54f_f53a);
+    for _ in 0..n {
+        let seed = seeds();
+        let mut next = crate::raster::xorshift32(seed | 1);
+        // A value of about 2^bits (signed), bits from `r`'s top.
+        let mut val = |max_bits: u32| {
+            let r = next();
+            let bits = (r >> 27) % max_bits + 1;
+            let v = (next() >> (32 - bits)) as i32;
+            if r & 1 == 0 {
+                -v
+            } else {
+                v
+            }
+        };
+        let mut m = Mat4::<Q>::identity();
+        for row in m.m.iter_mut() {
+            for e in row.iter_mut() {
+                *e = q(val(if seed % 5 == 0 { 31 } else { 20 }));
+            }
+        }
+        let size = [(240, 240), (64, 48), (1024, 1024), (320, 200)][(seed >> 8) as usize % 4];
+        let vp = Viewport {
+            width: size.0,
+            height: size.1,
+        };
+        let g = Q::from_i32(vp.guard_band());
+        let mut ps = [[Q::ZERO; 3]; 16];
+        for p in &mut ps {
+            *p = [0; 3].map(|_| q(val(if seed % 7 == 0 { 31 } else { 19 })));
+        }
+        let (sx, sy) = (8 * vp.width, 8 * vp.height);
+        let mut out = Vec::<ScreenVertex, 16>::new();
+        let mut i = 0;
+        while i < ps.len() {
+            let run = Q::project_run(&m.m, &ps[i..], g, sx, sy, &mut out);
+            for k in 0..run {
+                if out.get(i + k) != Some(&vertex_record(&m, &vp, g, ps[i + k])) {
+                    return Some(seed);
+                }
+            }
+            i += run;
+            if let Some(&p) = ps.get(i) {
+                let _ = out.push(vertex_record(&m, &vp, g, p));
+                i += 1;
+            }
+        }
+    }
+    None
 }
 
 /// Where a stored triangle goes: the triangle store and the per-row counts of the bucket sort

@@ -185,6 +185,28 @@ pub trait Scalar:
         let _ = (p, sx, sy);
         None
     }
+    /// Whether [`Scalar::project_run`] can store anything (the vertex loop asks it only then).
+    #[doc(hidden)]
+    const PROJECT_RUN: bool = false;
+    /// Stores the vertex-store records of the longest run of positions `ps` (at most the
+    /// store's room) that a faster routine handles exactly as the renderer's vertex loop
+    /// would (transform by `m`, outcode with guard band `g`, projection with the scales `sx`,
+    /// `sy`; records before the probe's snapping) and returns its length; 0 lets the loop take
+    /// the first position.
+    #[doc(hidden)]
+    #[must_use]
+    #[inline(always)]
+    fn project_run<const V: usize>(
+        m: &[[Self; 4]; 4],
+        ps: &[[Self; 3]],
+        g: Self,
+        sx: u32,
+        sy: u32,
+        out: &mut heapless::Vec<crate::project::ScreenVertex, V>,
+    ) -> usize {
+        let _ = (m, ps, g, sx, sy, out);
+        0
+    }
 }
 
 /// The exact 64-bit product of two `i32`, from four 16 × 16-bit products.
@@ -566,7 +588,7 @@ pub struct FxRecip {
 }
 
 macro_rules! impl_fx {
-    ($t:ident, $frac:expr, $name:expr $(, $thumb_transform:path, $thumb_dir:path, $thumb_project:path)?) => {
+    ($t:ident, $frac:expr, $name:expr $(, $thumb_transform:path, $thumb_dir:path, $thumb_project:path, $thumb_run:path)?) => {
         impl Fx<$t> {
             /// Builds a value from a float literal (rounds to nearest, saturates).
             #[must_use]
@@ -786,6 +808,35 @@ macro_rules! impl_fx {
                     None
                 }
             }
+            // True where the type passes a routine and the target is ARMv6-M.
+            const PROJECT_RUN: bool = false $(|| {
+                let _ = stringify!($thumb_run);
+                cfg!(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))
+            })?;
+            #[inline(always)]
+            fn project_run<const V: usize>(
+                m: &[[Self; 4]; 4],
+                ps: &[[Self; 3]],
+                g: Self,
+                sx: u32,
+                sy: u32,
+                out: &mut heapless::Vec<crate::project::ScreenVertex, V>,
+            ) -> usize {
+                $(
+                    // Thumb-1 assembly on ARMv6-M (see `screen_words`).
+                    #[cfg(all(
+                        target_arch = "arm",
+                        target_os = "none",
+                        not(target_has_atomic = "32")
+                    ))]
+                    return $thumb_run(m, ps, g, sx, sy, out);
+                )?
+                #[allow(unreachable_code)]
+                {
+                    let _ = (m, ps, g, sx, sy, out);
+                    0
+                }
+            }
             fn to_fixed_i32(self, frac: u32) -> i32 {
                 let b = self.0.to_bits() as i64;
                 let v = if frac >= $frac {
@@ -806,7 +857,8 @@ impl_fx!(
     "I16F16",
     crate::span_thumb::transform_i16f16,
     crate::span_thumb::transform_dir_i16f16,
-    crate::span_thumb::project_i16f16
+    crate::span_thumb::project_i16f16,
+    crate::vertex_thumb::project_run
 );
 impl_fx!(I20F12, 12, "I20F12");
 impl_fx!(I12F20, 20, "I12F20");

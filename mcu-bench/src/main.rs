@@ -442,7 +442,8 @@ fn transform_matches_rows() -> bool {
 /// assembly projection the portable one's screen words on 20 000 pseudo-random points, and the
 /// assembly Gouraud setup the portable attribute words on 20 000 pseudo-random triangles, and
 /// the assembly triangle loop the portable one on 5 000 objects of 24 triangles, and on ARMv6-M
-/// (where it is used) the assembly triangle setup the portable one on 20 000 more (the
+/// (where they are used) the assembly triangle setup the portable one on 20 000 more and the
+/// assembly vertex loop the portable one on 5 000 objects of 16 positions (the
 /// benchmark scenes' hashes check them too, but only on the cases they have). Prints the first
 /// mismatch. Not inlined, so that its locals are not part of `main`'s frame during the
 /// renders (on the 16 KB part every byte of it counts).
@@ -467,6 +468,11 @@ fn assembly_matches_portable() -> bool {
     }
     if let Some(seed) = scanline3d::renderer::cull_self_test(5_000) {
         hprintln!("TRIANGLE LOOP MISMATCH seed {:#x}", seed);
+        return false;
+    }
+    #[cfg(not(target_has_atomic = "32"))]
+    if let Some(seed) = scanline3d::renderer::vertex_self_test(5_000) {
+        hprintln!("VERTEX LOOP MISMATCH seed {:#x}", seed);
         return false;
     }
     true
