@@ -147,6 +147,12 @@ pub trait Probe {
         let _ = index;
         (x, y)
     }
+    /// Whether [`Probe::snap`] may move a vertex. A probe that keeps the default `snap` can
+    /// say `false`, and the renderer then need not call it: on a Cortex-M0 the Q16.16 vertex
+    /// loop stores runs of vertices in assembly and would otherwise pass over them again for
+    /// the snapping (about 40 instructions a vertex). A probe that overrides `snap` must leave
+    /// it `true`.
+    const SNAPS: bool = true;
 }
 
 /// A probe that does nothing.
@@ -156,6 +162,7 @@ pub struct NoProbe;
 impl Probe for NoProbe {
     #[inline(always)]
     fn enter(&mut self, _: Stage) {}
+    const SNAPS: bool = false;
 }
 
 /// What happened to the triangles and pixels of a frame.
@@ -626,18 +633,34 @@ impl<
             } else {
                 len
             };
-            while (self.starts[b] as usize) < end {
-                let i = self.starts[b] as usize;
-                let tb = self.first_row(&self.tris[i]);
-                if tb != b {
+            // The record at bucket b's cursor goes to its own bucket's cursor, and the record
+            // it displaces is placed next, until one belongs to bucket b (as swapping the two
+            // records each time would place them, with one read and one write a step).
+            let mut i = self.starts[b] as usize;
+            while i < end {
+                let Some(&first) = self.tris.get(i) else {
+                    break;
+                };
+                let mut t = first;
+                let mut tb = self.first_row(&t);
+                while tb != b {
                     // tb > b: every earlier bucket is complete.
-                    let j = self.starts[tb] as usize;
-                    self.tris.swap(i, j);
-                    self.starts[tb] += 1;
-                } else {
-                    self.starts[b] += 1;
+                    let Some(j) = self.starts.get_mut(tb) else {
+                        break;
+                    };
+                    let Some(slot) = self.tris.get_mut(*j as usize) else {
+                        break;
+                    };
+                    *j += 1;
+                    core::mem::swap(&mut t, slot);
+                    tb = self.first_row(&t);
                 }
+                if let Some(slot) = self.tris.get_mut(i) {
+                    *slot = t;
+                }
+                i += 1;
             }
+            self.starts[b] = i as i16;
         }
     }
 
@@ -676,11 +699,12 @@ impl<
             let mut i = 0;
             loop {
                 // A run of vertices the number type stores itself (Q16.16 on a Cortex-M0),
-                // then the probe's snapping for them; then one vertex here.
+                // then the probe's snapping for them (if it snaps); then one vertex here.
                 let first = self.verts.len();
                 let rest = positions.get(i..).unwrap_or(&[]);
                 let run = S::project_run(&o.mvp.m, rest, g, sx, sy, &mut self.verts);
-                for (k, v) in self.verts.iter_mut().enumerate().skip(first).take(run) {
+                let snaps = if P::SNAPS { run } else { 0 };
+                for (k, v) in self.verts.iter_mut().enumerate().skip(first).take(snaps) {
                     if v.flags & PROJECTED != 0 {
                         let index = k - stats.color_vertices as usize;
                         (v.x, v.y) = snapped(probe, index, *v);

@@ -79,6 +79,8 @@ struct FrameTimer {
 }
 
 impl Probe for FrameTimer {
+    // Keeps the default `snap`.
+    const SNAPS: bool = false;
     #[inline(always)]
     fn enter(&mut self, _: Stage) {}
     #[inline(always)]
@@ -108,6 +110,8 @@ fn frame_end_marker() {
 }
 
 impl Probe for Markers {
+    // Keeps the default `snap`.
+    const SNAPS: bool = false;
     #[inline(always)]
     fn enter(&mut self, _: Stage) {}
     fn frame_start(&mut self) {
@@ -138,6 +142,8 @@ fn stage_index(s: Stage) -> usize {
 }
 
 impl Probe for StageProbe {
+    // Keeps the default `snap`.
+    const SNAPS: bool = false;
     #[inline(never)]
     fn enter(&mut self, stage: Stage) {
         let now = timer::now();
