@@ -979,7 +979,7 @@ impl<
         // stays a call on a Cortex-M0).
         let [i, j, k] = t.indices();
         let (a, b, c) = (&self.verts[i], &self.verts[j], &self.verts[k]);
-        let bins = Bins {
+        let mut bins = Bins {
             store: &mut self.tris,
             heads: &mut self.heads,
             starts: &mut self.starts,
@@ -1214,7 +1214,13 @@ impl<const T: usize> Bins<'_, T> {
     /// Stores triangle `t` (vertices `v`) under its first covered row, or counts it as empty or
     /// off-screen. Returns whether it is stored (or counted as needed when the store is full).
     /// `needed` counts the triangles stored or that would have been (full store).
-    fn push(self, t: TriRecord, v: [&ScreenVertex; 3], n: &mut Stats, needed: &mut usize) -> bool {
+    fn push(
+        &mut self,
+        t: TriRecord,
+        v: [&ScreenVertex; 3],
+        n: &mut Stats,
+        needed: &mut usize,
+    ) -> bool {
         let [a, b, c] = v;
         let (ax, bx, cx) = (a.x as i32, b.x as i32, c.x as i32);
         let (ay, by, cy) = (a.y as i32, b.y as i32, c.y as i32);
@@ -1246,8 +1252,8 @@ impl<const T: usize> Bins<'_, T> {
         };
         *h = h.wrapping_add(1);
         *s = s.wrapping_add(1);
-        if let Some(e) = self.starts.get_mut(end) {
-            if end < vh {
+        if end < vh {
+            if let Some(e) = self.starts.get_mut(end) {
                 *e = e.wrapping_sub(1);
             }
         }
@@ -1295,7 +1301,7 @@ pub(crate) fn cull_push_portable<const T: usize>(
     k: &mut usize,
     verts: &mut [ScreenVertex],
     base: u16,
-    bins: Bins<'_, T>,
+    mut bins: Bins<'_, T>,
     n: &mut Stats,
     needed: &mut usize,
 ) -> CullStop {
@@ -1319,12 +1325,6 @@ pub(crate) fn cull_push_portable<const T: usize>(
                 Facing::Back => n.culled += 1,
                 Facing::Front => {
                     let v = tri.map(|i| base.wrapping_add(i));
-                    let bins = Bins {
-                        store: &mut *bins.store,
-                        heads: &mut *bins.heads,
-                        starts: &mut *bins.starts,
-                        view: bins.view,
-                    };
                     let stored = bins.push(TriRecord { v }, [a, b, c], n, needed);
                     if stored && all & LIT == 0 {
                         for &i in tri {

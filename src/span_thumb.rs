@@ -2282,7 +2282,7 @@ pub(crate) fn edge_new(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> Option<E
 /// `v ^ (v >> 31)`: `v` for `v ≥ 0`, `|v| − 1` below, so an OR of these is below 2³⁰ exactly
 /// when every value is in [−2³⁰, 2³⁰).
 #[inline(always)]
-fn spread(v: Fx<I16F16>) -> i32 {
+pub(crate) fn spread(v: Fx<I16F16>) -> i32 {
     let b = v.0.to_bits();
     b ^ (b >> 31)
 }

@@ -15,6 +15,7 @@
 use crate::clip::{BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP};
 use crate::project::ScreenVertex;
 use crate::scalar::Fx;
+use crate::span_thumb::spread;
 use fixed::types::I16F16;
 use heapless::Vec;
 
@@ -312,11 +313,7 @@ pub(crate) fn project_run<const V: usize>(
     sy: u32,
     out: &mut Vec<ScreenVertex, V>,
 ) -> usize {
-    let spread = |v: &Fx<I16F16>| {
-        let b = v.0.to_bits();
-        b ^ (b >> 31)
-    };
-    let s = m.iter().flatten().fold(0, |s, v| s | spread(v));
+    let s = m.iter().flatten().fold(0, |s, &v| s | spread(v));
     let gb = g.0.to_bits();
     if gb < 1 << 16 || gb & 0xffff != 0 || (sx | sy) >> 16 != 0 || s >= 1 << 30 {
         return 0;
