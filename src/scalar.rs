@@ -175,6 +175,19 @@ pub trait Scalar:
     /// `i32` (NaN → 0).
     #[must_use]
     fn to_fixed_i32(self, frac: u32) -> i32;
+    /// A lit channel: `self · k` clamped to 0..=255 and rounded to 8.8 fixed point
+    /// (0..=65280), as `shade` computes it from [`Scalar::mul_int`], `max`, `min` and
+    /// [`Scalar::to_fixed_i32`]; a type may give the same values faster.
+    #[doc(hidden)]
+    #[must_use]
+    #[inline(always)]
+    fn lit_channel(self, k: u8) -> u16 {
+        let v = self
+            .mul_int(k as i32)
+            .max(Self::ZERO)
+            .min(Self::from_i32(255));
+        v.to_fixed_i32(8).clamp(0, 255 << 8) as u16
+    }
     /// The screen words that [`crate::project::Viewport::project`] computes for a clip-space
     /// point with `w > 0` and the scales `sx`, `sy` (8 × the viewport size), when the type has
     /// a faster routine that gives the same values; `None` lets `project` compute them.
@@ -669,6 +682,26 @@ macro_rules! impl_fx {
                     self * Self::from_i32(k)
                 }
             }
+            #[inline(always)]
+            fn lit_channel(self, k: u8) -> u16 {
+                // The exact product, clamped to [0, 255·2^frac] (255·2^frac fits an i32, so
+                // `mul_int`'s saturation before the clamp changes nothing), then rounded half
+                // up to 8 fraction bits as `to_fixed_i32(8)`: at most 65280. A non-positive
+                // value gives 0; below 2^23 the product fits an i32 (k < 2^8).
+                let b = self.0.to_bits();
+                let max = 255i32 << $frac;
+                let p = if b <= 0 {
+                    0
+                } else if b < 1 << 23 {
+                    (b * k as i32).min(max)
+                } else {
+                    mul_wide16(b, k as i32).min(max as i64) as i32
+                };
+                // Every Fx type has at least 8 fraction bits (a type with fewer would not
+                // compile here).
+                let s = $frac - 8;
+                ((p + (1 << s >> 1)) >> s) as u16
+            }
             fn sqrt(self) -> Self {
                 if self.0 <= $t::ZERO {
                     Self::ZERO
@@ -1161,6 +1194,54 @@ mod tests {
                 (n as i128 * 65535 + (1 << 31)) >> 32
             );
         }
+    }
+
+    #[test]
+    fn lit_channel_equals_the_clamped_rounded_product() {
+        // Each Fx type's fast `lit_channel` against the trait's default composition, on every
+        // raw value near the fast path's bounds and on pseudo-random ones, with every k.
+        fn reference<S: Scalar>(x: S, k: u8) -> u16 {
+            let v = x.mul_int(k as i32).max(S::ZERO).min(S::from_i32(255));
+            v.to_fixed_i32(8).clamp(0, 255 << 8) as u16
+        }
+        fn check<T>()
+        where
+            Fx<T>: Scalar,
+            T: fixed::traits::Fixed<Bits = i32>,
+        {
+            let one = |b: i32| {
+                let v = Fx(T::from_bits(b));
+                for k in 0..=255u8 {
+                    assert_eq!(v.lit_channel(k), reference(v, k), "{b:#x} · {k}");
+                }
+            };
+            for b in [i32::MIN, i32::MAX, -1, 0, 1, 127, 128, 129] {
+                one(b);
+            }
+            for b in [
+                1 << 23,
+                255 << 12,
+                255 << 16,
+                255 << 20,
+                1 << 16,
+                1 << 12,
+                1 << 20,
+            ] {
+                for d in -3..=3 {
+                    one(b + d);
+                }
+            }
+            let mut x = 0x2545_f491_4f6c_dd1du64;
+            for _ in 0..2_000 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                one((x as i32) >> (x >> 59));
+            }
+        }
+        check::<I16F16>();
+        check::<I20F12>();
+        check::<I12F20>();
     }
 
     #[test]

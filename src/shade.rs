@@ -84,6 +84,9 @@ pub(crate) struct PreparedLight<S> {
     frac: [S; 3],
     /// light_c (0..=255).
     full: [S; 3],
+    /// Whether the three `frac` are equal (a grey light, white included): the diffuse term
+    /// then takes one product instead of three, with the same values.
+    grey: bool,
 }
 
 impl<S: Scalar> PreparedLight<S> {
@@ -106,10 +109,12 @@ impl<S: Scalar> PreparedLight<S> {
     pub(crate) fn new(l: &Light<S>) -> Self {
         let k = S::from_f64(1.0 / 255.0);
         let c = |i: usize| S::from_i32(l.color[i] as i32);
+        let [r, g, b] = l.color;
         PreparedLight {
             dir: normalize(l.direction),
             frac: [c(0) * k, c(1) * k, c(2) * k],
             full: [c(0), c(1), c(2)],
+            grey: r == g && g == b,
         }
     }
 }
@@ -175,7 +180,7 @@ pub(crate) fn lit_diffuse<S: Scalar>(
     let mut out = [0u16; 3];
     for c in 0..3 {
         // `lit_color` adds a zero specular sum here, which changes nothing.
-        out[c] = channel_8_8(diffuse[c].mul_int(m.color[c] as i32));
+        out[c] = diffuse[c].lit_channel(m.color[c]);
     }
     out
 }
@@ -185,8 +190,15 @@ pub(crate) fn lit_diffuse<S: Scalar>(
 fn add_diffuse<S: Scalar>(diffuse: &mut [S; 3], m: &Material<S>, l: &PreparedLight<S>, ndl: S) {
     if ndl > S::ZERO {
         let d = m.diffuse * ndl;
-        for c in 0..3 {
-            diffuse[c] = diffuse[c] + d * l.frac[c];
+        if l.grey {
+            let v = d * l.frac[0];
+            for c in diffuse.iter_mut() {
+                *c = *c + v;
+            }
+        } else {
+            for c in 0..3 {
+                diffuse[c] = diffuse[c] + d * l.frac[c];
+            }
         }
     }
 }
