@@ -92,6 +92,8 @@ fn run() -> Result<(), String> {
     let mut mem: BTreeMap<String, (u64, u64, u64)> = BTreeMap::new();
     let mut failures = Vec::new();
     let mut small: Vec<Value> = Vec::new();
+    // The torus with a taller strip (`STRIP` lines), checked against the one-line frame below.
+    let mut strips: Vec<Value> = Vec::new();
     for (core, path) in &logs {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
         if !text.lines().any(|l| l.trim() == "DONE") {
@@ -124,6 +126,21 @@ fn run() -> Result<(), String> {
                     }
                 }
                 small.push(v);
+            }
+            if line.starts_with("STRIP ") {
+                let f = parse_fields(line);
+                strips.push(json!({
+                    "kind": "strip",
+                    "scene": f.get("scene").cloned().unwrap_or_default(),
+                    "number": f.get("number").cloned().unwrap_or_default(),
+                    "core": machine(core).0,
+                    "machine": machine(core).1,
+                    "label": core,
+                    "lines": num(&f, "lines")?,
+                    "renderer_instructions": num(&f, "instructions")?,
+                    "renderer_ram_bytes": num(&f, "renderer_ram")?,
+                    "hash": f.get("hash").cloned().unwrap_or_default(),
+                }));
             }
             if line.starts_with("MEM ") {
                 let f = parse_fields(line);
@@ -188,6 +205,17 @@ fn run() -> Result<(), String> {
         r["stack_bytes"] = json!(stack);
         r["flash_bytes"] = json!(flash);
     }
+    for st in &strips {
+        let one = rows.iter().find(|r| {
+            r["scene"] == st["scene"] && r["number"] == st["number"] && r["label"] == st["label"]
+        });
+        if one.map(|r| &r["hash"]) != Some(&st["hash"]) {
+            failures.push(format!(
+                "{}: the torus with a strip of {} lines has hash {} instead of the one-line frame's",
+                st["label"], st["lines"], st["hash"]
+            ));
+        }
+    }
     // The budget: default torus, fixed point, Cortex-M0.
     let torus = rows
         .iter()
@@ -201,13 +229,16 @@ fn run() -> Result<(), String> {
     std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
     std::fs::write(
         out.join("report.json"),
-        serde_json::to_string_pretty(&rows.iter().chain(&small).collect::<Vec<_>>())
+        serde_json::to_string_pretty(&rows.iter().chain(&small).chain(&strips).collect::<Vec<_>>())
             .map_err(|e| e.to_string())?,
     )
     .map_err(|e| e.to_string())?;
     let mut md = markdown(&rows, &mem, budget, &small);
     if let Some(t) = torus {
-        md.push_str(&breakdown(t)?);
+        let strip = strips
+            .iter()
+            .find(|st| st["label"] == t["label"] && st["number"] == t["number"]);
+        md.push_str(&breakdown(t, strip)?);
     }
     std::fs::write("BENCHMARKS.md", md).map_err(|e| e.to_string())?;
     println!("{}", table(&rows));
@@ -268,9 +299,10 @@ fn table(rows: &[Value]) -> String {
 /// `pixel_loop!`): the floor of the raster stage for a frame's written pixels.
 const SPAN_LOOP_PER_PIXEL: u64 = 19;
 
-/// Where the budget frame's instructions go: each stage per unit of its work, and what the
-/// budget leaves once the pixel loop's floor is paid.
-fn breakdown(t: &Value) -> Result<String, String> {
+/// Where the budget frame's instructions go: each stage per unit of its work, what the
+/// budget leaves once the pixel loop's floor is paid, and what a taller strip (`strip`, the
+/// same frame with more lines) changes.
+fn breakdown(t: &Value, strip: Option<&Value>) -> Result<String, String> {
     let torus = scanline3d::demo::torus::<Fx<I16F16>>().map_err(|e| format!("torus: {e:?}"))?;
     let mesh = torus.mesh();
     let (nv, nt) = (mesh.positions().len() as u64, mesh.indices().len() as u64);
@@ -315,6 +347,27 @@ fn breakdown(t: &Value) -> Result<String, String> {
         BUDGET_INSTRUCTIONS.saturating_sub(floor),
         rest as f64 / BUDGET_INSTRUCTIONS.saturating_sub(floor).max(1) as f64
     );
+    let raster = g("raster");
+    let _ = writeln!(
+        s,
+        "\nThe raster stage alone (span loop, per-row edge and attribute steps, line clears) takes {raster}, {}% of the budget, however little the geometry before it costs.",
+        per(100 * raster, BUDGET_INSTRUCTIONS)
+    );
+    if let Some(st) = strip {
+        let (i, ram) = (
+            st["renderer_instructions"].as_u64().unwrap_or(0),
+            st["renderer_ram_bytes"].as_u64().unwrap_or(0),
+        );
+        let one_ram = t["renderer_ram_bytes"].as_u64().unwrap_or(0);
+        let _ = writeln!(
+            s,
+            "\nA strip of {} lines instead of one ({ram} B of renderer RAM, {:+} B) renders the same image (equal hash) in {i} renderer instructions ({:+}, {:+.1}%): a taller strip saves per-strip work and calls into the target, not per-pixel or per-row work, so more RAM does not buy the instruction budget.",
+            st["lines"],
+            ram as i64 - one_ram as i64,
+            i as i64 - total as i64,
+            100.0 * (i as f64 - total as f64) / total.max(1) as f64
+        );
+    }
     Ok(s)
 }
 

@@ -196,7 +196,7 @@ where
         material: torus_material(),
     }];
     let scene = crate::Scene::new(&objects, camera().map_err(|_| BenchError::Scene)?, lights());
-    render_with::<S, C, D, P, W, W, 512, T, A, 1>(&scene, false, target, probe)
+    render_with::<S, C, D, P, W, W, 512, T, A, 1, 1>(&scene, false, target, probe)
 }
 
 /// Renders `scene` with a fresh `W × H` renderer of capacities `V`, `T`, `A` and reports the
@@ -212,6 +212,7 @@ fn render_with<
     const T: usize,
     const A: usize,
     const L: usize,
+    const LINES: usize,
 >(
     scene: &crate::Scene<'_, S, L>,
     dither: bool,
@@ -226,7 +227,7 @@ where
 {
     // Set in place: `with_dither` would move the renderer, which may take a second copy of it
     // on the stack.
-    let mut r = crate::Renderer::<S, C, W, H, V, T, A>::new();
+    let mut r = crate::Renderer::<S, C, W, H, V, T, A, LINES>::new();
     r.set_dither(dither);
     let stats = r
         .render_probed(scene, target, probe)
@@ -235,6 +236,46 @@ where
         stats,
         renderer_ram_bytes: core::mem::size_of_val(&r),
     })
+}
+
+/// The triangle capacity of the 240 × 240 torus benchmark frame.
+const TORUS_TRIS: usize = 466;
+/// The active-list capacity of the 240 × 240 torus benchmark frame.
+const TORUS_ACTIVE: usize = 61;
+
+/// The [`Bench::Torus`] frame with a strip of `LINES` lines ([`render_bench`] renders it with
+/// one): the same image for every `LINES` (the strip height changes when lines are handed to
+/// the target, not what they hold), a larger renderer. For measuring what a taller strip buys.
+pub fn render_torus_strip<S, C, D, P, const LINES: usize>(
+    spin_deg: f64,
+    dither: bool,
+    target: &mut D,
+    probe: &mut P,
+) -> Result<BenchFrame, BenchError<D::Error>>
+where
+    S: Scalar,
+    C: crate::TargetColor,
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+    P: crate::Probe,
+{
+    let shape = torus::<S>().map_err(|_| BenchError::Scene)?;
+    let objects = [Object {
+        mesh: shape.mesh(),
+        transform: torus_transform(spin_deg),
+        material: torus_material(),
+    }];
+    let camera = camera().map_err(|_| BenchError::Scene)?;
+    let scene = crate::Scene::new(&objects, camera, lights());
+    if C::triangle_id(0).is_some() {
+        // One more vertex record per drawn triangle, as in `render_bench`.
+        render_with::<S, C, D, P, 240, 240, { 512 + TORUS_TRIS }, TORUS_TRIS, TORUS_ACTIVE, 1, LINES>(
+            &scene, dither, target, probe,
+        )
+    } else {
+        render_with::<S, C, D, P, 240, 240, 512, TORUS_TRIS, TORUS_ACTIVE, 1, LINES>(
+            &scene, dither, target, probe,
+        )
+    }
 }
 
 /// Renders one frame of benchmark scene `bench` at 240 × 240 into `target`, with `dither`,
@@ -258,7 +299,7 @@ where
         ($objects:expr, $camera:expr, $lights:expr, $v:expr, $t:expr, $a:expr) => {{
             let camera = $camera.map_err(|_| BenchError::Scene)?;
             let scene = crate::Scene::new(&$objects, camera, $lights);
-            render_with::<S, C, D, P, 240, 240, { $v }, $t, $a, 1>(&scene, dither, target, probe)
+            render_with::<S, C, D, P, 240, 240, { $v }, $t, $a, 1, 1>(&scene, dither, target, probe)
         }};
     }
     // Rendering triangle ids makes every triangle flat, which takes one more vertex record
@@ -295,15 +336,7 @@ where
                 8
             )
         }
-        Bench::Torus => {
-            let shape = torus::<S>().map_err(|_| BenchError::Scene)?;
-            let objects = [Object {
-                mesh: shape.mesh(),
-                transform: torus_transform(spin_deg),
-                material: torus_material(),
-            }];
-            go!(objects, camera(), lights(), 512, 466, 61)
-        }
+        Bench::Torus => render_torus_strip::<S, C, D, P, 1>(spin_deg, dither, target, probe),
         Bench::Icosphere => {
             let shape = Shape::<S, 642, 1280>::icosphere(1.0, 3).map_err(|_| BenchError::Scene)?;
             let mut m = Material::matte([200, 60, 60], S::from_f64(0.1), S::from_f64(0.8));

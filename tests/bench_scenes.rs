@@ -66,3 +66,27 @@ fn hash_target_sees_the_same_frame_as_a_buffer() {
         assert_eq!(h.pixels(), 240 * 240);
     }
 }
+
+#[test]
+fn a_taller_strip_gives_the_same_torus() {
+    // `render_torus_strip` is what `scripts/mcu-bench` measures against the one-line strip.
+    for spin in [0.0, 37.0] {
+        let (f, one) = frame::<Q>(Bench::Torus, spin);
+        let mut g = Frame::new(240, 240, Rgb565::BLACK);
+        let eight = scanline3d::demo::render_torus_strip::<Q, Rgb565, _, _, 8>(
+            spin,
+            false,
+            &mut g,
+            &mut NoProbe,
+        )
+        .unwrap();
+        g.assert_each_written_once();
+        assert!(f.px == g.px, "spin {spin}");
+        assert_eq!(one.stats, eight.stats);
+        // Seven more lines of RGB565 colour and 16-bit depth.
+        assert_eq!(
+            eight.renderer_ram_bytes,
+            one.renderer_ram_bytes + 7 * 240 * 4
+        );
+    }
+}

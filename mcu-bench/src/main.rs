@@ -325,6 +325,34 @@ fn bench<S: Scalar>(scene: Bench) {
     );
 }
 
+/// The torus frame (I16F16) with a strip of `LINES` lines: its renderer instructions, RAM and
+/// hash (`scripts/mcu-bench` checks that the hash equals the one-line frame's).
+#[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
+fn strip_bench<const LINES: usize>() {
+    use scanline3d::demo::render_torus_strip;
+    let mut null = NullTarget::<Rgb565>::new(240, 240);
+    let mut ft = FrameTimer { start: 0, ticks: 0 };
+    let r = render_torus_strip::<Fx<I16F16>, Rgb565, _, _, LINES>(0.0, false, &mut null, &mut ft);
+    let mut target = HashTarget::<Rgb565>::new(240, 240);
+    let _ = render_torus_strip::<Fx<I16F16>, Rgb565, _, _, LINES>(
+        0.0,
+        false,
+        &mut target,
+        &mut NoProbe,
+    );
+    match r {
+        Ok(f) => hprintln!(
+            "STRIP scene=torus number={} lines={} instructions={} renderer_ram={} hash={:016x}",
+            <Fx<I16F16> as Scalar>::NAME,
+            LINES,
+            timer::instructions(ft.ticks as u64),
+            f.renderer_ram_bytes,
+            target.hash()
+        ),
+        Err(e) => hprintln!("ERROR strip lines={} {:?}", LINES, e),
+    }
+}
+
 #[entry]
 fn main() -> ! {
     if !cfg!(feature = "profile-torus") {
@@ -352,6 +380,8 @@ fn main() -> ! {
         bench::<Fx<I16F16>>(scene);
         bench::<f32>(scene);
     }
+    #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
+    strip_bench::<8>();
     #[cfg(feature = "microbit")]
     {
         torus_sized::<MICROBIT_TORUS_SIZE>();
@@ -428,7 +458,12 @@ fn transform_matches_rows() -> bool {
             Fx::dot3_add([r[0], r[1], r[2]], p, r[3])
         });
         if got != want {
-            hprintln!("TRANSFORM MISMATCH case={} got={:?} want={:?}", case, got, want);
+            hprintln!(
+                "TRANSFORM MISMATCH case={} got={:?} want={:?}",
+                case,
+                got,
+                want
+            );
             return false;
         }
         let got = m.transform_dir(p);
@@ -437,7 +472,12 @@ fn transform_matches_rows() -> bool {
             Fx::dot3_add([r[0], r[1], r[2]], p, Fx::ZERO)
         });
         if got != want {
-            hprintln!("DIRECTION MISMATCH case={} got={:?} want={:?}", case, got, want);
+            hprintln!(
+                "DIRECTION MISMATCH case={} got={:?} want={:?}",
+                case,
+                got,
+                want
+            );
             return false;
         }
     }
