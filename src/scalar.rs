@@ -222,6 +222,57 @@ pub trait Scalar:
     }
 }
 
+/// `v ^ (v >> 31)`: `v` for `v ≥ 0`, `|v| − 1` below; an OR of these is below `2^k` exactly
+/// when every value is in `[−2^k, 2^k)`.
+#[inline(always)]
+#[must_use]
+pub(crate) fn spread_bits(v: i32) -> i32 {
+    v ^ (v >> 31)
+}
+
+/// The 16-bit halves of `v`: the low one unsigned, the high one signed (`v = h·2^16 + l`).
+#[inline(always)]
+fn halves(v: i32) -> (u32, i32) {
+    ((v & 0xffff) as u32, v >> 16)
+}
+
+/// `(a·b + 2^15) >> 16` (a Q16.16 product rounded half up) for `a`, `b` in `[−2^23, 2^23)`,
+/// in 32-bit arithmetic: the result is below 2^30 in magnitude, so it is the sum of
+/// `(al·bl + 2^15) >> 16` (at most 2^32 − 2^17 + 2^15 before the shift: no carry is lost),
+/// the cross products `al·bh + ah·bl` and `ah·bh·2^16`, each far inside `i32`.
+#[inline(always)]
+#[must_use]
+pub(crate) fn mul_q16_small(a: i32, b: i32) -> i32 {
+    let ((al, ah), (bl, bh)) = (halves(a), halves(b));
+    let low = ((al * bl + (1 << 15)) >> 16) as i32;
+    low.wrapping_add((al as i32).wrapping_mul(bh))
+        .wrapping_add(ah.wrapping_mul(bl as i32))
+        .wrapping_add(ah.wrapping_mul(bh) << 16)
+}
+
+/// `(a·b + 2^15) >> 16` for the dot product of two 3-vectors with every component in
+/// `[−2^22, 2^22)`, in 32-bit arithmetic (the result is below 3·2^28 in magnitude): the low
+/// products' high halves are added as they are and their low halves summed (below 3·2^16)
+/// before the rounding shift, so no carry between them is lost.
+#[inline(always)]
+#[must_use]
+pub(crate) fn dot3_q16_small(a: [i32; 3], b: [i32; 3]) -> i32 {
+    let mut high = 0i32;
+    let mut low = 1u32 << 15;
+    let mut rest = 0i32;
+    for k in 0..3 {
+        let ((al, ah), (bl, bh)) = (halves(a[k]), halves(b[k]));
+        let t = al * bl;
+        high = high.wrapping_add((t >> 16) as i32);
+        low += t & 0xffff;
+        rest = rest
+            .wrapping_add((al as i32).wrapping_mul(bh))
+            .wrapping_add(ah.wrapping_mul(bl as i32))
+            .wrapping_add(ah.wrapping_mul(bh) << 16);
+    }
+    high.wrapping_add((low >> 16) as i32).wrapping_add(rest)
+}
+
 /// The exact 64-bit product of two `i32`, from four 16 × 16-bit products.
 ///
 /// On a Cortex-M0 `(a as i64) * (b as i64)` becomes a call to the general 64 × 64-bit
@@ -633,7 +684,11 @@ macro_rules! impl_fx {
             /// Rounds to nearest (ties up) and saturates.
             #[inline(always)]
             fn mul(self, o: Self) -> Self {
-                let p = mul_wide(self.0.to_bits(), o.0.to_bits());
+                let (a, b) = (self.0.to_bits(), o.0.to_bits());
+                if $frac == 16 && (spread_bits(a) | spread_bits(b)) < 1 << 23 {
+                    return Fx($t::from_bits(mul_q16_small(a, b)));
+                }
+                let p = mul_wide(a, b);
                 Fx($t::from_bits(sat32((p + (1i64 << ($frac - 1))) >> $frac)))
             }
         }
@@ -736,6 +791,11 @@ macro_rules! impl_fx {
                     | (b[0] ^ (b[0] >> 31))
                     | (b[1] ^ (b[1] >> 31))
                     | (b[2] ^ (b[2] >> 31));
+                if $frac == 16 && spread < 1 << 22 {
+                    return Fx($t::from_bits(
+                        dot3_q16_small(a, b).saturating_add(c.0.to_bits()),
+                    ));
+                }
                 if spread < 1 << 30 {
                     let p = mul_wide(a[0], b[0])
                         + mul_wide(a[1], b[1])
@@ -1193,6 +1253,58 @@ mod tests {
                 mul_q32(n, 65535) as i128,
                 (n as i128 * 65535 + (1 << 31)) >> 32
             );
+        }
+    }
+
+    #[test]
+    fn small_q16_products_equal_the_64_bit_ones() {
+        // mul_q16_small and dot3_q16_small against the exact 64-bit rounding, at the ends of
+        // their ranges and on pseudo-random values of every magnitude within them.
+        let exact = |p: i64| ((p + (1 << 15)) >> 16) as i32;
+        let ends = [
+            -(1 << 23),
+            -(1 << 23) + 1,
+            -65537,
+            -65536,
+            -32769,
+            -32768,
+            -1,
+            0,
+            1,
+        ];
+        let ends = ends
+            .iter()
+            .chain(&[32767, 32768, 65535, 65536, (1 << 23) - 1]);
+        for &a in ends.clone() {
+            for &b in ends.clone() {
+                assert_eq!(mul_q16_small(a, b), exact(a as i64 * b as i64), "{a} · {b}");
+            }
+        }
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = |bits: u32| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            ((x as i32) >> (x >> 59)) >> (32 - bits)
+        };
+        for _ in 0..200_000 {
+            let (a, b) = (next(24), next(24));
+            assert_eq!(mul_q16_small(a, b), exact(a as i64 * b as i64), "{a} · {b}");
+            let (u, v) = (
+                [next(23), next(23), next(23)],
+                [next(23), next(23), next(23)],
+            );
+            let p: i64 = (0..3).map(|k| u[k] as i64 * v[k] as i64).sum();
+            assert_eq!(dot3_q16_small(u, v), exact(p), "{u:?} · {v:?}");
+        }
+        let m = (1 << 22) - 1;
+        for (u, v) in [
+            ([m; 3], [m; 3]),
+            ([-m - 1; 3], [m; 3]),
+            ([-m - 1; 3], [-m - 1; 3]),
+        ] {
+            let p: i64 = (0..3).map(|k| u[k] as i64 * v[k] as i64).sum();
+            assert_eq!(dot3_q16_small(u, v), exact(p), "{u:?} · {v:?}");
         }
     }
 
