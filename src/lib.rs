@@ -93,6 +93,8 @@ pub mod cull;
 mod cull_thumb;
 pub mod demo;
 pub mod hash;
+#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+mod light_thumb;
 pub mod math;
 pub mod mesh;
 pub mod metrics;

@@ -294,6 +294,20 @@ impl Edge {
     }
 }
 
+/// ARMv6-M only, for the benchmark firmware's self-tests: a signed value of 1 to `max_bits`
+/// bits (the count from `next`'s top bits, the sign from its lowest) from the generator `next`.
+#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+pub(crate) fn signed_bits(next: &mut impl FnMut() -> u32, max_bits: u32) -> i32 {
+    let r = next();
+    let bits = (r >> 27) % max_bits + 1;
+    let v = (next() >> (32 - bits)) as i32;
+    if r & 1 == 0 {
+        -v
+    } else {
+        v
+    }
+}
+
 /// Cortex-M only, for the benchmark firmware's self-tests: a xorshift32 generator from `seed`
 /// (nonzero), the same sequence on every core.
 #[cfg(all(target_arch = "arm", target_os = "none"))]

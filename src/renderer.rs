@@ -259,6 +259,10 @@ pub struct Renderer<
     _s: PhantomData<S>,
 }
 
+/// What the lighting routine ([`Scalar::light_run_565`]) needs of an object: its mesh's
+/// normals, its one light's direction (in the object's space) and colour fraction.
+type QuickLight<'n, S> = (&'n [Vec3<S>], Vec3<S>, S);
+
 /// Per-object state of the geometry stage.
 struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
     obj: &'o Object<'a, S>,
@@ -292,6 +296,21 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         } else {
             normalize(n)
         }
+    }
+
+    /// What [`Scalar::light_run_565`] needs when it can light this object's vertices: the
+    /// number type has the routine, the target is RGB565, the lights are in the object's space
+    /// (no specular term), there is one light and it is grey, and the mesh has normals. Then
+    /// the normals, the light's direction and its colour fraction.
+    fn quick_light<C: TargetColor>(&self) -> Option<QuickLight<'_, S>> {
+        if !(S::LIGHT_RUN && self.in_object && C::CHANNEL_MAX == [31, 63, 31]) {
+            return None;
+        }
+        let [l] = self.lights.as_slice() else {
+            return None;
+        };
+        let (dir, frac) = l.grey()?;
+        Some((self.obj.mesh.normals()?, dir, frac))
     }
 
     /// Lit colour of mesh vertex `i`, in the vertex format ([`ScreenVertex::color`]).
@@ -841,16 +860,70 @@ impl<
             }
         }
         if fast {
-            // The vertices `cull_push` marked: lit once each, as the full path lights them.
+            // The vertices `cull_push` marked: lit once each, as the full path lights them;
+            // runs of them by `Scalar::light_run_565` where it applies.
             probe.enter(Stage::Lighting);
+            self.light_pass(o, n);
+            probe.enter(Stage::Triangles);
+        }
+    }
+
+    /// The lighting pass over the `n` vertices of object `o`: each vertex the triangle loop
+    /// marked, lit once, by runs of [`Scalar::light_run_565`] where it applies. Out of line:
+    /// its locals stay out of the frame of [`Self::object`], which is on the deepest stack of
+    /// a frame (on a 16 KB part the stack has no room to spare).
+    #[inline(never)]
+    fn light_pass<const L: usize>(&mut self, o: &ObjectSetup<'_, '_, S, L>, n: usize) {
+        let base = o.base;
+        if let Some(quick) = o.quick_light::<C>() {
+            let mut runs = true;
+            let mut i = 0;
+            while i < n {
+                if runs {
+                    match self.light_quick(o, i, n, quick) {
+                        Some(j) => i = j,
+                        None => runs = false,
+                    }
+                    if i >= n {
+                        break;
+                    }
+                }
+                if let Some(v) = self.verts.get_mut(base + i) {
+                    if v.flags & (LIT | NEEDS_LIGHT) == NEEDS_LIGHT {
+                        v.set_color(o.vertex_color::<C>(i));
+                        v.flags |= LIT;
+                    }
+                }
+                i += 1;
+            }
+        } else {
             for (i, v) in self.verts.iter_mut().skip(base).take(n).enumerate() {
                 if v.flags & (LIT | NEEDS_LIGHT) == NEEDS_LIGHT {
                     v.set_color(o.vertex_color::<C>(i));
                     v.flags |= LIT;
                 }
             }
-            probe.enter(Stage::Triangles);
         }
+    }
+
+    /// One run of [`Scalar::light_run_565`] over vertices `i..n` of object `o` (with `quick`
+    /// from [`ObjectSetup::quick_light`]): the index of the first vertex it leaves to the
+    /// lighting pass (`n` when none), or `None` when it takes none for this object's light and
+    /// material. Out of line, and the pass lights the vertices a run leaves outside it: the
+    /// deepest stack of a frame does not grow (on a 16 KB part it has no room).
+    #[inline(never)]
+    fn light_quick<const L: usize>(
+        &mut self,
+        o: &ObjectSetup<'_, '_, S, L>,
+        i: usize,
+        n: usize,
+        quick: QuickLight<'_, S>,
+    ) -> Option<usize> {
+        let (normals, dir, frac) = quick;
+        let m = &o.obj.material;
+        let vs = self.verts.get_mut(o.base + i..o.base + n)?;
+        let ns = normals.get(i..)?;
+        Some(i + S::light_run_565(vs, ns, dir, frac, m.ambient, m.diffuse, m.color)?)
     }
 
     /// The vertex loop's step: the record of position `p` of object `o` ([`vertex_record`]),
@@ -1153,17 +1226,7 @@ pub fn vertex_self_test(n: u32) -> Option<u32> {
     for _ in 0..n {
         let seed = seeds();
         let mut next = crate::raster::xorshift32(seed | 1);
-        // A value of about 2^bits (signed), bits from `r`'s top.
-        let mut val = |max_bits: u32| {
-            let r = next();
-            let bits = (r >> 27) % max_bits + 1;
-            let v = (next() >> (32 - bits)) as i32;
-            if r & 1 == 0 {
-                -v
-            } else {
-                v
-            }
-        };
+        let mut val = |max_bits: u32| crate::raster::signed_bits(&mut next, max_bits);
         let mut m = Mat4::<Q>::identity();
         for row in m.m.iter_mut() {
             for e in row.iter_mut() {
@@ -1195,6 +1258,88 @@ pub fn vertex_self_test(n: u32) -> Option<u32> {
                 let _ = out.push(vertex_record(&m, &vp, g, p));
                 i += 1;
             }
+        }
+    }
+    None
+}
+
+/// ARMv6-M only, for the benchmark firmware: the assembly lighting run
+/// (`Scalar::light_run_565` of `Fx<I16F16>`) against the portable lighting of the pass
+/// (`lit_diffuse`, RGB565 scaling and packing, `set_color`, `LIT`) on `n` pseudo-random
+/// objects of 16 vertices: marked, lit and unmarked vertices with any other flag and colour
+/// bits; normals and light directions from tiny to beyond the routine's range; diffuse
+/// coefficients and colour fractions near and beyond it, ambient terms of every sign and size
+/// (sums that saturate included), material colours 0..=255. Runs until every vertex is done,
+/// lighting each declined one itself; returns the first object with a differing record, as its
+/// seed.
+#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+#[doc(hidden)]
+pub fn light_self_test(n: u32) -> Option<u32> {
+    use crate::scalar::Fx;
+    use crate::shade::Material;
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    use fixed::types::I16F16;
+    type Q = Fx<I16F16>;
+    let q = |b: i32| Fx(I16F16::from_bits(b));
+    let max = <Rgb565 as TargetColor>::CHANNEL_MAX;
+    let mut seeds = crate::raster::xorshift32(0x1d87_2b41);
+    for _ in 0..n {
+        let seed = seeds();
+        let mut next = crate::raster::xorshift32(seed | 1);
+        let mut val = |max_bits: u32| crate::raster::signed_bits(&mut next, max_bits);
+        let big = seed % 7 == 0;
+        let dir = [0; 3].map(|_| q(val(if big { 24 } else { 17 })));
+        let frac = q(val(if big { 25 } else { 17 }));
+        // Ambient terms next to either end of the range make the ambient sum saturate.
+        let ambient = match seed % 11 {
+            0 => i32::MAX - (val(24) & 0x7f_ffff),
+            1 => i32::MIN + (val(24) & 0x7f_ffff),
+            _ => val(if big { 31 } else { 18 }),
+        };
+        let mut m = Material::matte([0; 3], q(ambient), q(val(24)));
+        m.color = [0; 3].map(|_| (val(8) & 0xff) as u8);
+        let light = [PreparedLight::grey_raw(dir, frac)];
+        let mut normals = [[Q::ZERO; 3]; 16];
+        let mut verts = [ScreenVertex::default(); 16];
+        for (nv, v) in normals.iter_mut().zip(verts.iter_mut()) {
+            *nv = [0; 3].map(|_| q(val(if seed % 5 == 0 { 24 } else { 17 })));
+            let r = val(16) as u16;
+            v.rgb_hi = [r as u8, (r >> 8) as u8, r as u8 ^ 0x5a];
+            v.flags = r;
+        }
+        // The pass's portable lighting of one vertex.
+        let portable = |v: &mut ScreenVertex, nv: [Q; 3]| {
+            if v.flags & (LIT | NEEDS_LIGHT) == NEEDS_LIGHT {
+                v.set_color(pack_channels(
+                    Rgb565::vertex_channels(lit_diffuse(&m, &light, nv)),
+                    max,
+                ));
+                v.flags |= LIT;
+            }
+        };
+        let mut want = verts;
+        for (v, &nv) in want.iter_mut().zip(&normals) {
+            portable(v, nv);
+        }
+        let mut i = 0;
+        while i < verts.len() {
+            let run = Q::light_run_565(
+                &mut verts[i..],
+                &normals[i..],
+                dir,
+                frac,
+                m.ambient,
+                m.diffuse,
+                m.color,
+            );
+            i += run.unwrap_or(0);
+            if let (Some(v), Some(&nv)) = (verts.get_mut(i), normals.get(i)) {
+                portable(v, nv);
+            }
+            i += 1;
+        }
+        if verts != want {
+            return Some(seed);
         }
     }
     None

@@ -198,6 +198,30 @@ pub trait Scalar:
         let _ = (p, sx, sy);
         None
     }
+    /// Whether [`Scalar::light_run_565`] can light anything (the lighting pass asks it only
+    /// then).
+    #[doc(hidden)]
+    const LIGHT_RUN: bool = false;
+    /// For RGB565 targets: lights the vertices of `verts` that the triangle loop marked, as
+    /// the renderer's lighting pass would with one grey light of direction `dir` (the object's
+    /// space) and colour fraction `frac` and a material without specular term, until the
+    /// first marked vertex a faster routine does not handle; returns how many vertices it
+    /// passed, or `None` when it handles none for these constants.
+    #[doc(hidden)]
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn light_run_565(
+        verts: &mut [crate::project::ScreenVertex],
+        normals: &[[Self; 3]],
+        dir: [Self; 3],
+        frac: Self,
+        ambient: Self,
+        diffuse: Self,
+        color: [u8; 3],
+    ) -> Option<usize> {
+        let _ = (verts, normals, dir, frac, ambient, diffuse, color);
+        None
+    }
     /// Whether [`Scalar::project_run`] can store anything (the vertex loop asks it only then).
     #[doc(hidden)]
     const PROJECT_RUN: bool = false;
@@ -652,7 +676,7 @@ pub struct FxRecip {
 }
 
 macro_rules! impl_fx {
-    ($t:ident, $frac:expr, $name:expr $(, $thumb_transform:path, $thumb_dir:path, $thumb_project:path, $thumb_run:path)?) => {
+    ($t:ident, $frac:expr, $name:expr $(, $thumb_transform:path, $thumb_dir:path, $thumb_project:path, $thumb_run:path, $thumb_light:path)?) => {
         impl Fx<$t> {
             /// Builds a value from a float literal (rounds to nearest, saturates).
             #[must_use]
@@ -930,6 +954,37 @@ macro_rules! impl_fx {
                     0
                 }
             }
+            // True where the type passes a routine and the target is ARMv6-M.
+            const LIGHT_RUN: bool = false $(|| {
+                let _ = stringify!($thumb_light);
+                cfg!(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))
+            })?;
+            #[inline(always)]
+            #[allow(clippy::too_many_arguments)]
+            fn light_run_565(
+                verts: &mut [crate::project::ScreenVertex],
+                normals: &[[Self; 3]],
+                dir: [Self; 3],
+                frac: Self,
+                ambient: Self,
+                diffuse: Self,
+                color: [u8; 3],
+            ) -> Option<usize> {
+                $(
+                    // Thumb-1 assembly on ARMv6-M (see `screen_words`).
+                    #[cfg(all(
+                        target_arch = "arm",
+                        target_os = "none",
+                        not(target_has_atomic = "32")
+                    ))]
+                    return $thumb_light(verts, normals, dir, frac, ambient, diffuse, color);
+                )?
+                #[allow(unreachable_code)]
+                {
+                    let _ = (verts, normals, dir, frac, ambient, diffuse, color);
+                    None
+                }
+            }
             fn to_fixed_i32(self, frac: u32) -> i32 {
                 let b = self.0.to_bits() as i64;
                 let v = if frac >= $frac {
@@ -951,7 +1006,8 @@ impl_fx!(
     crate::span_thumb::transform_i16f16,
     crate::span_thumb::transform_dir_i16f16,
     crate::span_thumb::project_i16f16,
-    crate::vertex_thumb::project_run
+    crate::vertex_thumb::project_run,
+    crate::light_thumb::light_run
 );
 impl_fx!(I20F12, 12, "I20F12");
 impl_fx!(I12F20, 20, "I12F20");

@@ -106,6 +106,23 @@ impl<S: Scalar> PreparedLight<S> {
         }
     }
 
+    /// The direction and colour fraction of a grey light (equal channels), else `None`.
+    pub(crate) fn grey(&self) -> Option<(Vec3<S>, S)> {
+        self.grey.then_some((self.dir, self.frac[0]))
+    }
+
+    /// A grey light with the given direction (as it is, not normalized) and colour fraction,
+    /// for the lighting routine's self-test.
+    #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+    pub(crate) fn grey_raw(dir: Vec3<S>, frac: S) -> Self {
+        PreparedLight {
+            dir,
+            frac: [frac; 3],
+            full: [S::from_i32(255); 3],
+            grey: true,
+        }
+    }
+
     pub(crate) fn new(l: &Light<S>) -> Self {
         let k = S::from_f64(1.0 / 255.0);
         let c = |i: usize| S::from_i32(l.color[i] as i32);

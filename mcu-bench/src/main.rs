@@ -521,6 +521,11 @@ fn assembly_matches_portable() -> bool {
         hprintln!("VERTEX LOOP MISMATCH seed {:#x}", seed);
         return false;
     }
+    #[cfg(not(target_has_atomic = "32"))]
+    if let Some(seed) = scanline3d::renderer::light_self_test(5_000) {
+        hprintln!("LIGHTING MISMATCH seed {:#x}", seed);
+        return false;
+    }
     true
 }
 
