@@ -17,7 +17,7 @@
 
 use crate::project::ScreenVertex;
 use crate::renderer::{LIT, NEEDS_LIGHT};
-use crate::scalar::Fx;
+use crate::scalar::{spread_bits, Fx};
 use fixed::types::I16F16;
 
 /// The routine's argument block (`repr(C)`: it reads and updates the fields by offset). The
@@ -315,11 +315,6 @@ extern "C" {
     fn scanline3d_light565(ctx: *mut LightCtx) -> u32;
 }
 
-/// `v ^ (v >> 31)` (see `scalar::spread_bits`).
-fn spread(v: i32) -> i32 {
-    v ^ (v >> 31)
-}
-
 /// `Scalar::light_run_565` for Q16.16 on ARMv6-M: passes the vertices of `verts`
 /// (with their normals, `normals[i]` for `verts[i]`) until the first marked one it does not
 /// light, lighting the marked ones, and returns how many it passed; `None` when the light or
@@ -337,8 +332,8 @@ pub(crate) fn light_run(
 ) -> Option<usize> {
     let b = |v: Fx<I16F16>| v.0.to_bits();
     let (dir, frac, ambient, diffuse) = (dir.map(b), b(frac), b(ambient), b(diffuse));
-    if dir.iter().fold(0, |s, &v| s | spread(v)) >= 1 << 22
-        || (spread(frac) | spread(diffuse)) >= 1 << 23
+    if dir.iter().fold(0, |s, &v| s | spread_bits(v)) >= 1 << 22
+        || (spread_bits(frac) | spread_bits(diffuse)) >= 1 << 23
     {
         return None;
     }

@@ -313,6 +313,13 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         Some((self.obj.mesh.normals()?, dir, frac))
     }
 
+    /// Lights record `v` as mesh vertex `i` ([`Self::vertex_color`]) and marks it [`LIT`].
+    #[inline(always)]
+    fn light<C: TargetColor>(&self, v: &mut ScreenVertex, i: usize) {
+        v.set_color(self.vertex_color::<C>(i));
+        v.flags |= LIT;
+    }
+
     /// Lit colour of mesh vertex `i`, in the vertex format ([`ScreenVertex::color`]).
     fn vertex_color<C: TargetColor>(&self, i: usize) -> [u16; 3] {
         let mesh = &self.obj.mesh;
@@ -827,8 +834,7 @@ impl<
                 } else {
                     for (k, &v) in vi.iter().enumerate() {
                         if self.verts[v].flags & LIT == 0 {
-                            self.verts[v].set_color(o.vertex_color::<C>(tri[k] as usize));
-                            self.verts[v].flags |= LIT;
+                            o.light::<C>(&mut self.verts[v], tri[k] as usize);
                         }
                     }
                     None
@@ -890,8 +896,7 @@ impl<
                 }
                 if let Some(v) = self.verts.get_mut(base + i) {
                     if v.flags & (LIT | NEEDS_LIGHT) == NEEDS_LIGHT {
-                        v.set_color(o.vertex_color::<C>(i));
-                        v.flags |= LIT;
+                        o.light::<C>(v, i);
                     }
                 }
                 i += 1;
@@ -899,8 +904,7 @@ impl<
         } else {
             for (i, v) in self.verts.iter_mut().skip(base).take(n).enumerate() {
                 if v.flags & (LIT | NEEDS_LIGHT) == NEEDS_LIGHT {
-                    v.set_color(o.vertex_color::<C>(i));
-                    v.flags |= LIT;
+                    o.light::<C>(v, i);
                 }
             }
         }
@@ -980,8 +984,7 @@ impl<
                 Some(c) => c,
                 None => {
                     if self.verts[v].flags & LIT == 0 {
-                        self.verts[v].set_color(o.vertex_color::<C>(tri[k] as usize));
-                        self.verts[v].flags |= LIT;
+                        o.light::<C>(&mut self.verts[v], tri[k] as usize);
                     }
                     unpack_channels(self.verts[v].color(), C::CHANNEL_MAX)
                 }

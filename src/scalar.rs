@@ -176,17 +176,13 @@ pub trait Scalar:
     #[must_use]
     fn to_fixed_i32(self, frac: u32) -> i32;
     /// A lit channel: `self · k` clamped to 0..=255 and rounded to 8.8 fixed point
-    /// (0..=65280), as `shade` computes it from [`Scalar::mul_int`], `max`, `min` and
-    /// [`Scalar::to_fixed_i32`]; a type may give the same values faster.
+    /// (0..=65280): `shade::channel_8_8` of [`Scalar::mul_int`]; a type may give the same
+    /// values faster.
     #[doc(hidden)]
     #[must_use]
     #[inline(always)]
     fn lit_channel(self, k: u8) -> u16 {
-        let v = self
-            .mul_int(k as i32)
-            .max(Self::ZERO)
-            .min(Self::from_i32(255));
-        v.to_fixed_i32(8).clamp(0, 255 << 8) as u16
+        crate::shade::channel_8_8(self.mul_int(k as i32))
     }
     /// The screen words that [`crate::project::Viewport::project`] computes for a clip-space
     /// point with `w > 0` and the scales `sx`, `sy` (8 × the viewport size), when the type has
@@ -808,13 +804,12 @@ macro_rules! impl_fx {
                 // With every factor in [−2³⁰, 2³⁰) each product is at most 2⁶⁰ in magnitude
                 // and the sum below 2⁶², so plain 64-bit additions (two instructions each on
                 // a Cortex-M0) cannot overflow and give the same value as the saturating ones.
-                // `v ^ (v >> 31)` is v for v ≥ 0 and |v| − 1 below.
-                let spread = (a[0] ^ (a[0] >> 31))
-                    | (a[1] ^ (a[1] >> 31))
-                    | (a[2] ^ (a[2] >> 31))
-                    | (b[0] ^ (b[0] >> 31))
-                    | (b[1] ^ (b[1] >> 31))
-                    | (b[2] ^ (b[2] >> 31));
+                let spread = spread_bits(a[0])
+                    | spread_bits(a[1])
+                    | spread_bits(a[2])
+                    | spread_bits(b[0])
+                    | spread_bits(b[1])
+                    | spread_bits(b[2]);
                 if $frac == 16 && spread < 1 << 22 {
                     return Fx($t::from_bits(
                         dot3_q16_small(a, b).saturating_add(c.0.to_bits()),
@@ -1369,8 +1364,7 @@ mod tests {
         // Each Fx type's fast `lit_channel` against the trait's default composition, on every
         // raw value near the fast path's bounds and on pseudo-random ones, with every k.
         fn reference<S: Scalar>(x: S, k: u8) -> u16 {
-            let v = x.mul_int(k as i32).max(S::ZERO).min(S::from_i32(255));
-            v.to_fixed_i32(8).clamp(0, 255 << 8) as u16
+            crate::shade::channel_8_8(x.mul_int(k as i32))
         }
         fn check<T>()
         where

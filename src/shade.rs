@@ -223,7 +223,7 @@ fn add_diffuse<S: Scalar>(diffuse: &mut [S; 3], m: &Material<S>, l: &PreparedLig
 /// A lit channel (0..=255 in channel units) clamped and rounded to 8.8 fixed point
 /// (0..=65280).
 #[inline(always)]
-fn channel_8_8<S: Scalar>(v: S) -> u16 {
+pub(crate) fn channel_8_8<S: Scalar>(v: S) -> u16 {
     let v = v.max(S::ZERO).min(S::from_i32(255));
     v.to_fixed_i32(8).clamp(0, 255 << 8) as u16
 }

@@ -2283,8 +2283,7 @@ pub(crate) fn edge_new(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> Option<E
 /// when every value is in [−2³⁰, 2³⁰).
 #[inline(always)]
 pub(crate) fn spread(v: Fx<I16F16>) -> i32 {
-    let b = v.0.to_bits();
-    b ^ (b >> 31)
+    crate::scalar::spread_bits(v.0.to_bits())
 }
 
 /// The first `R` rows of `m` times `(p, 1)` for `R = 4` (a point) or times `(p, 0)` for
