@@ -1,6 +1,7 @@
 //! Strips into buffers the caller owns (`Renderer::render_strip_into`, `render_strip_be`) and
-#![allow(clippy::needless_range_loop)]
 //! the board firmware's frames (`demo::board`): the same pixels as `Renderer::render`.
+// Pixel coordinates index the frame and the lines in lockstep.
+#![allow(clippy::needless_range_loop)]
 
 mod common;
 
