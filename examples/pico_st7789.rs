@@ -1,13 +1,21 @@
 //! Firmware for a Raspberry Pi Pico (RP2040) with a Waveshare Pico-LCD-1.3 (ST7789, 240 × 240):
-//! the default torus spinning about Y, Gouraud-shaded in fixed point with dithering, drawn line
-//! by line through mipidsi (no framebuffer), with the frame rate composed into the lines as text.
+//! the default torus spinning about Y, Gouraud-shaded in fixed point with dithering, the frame
+//! rate of the previous frame as a label, no framebuffer.
+//!
+//! How a frame goes out: mipidsi initialises the panel and sets the address window through this
+//! file's SPI interface ([`firmware::PanelBus`], which implements mipidsi's `Interface`); then the
+//! renderer draws 8-line strips into two buffers in turn (`scanline3d::demo::board`), and while
+//! one buffer is being drawn, DMA channel 0 sends the other to the panel with the SPI in 16-bit
+//! frames, so each native RGB565 word goes out high byte first, as the ST7789 expects, with no
+//! byte swapping. The label is composed into the strips it crosses from glyphs rasterized once.
 //!
 //! Build: `cargo build --release --target thumbv6m-none-eabi --example pico_st7789`
 //! Flash: `cargo run --release --target thumbv6m-none-eabi --example pico_st7789` (BOOTSEL mode;
 //! the runner is elf2uf2-rs, see `.cargo/config.toml`).
 //!
-//! Not yet verified on hardware: it builds and links in CI. On the host this file compiles to a
-//! program that only says so.
+//! Checked in CI in the RP2040 emulator (`scripts/pico-emu`: boot, panel commands, every pixel
+//! of the frames, cycles per frame); not yet run on a real board. On the host this file
+//! compiles to a program that only says so.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(not(target_os = "none"))]
@@ -20,15 +28,14 @@ fn main() {
 
 #[cfg(target_os = "none")]
 mod firmware {
-    use core::fmt::Write as _;
+    use core::convert::Infallible;
 
-    use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
+    use embedded_graphics::pixelcolor::raw::RawU16;
     use embedded_graphics::pixelcolor::Rgb565;
     use embedded_graphics::prelude::*;
-    use embedded_graphics::text::Text;
     use embedded_hal::digital::OutputPin;
-    use embedded_hal_bus::spi::ExclusiveDevice;
-    use mipidsi::interface::SpiInterface;
+    use embedded_hal::spi::SpiBus;
+    use mipidsi::interface::Interface;
     use mipidsi::models::ST7789;
     use mipidsi::options::ColorInversion;
     use mipidsi::Builder;
@@ -36,22 +43,178 @@ mod firmware {
     use rp_pico::entry;
     use rp_pico::hal::fugit::RateExtU32;
     use rp_pico::hal::{self, gpio, pac, Clock};
-    use scanline3d::demo::{self, TorusRenderer};
+    use scanline3d::demo::{self, board};
     use scanline3d::fixed::types::I16F16;
-    use scanline3d::{Fx, Object, Scene};
+    use scanline3d::Fx;
 
     // Wiring of the Waveshare Pico-LCD-1.3 (SPI1). Another board: change these lines.
-    type ClkPin = gpio::bank0::Gpio10;
-    type MosiPin = gpio::bank0::Gpio11;
+    type ClkPin = gpio::Pin<gpio::bank0::Gpio10, gpio::FunctionSpi, gpio::PullNone>;
+    type MosiPin = gpio::Pin<gpio::bank0::Gpio11, gpio::FunctionSpi, gpio::PullNone>;
+    type DcPin = gpio::Pin<gpio::bank0::Gpio8, gpio::FunctionSioOutput, gpio::PullDown>;
+    type CsPin = gpio::Pin<gpio::bank0::Gpio9, gpio::FunctionSioOutput, gpio::PullDown>;
+    type Spi1 = hal::spi::Spi<hal::spi::Enabled, pac::SPI1, (MosiPin, ClkPin), 8>;
     /// SPI clock: the RP2040's peripheral clock (125 MHz) divided by 2, the fastest it allows.
     const SPI_HZ: u32 = 62_500_000;
-    /// Degrees the torus turns per frame.
-    const SPIN_DEG: f64 = 3.0;
+    /// DMA channel that sends the strips, and the SPI1 TX data request it is paced by.
+    const DMA_CH: usize = 0;
+    const DREQ_SPI1_TX: u8 = 18;
 
     type Q = Fx<I16F16>;
 
+    /// SPI1 with the panel's DC and CS lines: mipidsi's interface for commands (blocking
+    /// byte writes, 8-bit frames) and a DMA stream for pixels (16-bit frames).
+    pub struct PanelBus {
+        spi: Spi1,
+        dc: DcPin,
+        cs: CsPin,
+        /// A DMA transfer may be running, or the SPI is in 16-bit frames.
+        streaming: bool,
+    }
+
+    impl PanelBus {
+        fn regs() -> &'static pac::spi0::RegisterBlock {
+            // SAFETY: SPI1 is owned by `self.spi`; these accesses only change the frame size
+            // and read the status while no other code uses the peripheral.
+            unsafe { &*pac::SPI1::ptr() }
+        }
+
+        fn dma() -> &'static pac::dma::CH {
+            // SAFETY: channel DMA_CH is used by this type only.
+            unsafe { (*pac::DMA::ptr()).ch(DMA_CH) }
+        }
+
+        /// Data size of the SPI's frames (8 or 16 bits), changed with the SPI disabled.
+        fn frame_bits(bits: u8) {
+            let spi = Self::regs();
+            spi.sspcr1().modify(|_, w| w.sse().clear_bit());
+            // SAFETY: DSS takes 3..=15 (frame bits − 1).
+            spi.sspcr0()
+                .modify(|_, w| unsafe { w.dss().bits(bits - 1) });
+            spi.sspcr1().modify(|_, w| w.sse().set_bit());
+        }
+
+        /// Waits until the running DMA transfer and the SPI are done, empties the receive
+        /// FIFO (the panel sends nothing back) and returns to 8-bit frames for commands.
+        fn finish_pixels(&mut self) {
+            if !self.streaming {
+                return;
+            }
+            while Self::dma().ch_ctrl_trig().read().busy().bit_is_set() {}
+            let spi = Self::regs();
+            while spi.sspsr().read().bsy().bit_is_set() || spi.sspsr().read().tfe().bit_is_clear() {
+            }
+            while spi.sspsr().read().rne().bit_is_set() {
+                let _ = spi.sspdr().read();
+            }
+            Self::frame_bits(8);
+            self.streaming = false;
+        }
+
+        /// After `RAMWR`: data mode, 16-bit frames.
+        fn begin_pixels(&mut self) {
+            let _ = self.spi.flush();
+            let _ = self.dc.set_high();
+            Self::frame_bits(16);
+            self.streaming = true;
+        }
+
+        /// Sends `lines` by DMA once the previous strip is out; returns at once. The lines must
+        /// stay untouched until the next `send_strip` or `finish_pixels` returns (the caller
+        /// alternates two buffers, and both live as long as `main`, which never returns).
+        fn send_strip(&mut self, lines: &[[Rgb565; board::SIZE]]) {
+            let ch = Self::dma();
+            while ch.ch_ctrl_trig().read().busy().bit_is_set() {}
+            let words = (lines.len() * board::SIZE) as u32;
+            // SAFETY: addresses of a live buffer of `words` halfwords and of SPI1's data
+            // register; the transfer is paced by SPI1's TX request.
+            unsafe {
+                ch.ch_read_addr().write(|w| w.bits(lines.as_ptr() as u32));
+                ch.ch_write_addr()
+                    .write(|w| w.bits(Self::regs().sspdr().as_ptr() as u32));
+                ch.ch_trans_count().write(|w| w.bits(words));
+                ch.ch_ctrl_trig().write(|w| {
+                    w.data_size()
+                        .size_halfword()
+                        .incr_read()
+                        .set_bit()
+                        .incr_write()
+                        .clear_bit()
+                        .treq_sel()
+                        .bits(DREQ_SPI1_TX)
+                        .chain_to()
+                        .bits(DMA_CH as u8)
+                        .en()
+                        .set_bit()
+                });
+            }
+        }
+    }
+
+    impl Interface for PanelBus {
+        type Word = u8;
+        type Error = Infallible;
+
+        fn send_command(&mut self, command: u8, args: &[u8]) -> Result<(), Infallible> {
+            self.finish_pixels();
+            self.cs.set_low()?;
+            self.dc.set_low()?;
+            self.spi.write(&[command])?;
+            self.spi.flush()?;
+            self.dc.set_high()?;
+            self.spi.write(args)?;
+            self.spi.flush()
+        }
+
+        fn send_pixels<const N: usize>(
+            &mut self,
+            pixels: impl IntoIterator<Item = [u8; N]>,
+        ) -> Result<(), Infallible> {
+            for p in pixels {
+                self.spi.write(&p)?;
+            }
+            self.spi.flush()
+        }
+
+        fn send_repeated_pixel<const N: usize>(
+            &mut self,
+            pixel: [u8; N],
+            count: u32,
+        ) -> Result<(), Infallible> {
+            for _ in 0..count {
+                self.spi.write(&pixel)?;
+            }
+            self.spi.flush()
+        }
+    }
+
+    extern "C" {
+        // `.ram_code` (memory.x): its SRAM range and its load address in flash.
+        static mut __sram_code: u32;
+        static mut __eram_code: u32;
+        static __siram_code: u32;
+    }
+
+    /// Copies the renderer's code from flash to SRAM (`.ram_code` in memory.x), word by word
+    /// with volatile accesses (no call into code that is not there yet).
+    fn load_ram_code() {
+        // SAFETY: the linker script defines the symbols as the word-aligned bounds of
+        // `.ram_code` in SRAM and its load image in flash; nothing runs from that SRAM yet.
+        unsafe {
+            let mut dst = core::ptr::addr_of_mut!(__sram_code);
+            let end = core::ptr::addr_of_mut!(__eram_code);
+            let mut src = core::ptr::addr_of!(__siram_code);
+            while dst < end {
+                core::ptr::write_volatile(dst, core::ptr::read_volatile(src));
+                dst = dst.add(1);
+                src = src.add(1);
+            }
+        }
+    }
+
     #[entry]
     fn main() -> ! {
+        // First: the HAL's clock set-up below already divides (hardware-divider helpers).
+        load_ram_code();
         let mut pac = pac::Peripherals::take().unwrap();
         let mut watchdog = hal::Watchdog::new(pac.WATCHDOG);
         let clocks = hal::clocks::init_clocks_and_plls(
@@ -73,59 +236,83 @@ mod firmware {
             &mut pac.RESETS,
         );
         let mut timer = hal::Timer::new(pac.TIMER, &mut pac.RESETS, &clocks);
+        // The DMA block out of reset (the strips' channel is programmed by `PanelBus`).
+        pac.RESETS.reset().modify(|_, w| w.dma().clear_bit());
+        while pac.RESETS.reset_done().read().dma().bit_is_clear() {}
 
         // SPI1: CLK GP10, MOSI GP11; CS GP9, DC GP8, RST GP12, backlight GP13.
-        let clk: gpio::Pin<ClkPin, gpio::FunctionSpi, gpio::PullNone> = pins.gpio10.reconfigure();
-        let mosi: gpio::Pin<MosiPin, gpio::FunctionSpi, gpio::PullNone> = pins.gpio11.reconfigure();
+        let clk: ClkPin = pins.gpio10.reconfigure();
+        let mosi: MosiPin = pins.gpio11.reconfigure();
         let spi = hal::spi::Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, clk)).init(
             &mut pac.RESETS,
             clocks.peripheral_clock.freq(),
             SPI_HZ.Hz(),
             embedded_hal::spi::MODE_0,
         );
-        let cs = pins.gpio9.into_push_pull_output();
-        let dc = pins.gpio8.into_push_pull_output();
+        let mut cs: CsPin = pins.gpio9.into_push_pull_output();
+        let _ = cs.set_high();
+        let bus = PanelBus {
+            spi,
+            dc: pins.gpio8.into_push_pull_output(),
+            cs,
+            streaming: false,
+        };
         let rst = pins.gpio12.into_push_pull_output();
         let mut backlight = pins.gpio13.into_push_pull_output();
-        let spi = ExclusiveDevice::new_no_delay(spi, cs).unwrap();
-        let mut buffer = [0u8; 512];
-        let di = SpiInterface::new(spi, dc, &mut buffer);
-        let mut display = Builder::new(ST7789, di)
-            .display_size(240, 240)
+        let mut display = Builder::new(ST7789, bus)
+            .display_size(board::SIZE as u16, board::SIZE as u16)
             .invert_colors(ColorInversion::Inverted)
             .reset_pin(rst)
             .init(&mut timer)
             .unwrap();
         backlight.set_high().unwrap();
 
-        // The scene: the default torus, generated once into RAM (18 KB), and a renderer with a
-        // one-line strip (its RAM is printed by `cargo run --example render` on the host).
+        // The DMA sends the strip buffers as 16-bit words: they must be RGB565 words.
+        let probe = [Rgb565::new(31, 0, 1)];
+        // SAFETY: reads the first two bytes of a one-element array.
+        let word = unsafe { *(probe.as_ptr() as *const u16) };
+        assert!(core::mem::size_of::<Rgb565>() == 2 && word == RawU16::from(probe[0]).into_inner());
+
+        // The scene: the default torus, generated once into RAM (18 KB); the renderer (its RAM:
+        // `demo::board::BoardRenderer::RAM_BYTES`) and the two strip buffers (7.5 KB) live on
+        // `main`'s stack, which lasts forever: the DMA reads the buffers while `main` runs.
         let shape = demo::torus::<Q>().unwrap();
         let camera = demo::camera::<Q>().unwrap();
-        let mut renderer = TorusRenderer::<Q, Rgb565>::new().with_dither(true);
-        let style = MonoTextStyle::new(&FONT_6X10, Rgb565::WHITE);
-        let mut label: heapless::String<32> = heapless::String::new();
-        let mut spin = 0.0f64;
+        let glyphs = board::glyphs().unwrap();
+        let mut renderer = board::renderer::<Q>();
+        let mut buffers: [board::StripBuffer; 2] =
+            [[[Rgb565::BLACK; board::SIZE]; board::STRIP_LINES]; 2];
+        let last_pixel = board::SIZE as u16 - 1;
+
+        // The timer is read once per frame, before the frame is drawn (the emulator check
+        // computes the label each frame must show from these reads).
         let mut last = timer.get_counter();
+        let mut frame_us = 0u64;
+        let mut frame = 0u32;
         loop {
-            let objects = [Object {
-                mesh: shape.mesh(),
-                transform: demo::torus_transform(spin),
-                material: demo::torus_material(),
-            }];
-            let scene = Scene::new(&objects, camera, demo::lights());
-            let text = Text::new(&label, Point::new(4, 12), style);
-            // A frame that cannot be drawn is skipped; the next one is tried.
-            let _ = renderer.render_overlaid(&scene, &mut display, &text);
-            let now = timer.get_counter();
-            let us = (now - last).to_micros().max(1);
-            last = now;
-            label.clear();
-            let _ = write!(label, "{}.{} fps", 1_000_000 / us, (10_000_000 / us) % 10);
-            spin += SPIN_DEG;
-            if spin >= 360.0 {
-                spin -= 360.0;
+            let label = board::fps_label(frame_us);
+            // Geometry first: the previous frame's last strip is still going out meanwhile.
+            // A frame that does not fit (it always does: the capacities hold for a full turn)
+            // leaves the previous image on the panel.
+            if board::prepare(&mut renderer, &shape, camera, frame).is_ok() {
+                // The address window and RAMWR through mipidsi (after the last DMA is done).
+                let _ = display.set_pixels(0, 0, last_pixel, last_pixel, core::iter::empty());
+                // SAFETY: only data is sent until the next mipidsi call, which ends the stream
+                // (`finish_pixels`) before its command.
+                let bus = unsafe { display.dcs() };
+                bus.begin_pixels();
+                let mut i = 0;
+                while let Some(rows) =
+                    board::draw_strip(&mut renderer, &glyphs, &label, &mut buffers[i])
+                {
+                    bus.send_strip(&buffers[i][..rows.len()]);
+                    i ^= 1;
+                }
             }
+            let now = timer.get_counter();
+            frame_us = (now - last).to_micros();
+            last = now;
+            frame = frame.wrapping_add(1);
         }
     }
 }

@@ -51,7 +51,11 @@ fn strips_into_caller_lines_equal_render() {
             assert!(rows.len() <= 3);
             for (i, y) in rows.clone().enumerate() {
                 for x in 0..240 {
-                    assert_eq!(lines[i][x], want.get(x as u32, y as u32), "frame {frame} at {x},{y}");
+                    assert_eq!(
+                        lines[i][x],
+                        want.get(x as u32, y as u32),
+                        "frame {frame} at {x},{y}"
+                    );
                 }
             }
             next = rows.end;
@@ -63,7 +67,9 @@ fn strips_into_caller_lines_equal_render() {
         let mut wide = [[Rgb565::CSS_HOT_PINK; 240]; 8];
         let rows = r.render_strip_into(&mut wide).unwrap();
         assert_eq!(rows, 0..8);
-        assert!(wide.iter().all(|l| l[100..].iter().all(|&c| c == Rgb565::CSS_HOT_PINK)));
+        assert!(wide
+            .iter()
+            .all(|l| l[100..].iter().all(|&c| c == Rgb565::CSS_HOT_PINK)));
     }
 }
 
@@ -74,11 +80,18 @@ fn strips_as_big_endian_bytes_equal_render() {
     let want = torus_scene_render(3, true);
     let shape = demo::torus::<Q>().unwrap();
     let mut r = Box::new(board::renderer::<Q>());
-    assert_eq!(r.render_strip_be(&mut [0u8; 10]), Ok(None), "nothing prepared");
+    assert_eq!(
+        r.render_strip_be(&mut [0u8; 10]),
+        Ok(None),
+        "nothing prepared"
+    );
     board::prepare(&mut r, &shape, demo::camera().unwrap(), 3).unwrap();
     assert_eq!(
         r.render_strip_be(&mut [0u8; 479]),
-        Err(StripBufferTooSmall { needed: 480, given: 479 })
+        Err(StripBufferTooSmall {
+            needed: 480,
+            given: 479
+        })
     );
     // 2.5 rows of bytes: strips of 2 rows.
     let mut out = vec![0u8; 1200];
