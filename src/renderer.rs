@@ -537,6 +537,35 @@ impl<
         self.render_strip_probed(target, &mut NoProbe)
     }
 
+    /// Moves the strip pass of the prepared frame to `row` (clamped to the viewport's height):
+    /// the next strip starts there; rows above it are not drawn. The triangles that cross
+    /// `row` are set up at that row, so the strips from it on are those a whole frame has,
+    /// within one step of a channel on a few pixels: a setup computes a triangle's colours at
+    /// the seek row exactly, while the whole frame's row pass steps them down from the
+    /// triangle's first row with a rounding drift. For splitting a frame's rows between renderers or cores that share its
+    /// geometry (the Pico benchmark measures that split), or for redrawing part of the screen
+    /// from the same geometry, also after the frame was drawn.
+    ///
+    /// Costs one triangle setup per stored triangle that starts above `row` (most return at
+    /// once: those that end above it).
+    pub fn seek_row(&mut self, row: usize) {
+        let vh = self.vh;
+        let row = row.min(vh);
+        self.active.clear();
+        self.next_row = row;
+        if row >= vh {
+            return;
+        }
+        let mode = SpanMode::new::<C>(self.depth_test, self.dither);
+        let verts = &self.verts;
+        for rec in &self.tris[..self.heads[row] as usize] {
+            // Cannot be full: the largest number of triangles crossing one row was checked
+            // when the frame was prepared.
+            self.active
+                .push_with(|a| a.setup::<C>(rec, verts, row as i32, vh as i32, mode));
+        }
+    }
+
     /// The statistics of the frame being drawn (complete once the last strip is drawn).
     #[must_use]
     pub fn stats(&self) -> Stats {
