@@ -3,11 +3,13 @@
 //! rate of the previous frame as a label, no framebuffer.
 //!
 //! How a frame goes out: mipidsi initialises the panel and sets the address window through this
-//! file's SPI interface ([`firmware::PanelBus`], which implements mipidsi's `Interface`); then the
-//! renderer draws 8-line strips into two buffers in turn (`scanline3d::demo::board`), and while
-//! one buffer is being drawn, DMA channel 0 sends the other to the panel with the SPI in 16-bit
-//! frames, so each native RGB565 word goes out high byte first, as the ST7789 expects, with no
-//! byte swapping. The label is composed into the strips it crosses from glyphs rasterized once.
+//! file's SPI interface (`firmware::PanelBus`, which implements mipidsi's `Interface`); then the
+//! renderer draws 8-line strips (`scanline3d::demo::board`) into a ring of strip buffers in SRAM
+//! while DMA channel 0 sends the finished ones to the panel, with the SPI in 16-bit frames so each
+//! native RGB565 word goes out high byte first, as the ST7789 expects, with no byte swapping. The
+//! DMA's completion interrupt starts the next finished strip, so the SPI keeps sending while the
+//! CPU runs ahead through cheap strips (empty rows) and through the next frame's geometry. The
+//! label is composed into the strips it crosses from glyphs rasterized once.
 //!
 //! Build: `cargo build --release --target thumbv6m-none-eabi --example pico_st7789`
 //! Flash: `cargo run --release --target thumbv6m-none-eabi --example pico_st7789` (BOOTSEL mode;
@@ -29,6 +31,7 @@ fn main() {
 #[cfg(target_os = "none")]
 mod firmware {
     use core::convert::Infallible;
+    use core::sync::atomic::{AtomicU32, Ordering};
 
     use embedded_graphics::pixelcolor::raw::RawU16;
     use embedded_graphics::pixelcolor::Rgb565;
@@ -42,9 +45,11 @@ mod firmware {
     use panic_halt as _;
     use rp_pico::entry;
     use rp_pico::hal::fugit::RateExtU32;
+    use rp_pico::hal::pac::interrupt;
     use rp_pico::hal::{self, gpio, pac, Clock};
     use scanline3d::demo::{self, board};
     use scanline3d::fixed::types::I16F16;
+    use scanline3d::overlay::Glyphs;
     use scanline3d::Fx;
 
     // Wiring of the Waveshare Pico-LCD-1.3 (SPI1). Another board: change these lines.
@@ -61,13 +66,102 @@ mod firmware {
 
     type Q = Fx<I16F16>;
 
+    /// Strip buffers in the ring (6 × 3 840 B in SRAM): enough for the renderer to run ahead
+    /// through the empty rows above and below the torus while the SPI catches up.
+    const RING: usize = 6;
+
+    /// The ring of strip buffers, shared by the renderer (main) and the DMA (started from main
+    /// or from the DMA interrupt). Buffer `k % RING` holds strip `k`; the counters below say
+    /// which buffers the renderer may write: those not between `DONE` and `READY`.
+    struct Ring(core::cell::UnsafeCell<[board::StripBuffer; RING]>);
+    // SAFETY: access is arbitrated by the counters (see `Ring`).
+    unsafe impl Sync for Ring {}
+    static BUFFERS: Ring = Ring(core::cell::UnsafeCell::new(
+        [[[Rgb565::BLACK; board::SIZE]; board::STRIP_LINES]; RING],
+    ));
+    /// Rows of each buffer's strip.
+    static ROWS: [AtomicU32; RING] = [const { AtomicU32::new(0) }; RING];
+    /// Strips rendered (written by main only), handed to the DMA, and sent (both written with
+    /// interrupts off or from the interrupt), all counted since start-up, wrapping.
+    static READY: AtomicU32 = AtomicU32::new(0);
+    static STARTED: AtomicU32 = AtomicU32::new(0);
+    static DONE: AtomicU32 = AtomicU32::new(0);
+
+    fn dma() -> &'static pac::dma::CH {
+        // SAFETY: channel DMA_CH is used by this file's strip queue only.
+        unsafe { (*pac::DMA::ptr()).ch(DMA_CH) }
+    }
+
+    /// Starts the DMA on the next finished strip if it is idle; interrupts must be off (or this
+    /// is the DMA interrupt).
+    fn start_next() {
+        let started = STARTED.load(Ordering::Relaxed);
+        if started == READY.load(Ordering::Acquire) || started != DONE.load(Ordering::Relaxed) {
+            return; // nothing ready, or a transfer is running
+        }
+        let k = started as usize % RING;
+        let words = ROWS[k].load(Ordering::Relaxed) * board::SIZE as u32;
+        let ch = dma();
+        // SAFETY: buffer k holds a finished strip that the renderer does not touch until DONE
+        // passes it; SPI1's data register paces the transfer with its TX request.
+        unsafe {
+            let buffer = (*BUFFERS.0.get())[k].as_ptr();
+            ch.ch_read_addr().write(|w| w.bits(buffer as u32));
+            ch.ch_write_addr()
+                .write(|w| w.bits((*pac::SPI1::ptr()).sspdr().as_ptr() as u32));
+            ch.ch_trans_count().write(|w| w.bits(words));
+            ch.ch_ctrl_trig().write(|w| {
+                w.data_size()
+                    .size_halfword()
+                    .incr_read()
+                    .set_bit()
+                    .incr_write()
+                    .clear_bit()
+                    .treq_sel()
+                    .bits(DREQ_SPI1_TX)
+                    .chain_to()
+                    .bits(DMA_CH as u8)
+                    .en()
+                    .set_bit()
+            });
+        }
+        STARTED.store(started.wrapping_add(1), Ordering::Relaxed);
+    }
+
+    /// A strip is out: its buffer is free; the next finished one goes.
+    #[interrupt]
+    fn DMA_IRQ_0() {
+        // SAFETY: acknowledging channel DMA_CH's interrupt (write 1 to clear).
+        unsafe { (*pac::DMA::ptr()).ints0().write(|w| w.bits(1 << DMA_CH)) };
+        DONE.store(DONE.load(Ordering::Relaxed).wrapping_add(1), Ordering::Release);
+        start_next();
+    }
+
+    /// Renders the prepared frame's strips into the ring, each queued for the DMA as soon as it
+    /// is drawn; returns once the last one is queued (it is sent while the caller goes on).
+    fn stream_frame(renderer: &mut board::BoardRenderer<Q>, glyphs: &Glyphs<16>, label: &str) {
+        loop {
+            let k = READY.load(Ordering::Relaxed);
+            // A free buffer: fewer than RING strips rendered and not yet sent.
+            while k.wrapping_sub(DONE.load(Ordering::Acquire)) as usize >= RING {}
+            // SAFETY: buffer k % RING is not being sent (see above) and only main writes it.
+            let buffer = unsafe { &mut (*BUFFERS.0.get())[k as usize % RING] };
+            let Some(rows) = board::draw_strip(renderer, glyphs, label, buffer) else {
+                return;
+            };
+            ROWS[k as usize % RING].store(rows.len() as u32, Ordering::Relaxed);
+            READY.store(k.wrapping_add(1), Ordering::Release);
+            cortex_m::interrupt::free(|_| start_next());
+        }
+    }
+
     /// SPI1 with the panel's DC and CS lines: mipidsi's interface for commands (blocking
-    /// byte writes, 8-bit frames) and a DMA stream for pixels (16-bit frames).
+    /// byte writes, 8-bit frames); pixels go through the strip queue (16-bit frames).
     pub struct PanelBus {
         spi: Spi1,
         dc: DcPin,
         cs: CsPin,
-        /// A DMA transfer may be running, or the SPI is in 16-bit frames.
+        /// Pixels were streamed since the last command (the SPI is in 16-bit frames).
         streaming: bool,
     }
 
@@ -78,31 +172,24 @@ mod firmware {
             unsafe { &*pac::SPI1::ptr() }
         }
 
-        fn dma() -> &'static pac::dma::CH {
-            // SAFETY: channel DMA_CH is used by this type only.
-            unsafe { (*pac::DMA::ptr()).ch(DMA_CH) }
-        }
-
         /// Data size of the SPI's frames (8 or 16 bits), changed with the SPI disabled.
         fn frame_bits(bits: u8) {
             let spi = Self::regs();
             spi.sspcr1().modify(|_, w| w.sse().clear_bit());
             // SAFETY: DSS takes 3..=15 (frame bits − 1).
-            spi.sspcr0()
-                .modify(|_, w| unsafe { w.dss().bits(bits - 1) });
+            spi.sspcr0().modify(|_, w| unsafe { w.dss().bits(bits - 1) });
             spi.sspcr1().modify(|_, w| w.sse().set_bit());
         }
 
-        /// Waits until the running DMA transfer and the SPI are done, empties the receive
+        /// Waits until every queued strip is sent and the SPI is idle, empties the receive
         /// FIFO (the panel sends nothing back) and returns to 8-bit frames for commands.
         fn finish_pixels(&mut self) {
             if !self.streaming {
                 return;
             }
-            while Self::dma().ch_ctrl_trig().read().busy().bit_is_set() {}
+            while DONE.load(Ordering::Acquire) != READY.load(Ordering::Relaxed) {}
             let spi = Self::regs();
-            while spi.sspsr().read().bsy().bit_is_set() || spi.sspsr().read().tfe().bit_is_clear() {
-            }
+            while spi.sspsr().read().bsy().bit_is_set() || spi.sspsr().read().tfe().bit_is_clear() {}
             while spi.sspsr().read().rne().bit_is_set() {
                 let _ = spi.sspdr().read();
             }
@@ -110,43 +197,12 @@ mod firmware {
             self.streaming = false;
         }
 
-        /// After `RAMWR`: data mode, 16-bit frames.
+        /// After `RAMWR`: data mode, 16-bit frames, ready for the strip queue.
         fn begin_pixels(&mut self) {
             let _ = self.spi.flush();
             let _ = self.dc.set_high();
             Self::frame_bits(16);
             self.streaming = true;
-        }
-
-        /// Sends `lines` by DMA once the previous strip is out; returns at once. The lines must
-        /// stay untouched until the next `send_strip` or `finish_pixels` returns (the caller
-        /// alternates two buffers, and both live as long as `main`, which never returns).
-        fn send_strip(&mut self, lines: &[[Rgb565; board::SIZE]]) {
-            let ch = Self::dma();
-            while ch.ch_ctrl_trig().read().busy().bit_is_set() {}
-            let words = (lines.len() * board::SIZE) as u32;
-            // SAFETY: addresses of a live buffer of `words` halfwords and of SPI1's data
-            // register; the transfer is paced by SPI1's TX request.
-            unsafe {
-                ch.ch_read_addr().write(|w| w.bits(lines.as_ptr() as u32));
-                ch.ch_write_addr()
-                    .write(|w| w.bits(Self::regs().sspdr().as_ptr() as u32));
-                ch.ch_trans_count().write(|w| w.bits(words));
-                ch.ch_ctrl_trig().write(|w| {
-                    w.data_size()
-                        .size_halfword()
-                        .incr_read()
-                        .set_bit()
-                        .incr_write()
-                        .clear_bit()
-                        .treq_sel()
-                        .bits(DREQ_SPI1_TX)
-                        .chain_to()
-                        .bits(DMA_CH as u8)
-                        .en()
-                        .set_bit()
-                });
-            }
         }
     }
 
@@ -236,9 +292,14 @@ mod firmware {
             &mut pac.RESETS,
         );
         let mut timer = hal::Timer::new(pac.TIMER, &mut pac.RESETS, &clocks);
-        // The DMA block out of reset (the strips' channel is programmed by `PanelBus`).
+        // The DMA block out of reset; channel DMA_CH's completion raises DMA_IRQ_0.
         pac.RESETS.reset().modify(|_, w| w.dma().clear_bit());
         while pac.RESETS.reset_done().read().dma().bit_is_clear() {}
+        // SAFETY: enables the channel's interrupt; the handler only touches the strip queue.
+        unsafe {
+            pac.DMA.inte0().write(|w| w.bits(1 << DMA_CH));
+            cortex_m::peripheral::NVIC::unmask(pac::Interrupt::DMA_IRQ_0);
+        }
 
         // SPI1: CLK GP10, MOSI GP11; CS GP9, DC GP8, RST GP12, backlight GP13.
         let clk: ClkPin = pins.gpio10.reconfigure();
@@ -273,15 +334,13 @@ mod firmware {
         let word = unsafe { *(probe.as_ptr() as *const u16) };
         assert!(core::mem::size_of::<Rgb565>() == 2 && word == RawU16::from(probe[0]).into_inner());
 
-        // The scene: the default torus, generated once into RAM (18 KB); the renderer (its RAM:
-        // `demo::board::BoardRenderer::RAM_BYTES`) and the two strip buffers (7.5 KB) live on
-        // `main`'s stack, which lasts forever: the DMA reads the buffers while `main` runs.
+        // The scene: the default torus, generated once into RAM (18 KB), and the renderer (its
+        // RAM: `demo::board::BoardRenderer::RAM_BYTES`), on `main`'s stack; the strip buffers
+        // are a static ring (`BUFFERS`).
         let shape = demo::torus::<Q>().unwrap();
         let camera = demo::camera::<Q>().unwrap();
         let glyphs = board::glyphs().unwrap();
         let mut renderer = board::renderer::<Q>();
-        let mut buffers: [board::StripBuffer; 2] =
-            [[[Rgb565::BLACK; board::SIZE]; board::STRIP_LINES]; 2];
         let last_pixel = board::SIZE as u16 - 1;
 
         // The timer is read once per frame, before the frame is drawn (the emulator check
@@ -291,23 +350,16 @@ mod firmware {
         let mut frame = 0u32;
         loop {
             let label = board::fps_label(frame_us);
-            // Geometry first: the previous frame's last strip is still going out meanwhile.
+            // Geometry first: the previous frame's last strips are still going out meanwhile.
             // A frame that does not fit (it always does: the capacities hold for a full turn)
             // leaves the previous image on the panel.
             if board::prepare(&mut renderer, &shape, camera, frame).is_ok() {
-                // The address window and RAMWR through mipidsi (after the last DMA is done).
+                // The address window and RAMWR through mipidsi (once the queue is empty).
                 let _ = display.set_pixels(0, 0, last_pixel, last_pixel, core::iter::empty());
                 // SAFETY: only data is sent until the next mipidsi call, which ends the stream
                 // (`finish_pixels`) before its command.
-                let bus = unsafe { display.dcs() };
-                bus.begin_pixels();
-                let mut i = 0;
-                while let Some(rows) =
-                    board::draw_strip(&mut renderer, &glyphs, &label, &mut buffers[i])
-                {
-                    bus.send_strip(&buffers[i][..rows.len()]);
-                    i ^= 1;
-                }
+                unsafe { display.dcs() }.begin_pixels();
+                stream_frame(&mut renderer, &glyphs, &label);
             }
             let now = timer.get_counter();
             frame_us = (now - last).to_micros();
