@@ -5,7 +5,7 @@ import { writeAtomic } from './image.mjs';
 export const START_MARKER = '<!-- pico-emu:start -->';
 export const END_MARKER = '<!-- pico-emu:end -->';
 
-const grouped = (n) => String(n).replace(/\B(?=(\d{3})+(?!\d))/g, '\u202f');
+const grouped = (n) => String(n);
 
 /** The markdown block (markers included) for BENCHMARKS.md. */
 export function benchmarksBlock(r) {
@@ -39,7 +39,7 @@ export function benchmarksBlock(r) {
     '',
     'Not modelled: core 1, the XIP flash cache (every flash access costs what an SRAM access',
     'does, so code running from flash is faster than on the chip after a cache miss) and bus',
-    'contention between the core and DMA, so the figures are a lower bound on cycles per frame.',
+    'contention between the core and DMA: the cycle counts are optimistic (a lower bound).',
     END_MARKER,
   ].join('\n');
 }
