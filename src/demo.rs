@@ -473,3 +473,124 @@ fn o_set<S: Scalar>(o: &mut Object<'_, S>, dist: f64, x: f64, size: f64, k: usiz
     );
     o.material.shading = crate::shade::Shading::Flat;
 }
+
+/// The Raspberry Pi Pico firmware's frames (`examples/pico_st7789.rs`), shared with the host
+/// tool that renders the same frames for the emulator check (`examples/board_frames.rs`): the
+/// default torus spinning about Y, Gouraud-shaded with dithering, and the frame rate of the
+/// previous frame as a label, drawn strip by strip into buffers the caller owns.
+pub mod board {
+    use core::fmt::Write as _;
+    use core::ops::Range;
+
+    use embedded_graphics::mono_font::ascii::FONT_6X10;
+    use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+
+    use crate::overlay::{GlyphError, Glyphs};
+    use crate::scalar::Scalar;
+    use crate::scene::{Object, Scene};
+
+    /// Panel width and height in pixels.
+    pub const SIZE: usize = 240;
+    /// Rows per strip: the depth lines of [`BoardRenderer`] and the height of each of the
+    /// firmware's two strip buffers (2 × 8 × 240 × 2 B = 7.5 KB).
+    pub const STRIP_LINES: usize = 8;
+    /// Degrees the torus turns per frame.
+    pub const SPIN_DEG_PER_FRAME: u32 = 3;
+    /// Top-left corner of the frame-rate label, in pixels.
+    pub const LABEL_AT: (i32, i32) = (4, 4);
+    /// The characters the label uses (its glyphs are rasterized once, from `FONT_6X10`).
+    pub const LABEL_CHARS: &str = "0123456789. fps";
+
+    /// The firmware's renderer: the default torus's capacities ([`super::TorusRenderer`]) with
+    /// a strip of [`STRIP_LINES`] lines.
+    pub type BoardRenderer<S> = crate::Renderer<S, Rgb565, 240, 240, 512, 480, 64, STRIP_LINES>;
+
+    /// The firmware's renderer, dithering on.
+    #[must_use]
+    pub fn renderer<S: Scalar>() -> BoardRenderer<S> {
+        BoardRenderer::new().with_dither(true)
+    }
+
+    /// One strip buffer: [`STRIP_LINES`] lines of native RGB565 words.
+    pub type StripBuffer = [[Rgb565; SIZE]; STRIP_LINES];
+
+    /// The spin of frame `frame` in degrees (0 ≤ spin < 360, whole degrees).
+    #[must_use]
+    pub fn spin(frame: u32) -> f64 {
+        ((frame as u64 * SPIN_DEG_PER_FRAME as u64) % 360) as f64
+    }
+
+    /// The label for a previous frame that took `frame_us` microseconds: frames per second
+    /// with one decimal, truncated (`"35.7 fps"`); empty for 0 (no previous frame).
+    #[must_use]
+    pub fn fps_label(frame_us: u64) -> heapless::String<16> {
+        let mut label = heapless::String::new();
+        if let Some(tenths) = 10_000_000u64.checked_div(frame_us) {
+            // At most 20 characters for u64::MAX tenths; a 1 µs frame gives "1000000.0 fps".
+            let _ = write!(label, "{}.{} fps", tenths / 10, tenths % 10);
+        }
+        label
+    }
+
+    /// The label's glyphs, rasterized once.
+    ///
+    /// # Errors
+    ///
+    /// Never for the built-in font and characters (a [`GlyphError`] would mean a change to
+    /// them broke the set's capacity).
+    pub fn glyphs() -> Result<Glyphs<16>, GlyphError> {
+        Glyphs::new(&FONT_6X10, LABEL_CHARS)
+    }
+
+    /// Prepares frame `frame` of the firmware's animation in `renderer` (geometry only; the
+    /// strips follow with [`draw_strip`]). `shape` is [`super::torus`], `camera`
+    /// [`super::camera`].
+    ///
+    /// # Errors
+    ///
+    /// The renderer's error when the frame does not fit its capacities (it always does: the
+    /// capacities hold for a full turn).
+    pub fn prepare<S: Scalar>(
+        renderer: &mut BoardRenderer<S>,
+        shape: &super::TorusShape<S>,
+        camera: crate::Camera<S>,
+        frame: u32,
+    ) -> Result<crate::Stats, crate::Error<core::convert::Infallible>> {
+        let objects = [Object {
+            mesh: shape.mesh(),
+            transform: super::torus_transform(spin(frame)),
+            material: super::torus_material(),
+        }];
+        renderer.prepare(&Scene::new(&objects, camera, super::lights()))
+    }
+
+    /// Draws the next strip of the prepared frame into `buffer` with the label `label` composed
+    /// into it (white, at [`LABEL_AT`]); returns its rows, or `None` when the frame is done.
+    pub fn draw_strip<S: Scalar>(
+        renderer: &mut BoardRenderer<S>,
+        glyphs: &Glyphs<16>,
+        label: &str,
+        buffer: &mut StripBuffer,
+    ) -> Option<Range<usize>> {
+        let rows = renderer.render_strip_into(buffer)?;
+        let n = rows.len();
+        glyphs.draw(label, LABEL_AT, Rgb565::WHITE, rows.start, &mut buffer[..n]);
+        Some(rows)
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::*;
+
+        #[test]
+        fn labels() {
+            assert_eq!(fps_label(0).as_str(), "");
+            assert_eq!(fps_label(28_000).as_str(), "35.7 fps");
+            assert_eq!(fps_label(1).as_str(), "1000000.0 fps");
+            assert_eq!(fps_label(u64::MAX).as_str(), "0.0 fps");
+            assert_eq!(spin(0), 0.0);
+            assert_eq!(spin(121), 3.0);
+            assert!(glyphs().is_ok());
+        }
+    }
+}

@@ -98,6 +98,7 @@ mod light_thumb;
 pub mod math;
 pub mod mesh;
 pub mod metrics;
+pub mod overlay;
 pub mod project;
 pub mod raster;
 pub mod renderer;
@@ -117,7 +118,9 @@ pub use color::{TargetColor, TriangleId};
 pub use math::{Mat4, Vec3};
 pub use mesh::{Mesh, MeshError};
 pub use raster::DepthTest;
-pub use renderer::{Capacity, Error, NoProbe, Probe, Renderer, Stage, Stats, StripCanvas};
+pub use renderer::{
+    Capacity, Error, NoProbe, Probe, Renderer, Stage, Stats, StripBufferTooSmall, StripCanvas,
+};
 pub use scalar::{Fx, Scalar};
 pub use scene::{Object, Scene};
 pub use shade::{Light, Material, Shading};

@@ -4,6 +4,7 @@ use core::marker::PhantomData;
 
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
+use embedded_graphics_core::pixelcolor::raw::ToBytes;
 use embedded_graphics_core::pixelcolor::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::{Drawable, Pixel};
@@ -690,16 +691,6 @@ impl<
         }
     }
 
-    /// The stored triangles whose first row is `row` (after [`Self::sort_buckets`]).
-    fn bucket(&self, row: usize) -> core::ops::Range<usize> {
-        let end = if row + 1 < self.vh {
-            self.heads[row + 1] as usize
-        } else {
-            self.tris.len()
-        };
-        self.heads[row] as usize..end
-    }
-
     /// Transforms, lights, clips, projects, culls and buckets one object.
     fn object<P: Probe, const L: usize>(
         &mut self,
@@ -1088,70 +1079,10 @@ impl<
         P: Probe,
         F: FnMut(&mut StripCanvas<'_, C, W>),
     {
-        let y0 = self.next_row;
-        let (vw, vh) = (self.vw, self.vh);
-        if y0 >= vh {
+        let Some((y0, lines)) = self.draw_strip(None, LINES, probe) else {
             return Ok(None);
-        }
-        let lines = LINES.min(vh - y0);
-        let mode = SpanMode::new::<C>(self.depth_test, self.dither);
-        for l in 0..lines {
-            #[cfg(all(target_arch = "arm", target_os = "none"))]
-            let cleared = crate::span_thumb::clear_line(
-                &mut self.color[l][..vw],
-                &mut self.depth[l][..vw],
-                self.background,
-            );
-            #[cfg(not(all(target_arch = "arm", target_os = "none")))]
-            let cleared = false;
-            if !cleared {
-                self.color[l][..vw].fill(self.background);
-                self.depth[l][..vw].fill(u16::MAX);
-            }
-            let row = y0 + l;
-            let bucket = self.bucket(row);
-            if !bucket.is_empty() {
-                probe.enter(Stage::Setup);
-            }
-            for t in bucket {
-                let rec = self.tris[t];
-                let (verts, h) = (&self.verts, vh as i32);
-                // Cannot be full: the largest number of rows' overlaps was checked.
-                self.active
-                    .push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, mode));
-            }
-            probe.enter(Stage::Raster);
-            let mut i = 0;
-            loop {
-                #[cfg(all(target_arch = "arm", target_os = "none"))]
-                if let Some((next, frag, written)) = crate::span_thumb::rows565(
-                    &mut self.active,
-                    i,
-                    &mut self.color[l][..vw],
-                    &mut self.depth[l][..vw],
-                ) {
-                    self.stats.add_row(frag, written);
-                    i = next;
-                }
-                if i >= self.active.len() {
-                    break;
-                }
-                let (frag, written, done) = self.active.get_mut(i).draw_row(
-                    row as i32,
-                    &mut self.color[l][..vw],
-                    &mut self.depth[l][..vw],
-                    self.depth_test,
-                    self.dither,
-                );
-                self.stats.add_row(frag, written);
-                if done {
-                    self.active.swap_remove(i);
-                } else {
-                    i += 1;
-                }
-            }
-        }
-        self.next_row = y0 + lines;
+        };
+        let (vw, vh) = (self.vw, self.vh);
         overlay(&mut StripCanvas {
             lines: &mut self.color[..lines],
             y0,
@@ -1174,6 +1105,179 @@ impl<
         }
         Ok(Some(y0..y0 + lines))
     }
+
+    /// Draws the next strip of the prepared frame into `lines`, colour lines that the caller
+    /// owns, and returns its rows, or `None` when the frame is complete (or nothing was
+    /// prepared). Nothing is sent anywhere: the caller hands the lines to a DMA channel, a
+    /// display driver or another core, and may draw into them first (a label, a HUD).
+    ///
+    /// The strip is `min(N, LINES, rows left)` rows high (the depth lines are the renderer's
+    /// own, `LINES` of them); row `y0 + i` is `lines[i][..vw]` for the returned `y0..y1`. Lines
+    /// beyond the strip and columns beyond the viewport are left as they were. Each line is
+    /// cleared to the background first, so a buffer can be reused without clearing it.
+    ///
+    /// For RGB565, a line is `W` native 16-bit words: an SPI display sends them in its own
+    /// (big-endian) order when the SPI transfers 16-bit frames, which most microcontrollers'
+    /// SPI and DMA units can do with no byte swapping at all (the Pico firmware does this). For
+    /// a byte stream, [`Renderer::render_strip_be`] writes big-endian bytes instead.
+    ///
+    /// The pixels are exactly those [`Renderer::render`] draws into a target.
+    pub fn render_strip_into<const N: usize>(
+        &mut self,
+        lines: &mut [[C; W]; N],
+    ) -> Option<core::ops::Range<usize>> {
+        const { assert!(N >= 1, "a strip buffer needs at least one line") };
+        self.draw_strip(Some(lines), N, &mut NoProbe)
+            .map(|(y0, n)| y0..y0 + n)
+    }
+
+    /// Draws the next strip of the prepared frame into the renderer's own lines and writes it
+    /// to `out` as big-endian pixel bytes (for RGB565 the byte order of SPI panels such as the
+    /// ST7789 and ILI9341: high byte first), row after row, `vw` pixels a row; returns its rows,
+    /// or `None` when the frame is complete. The strip is as many rows as fit in `out`, at most
+    /// `LINES`. For a driver that sends bytes (an 8-bit SPI DMA channel, a USB or network
+    /// link); [`Renderer::render_strip_into`] avoids the copy.
+    ///
+    /// # Errors
+    ///
+    /// [`StripBufferTooSmall`] when `out` cannot hold one row (`vw · bytes per pixel`); nothing
+    /// is drawn then.
+    pub fn render_strip_be(
+        &mut self,
+        out: &mut [u8],
+    ) -> Result<Option<core::ops::Range<usize>>, StripBufferTooSmall>
+    where
+        C: ToBytes,
+        C::Bytes: AsRef<[u8]>,
+    {
+        let bpp = core::mem::size_of::<C::Bytes>();
+        let row_bytes = self.vw * bpp;
+        if self.next_row >= self.vh {
+            return Ok(None);
+        }
+        if out.len() < row_bytes || bpp == 0 {
+            return Err(StripBufferTooSmall {
+                needed: row_bytes,
+                given: out.len(),
+            });
+        }
+        let fit = out.len() / row_bytes;
+        let Some((y0, lines)) = self.draw_strip(None, fit, &mut NoProbe) else {
+            return Ok(None);
+        };
+        for (line, dst) in self.color[..lines]
+            .iter()
+            .zip(out.chunks_exact_mut(row_bytes))
+        {
+            for (c, d) in line[..self.vw].iter().zip(dst.chunks_exact_mut(bpp)) {
+                d.copy_from_slice(c.to_be_bytes().as_ref());
+            }
+        }
+        Ok(Some(y0..y0 + lines))
+    }
+
+    /// Rasterizes the next strip of the prepared frame, at most `limit` rows, into `ext` (the
+    /// caller's lines) or, for `None`, into the renderer's own lines. Returns its first row and
+    /// height, or `None` when the frame is complete.
+    fn draw_strip<P: Probe>(
+        &mut self,
+        ext: Option<&mut [[C; W]]>,
+        limit: usize,
+        probe: &mut P,
+    ) -> Option<(usize, usize)> {
+        let y0 = self.next_row;
+        let (vw, vh) = (self.vw, self.vh);
+        if y0 >= vh {
+            return None;
+        }
+        let mode = SpanMode::new::<C>(self.depth_test, self.dither);
+        let Renderer {
+            verts,
+            tris,
+            active,
+            heads,
+            color: own,
+            depth,
+            depth_test,
+            dither,
+            background,
+            stats,
+            ..
+        } = self;
+        let color: &mut [[C; W]] = match ext {
+            Some(lines) => lines,
+            None => own.as_mut_slice(),
+        };
+        let lines = LINES.min(limit).min(color.len()).min(vh - y0);
+        for l in 0..lines {
+            #[cfg(all(target_arch = "arm", target_os = "none"))]
+            let cleared = crate::span_thumb::clear_line(
+                &mut color[l][..vw],
+                &mut depth[l][..vw],
+                *background,
+            );
+            #[cfg(not(all(target_arch = "arm", target_os = "none")))]
+            let cleared = false;
+            if !cleared {
+                color[l][..vw].fill(*background);
+                depth[l][..vw].fill(u16::MAX);
+            }
+            let row = y0 + l;
+            let end = if row + 1 < vh {
+                heads[row + 1] as usize
+            } else {
+                tris.len()
+            };
+            let bucket = heads[row] as usize..end;
+            if !bucket.is_empty() {
+                probe.enter(Stage::Setup);
+            }
+            for t in bucket {
+                let rec = tris[t];
+                let (verts, h) = (&*verts, vh as i32);
+                // Cannot be full: the largest number of rows' overlaps was checked.
+                active.push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, mode));
+            }
+            probe.enter(Stage::Raster);
+            let mut i = 0;
+            loop {
+                #[cfg(all(target_arch = "arm", target_os = "none"))]
+                if let Some((next, frag, written)) =
+                    crate::span_thumb::rows565(active, i, &mut color[l][..vw], &mut depth[l][..vw])
+                {
+                    stats.add_row(frag, written);
+                    i = next;
+                }
+                if i >= active.len() {
+                    break;
+                }
+                let (frag, written, done) = active.get_mut(i).draw_row(
+                    row as i32,
+                    &mut color[l][..vw],
+                    &mut depth[l][..vw],
+                    *depth_test,
+                    *dither,
+                );
+                stats.add_row(frag, written);
+                if done {
+                    active.swap_remove(i);
+                } else {
+                    i += 1;
+                }
+            }
+        }
+        self.next_row = y0 + lines;
+        Some((y0, lines))
+    }
+}
+
+/// [`Renderer::render_strip_be`]'s error: the buffer cannot hold one row of the viewport.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct StripBufferTooSmall {
+    /// Bytes one row needs.
+    pub needed: usize,
+    /// Bytes given.
+    pub given: usize,
 }
 
 impl<
