@@ -164,8 +164,11 @@ function main() {
     failure =
       `${e.message} (cycle ${machine.cycles}, PC in ${symbolAt(elf.symbols, pc)}; ` +
       `${frames.length} frame(s) captured, ${machine.stats.spiBytes} SPI bytes)`;
-    if (frames.length === 0 && machine.stats.spiBytes === 0) {
-      failure += ': the firmware never reached the display';
+    if (frames.length === 0) {
+      failure +=
+        machine.stats.spiBytes === 0
+          ? ': the firmware never reached the display'
+          : ': the firmware talked to the display but completed no frame';
     }
   }
   const emulatedCycles = machine.cycles;
