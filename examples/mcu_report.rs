@@ -240,6 +240,18 @@ fn run() -> Result<(), String> {
             .find(|st| st["label"] == t["label"] && st["number"] == t["number"]);
         md.push_str(&breakdown(t, strip)?);
     }
+    // scripts/pico-emu writes its own section (the emulated Pico's figures): keep it, unchanged,
+    // at the end of the regenerated file.
+    if let Ok(old) = std::fs::read_to_string("BENCHMARKS.md") {
+        if let Some(block) = pico_emu_block(&old) {
+            if !md.ends_with('\n') {
+                md.push('\n');
+            }
+            md.push('\n');
+            md.push_str(block);
+            md.push('\n');
+        }
+    }
     std::fs::write("BENCHMARKS.md", md).map_err(|e| e.to_string())?;
     println!("{}", table(&rows));
     if let Some((i, ram, ok)) = budget {
@@ -257,6 +269,15 @@ fn run() -> Result<(), String> {
     } else {
         Err(failures.join("\n"))
     }
+}
+
+/// The section of BENCHMARKS.md that `scripts/pico-emu` generates, markers included.
+fn pico_emu_block(md: &str) -> Option<&str> {
+    const START: &str = "<!-- pico-emu:start -->";
+    const END: &str = "<!-- pico-emu:end -->";
+    let start = md.find(START)?;
+    let end = start + md[start..].find(END)? + END.len();
+    Some(&md[start..end])
 }
 
 fn table(rows: &[Value]) -> String {
