@@ -18,7 +18,7 @@ use clap::Parser;
 use embedded_graphics::pixelcolor::raw::ToBytes;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use scanline3d::demo::{self, board};
+use scanline3d::demo::board;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::Fx;
 
@@ -54,11 +54,11 @@ fn parse_frame(s: &str) -> Result<(u32, u64), String> {
 
 /// Frame `frame` with the label for `us`, as big-endian RGB565 bytes.
 fn render(frame: u32, us: u64) -> Result<Vec<u8>, String> {
-    let shape = demo::torus::<Q>().map_err(|e| format!("torus: {e:?}"))?;
-    let camera = demo::camera::<Q>().map_err(|e| format!("camera: {e:?}"))?;
+    let scene = board::BoardScene::<Q>::new()?;
     let glyphs = board::glyphs().map_err(|e| format!("glyphs: {e:?}"))?;
     let mut renderer = Box::new(board::renderer::<Q>());
-    board::prepare(&mut renderer, &shape, camera, frame)
+    scene
+        .prepare(&mut renderer, frame)
         .map_err(|e| format!("frame {frame}: {e:?}"))?;
     let label = board::fps_label(us);
     let mut buffer: board::StripBuffer = [[Rgb565::BLACK; board::SIZE]; board::STRIP_LINES];

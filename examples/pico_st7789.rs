@@ -47,7 +47,7 @@ mod firmware {
     use rp_pico::hal::fugit::RateExtU32;
     use rp_pico::hal::pac::interrupt;
     use rp_pico::hal::{self, gpio, pac, Clock};
-    use scanline3d::demo::{self, board};
+    use scanline3d::demo::board;
     use scanline3d::fixed::types::I16F16;
     use scanline3d::overlay::Glyphs;
     use scanline3d::Fx;
@@ -133,7 +133,10 @@ mod firmware {
     fn DMA_IRQ_0() {
         // SAFETY: acknowledging channel DMA_CH's interrupt (write 1 to clear).
         unsafe { (*pac::DMA::ptr()).ints0().write(|w| w.bits(1 << DMA_CH)) };
-        DONE.store(DONE.load(Ordering::Relaxed).wrapping_add(1), Ordering::Release);
+        DONE.store(
+            DONE.load(Ordering::Relaxed).wrapping_add(1),
+            Ordering::Release,
+        );
         start_next();
     }
 
@@ -177,7 +180,8 @@ mod firmware {
             let spi = Self::regs();
             spi.sspcr1().modify(|_, w| w.sse().clear_bit());
             // SAFETY: DSS takes 3..=15 (frame bits − 1).
-            spi.sspcr0().modify(|_, w| unsafe { w.dss().bits(bits - 1) });
+            spi.sspcr0()
+                .modify(|_, w| unsafe { w.dss().bits(bits - 1) });
             spi.sspcr1().modify(|_, w| w.sse().set_bit());
         }
 
@@ -189,7 +193,8 @@ mod firmware {
             }
             while DONE.load(Ordering::Acquire) != READY.load(Ordering::Relaxed) {}
             let spi = Self::regs();
-            while spi.sspsr().read().bsy().bit_is_set() || spi.sspsr().read().tfe().bit_is_clear() {}
+            while spi.sspsr().read().bsy().bit_is_set() || spi.sspsr().read().tfe().bit_is_clear() {
+            }
             while spi.sspsr().read().rne().bit_is_set() {
                 let _ = spi.sspdr().read();
             }
@@ -337,8 +342,7 @@ mod firmware {
         // The scene: the default torus, generated once into RAM (18 KB), and the renderer (its
         // RAM: `demo::board::BoardRenderer::RAM_BYTES`), on `main`'s stack; the strip buffers
         // are a static ring (`BUFFERS`).
-        let shape = demo::torus::<Q>().unwrap();
-        let camera = demo::camera::<Q>().unwrap();
+        let scene = board::BoardScene::<Q>::new().unwrap();
         let glyphs = board::glyphs().unwrap();
         let mut renderer = board::renderer::<Q>();
         let last_pixel = board::SIZE as u16 - 1;
@@ -353,7 +357,7 @@ mod firmware {
             // Geometry first: the previous frame's last strips are still going out meanwhile.
             // A frame that does not fit (it always does: the capacities hold for a full turn)
             // leaves the previous image on the panel.
-            if board::prepare(&mut renderer, &shape, camera, frame).is_ok() {
+            if scene.prepare(&mut renderer, frame).is_ok() {
                 // The address window and RAMWR through mipidsi (once the queue is empty).
                 let _ = display.set_pixels(0, 0, last_pixel, last_pixel, core::iter::empty());
                 // SAFETY: only data is sent until the next mipidsi call, which ends the stream

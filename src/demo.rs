@@ -27,12 +27,17 @@ pub fn torus<S: Scalar>() -> Result<TorusShape<S>, ShapeError> {
     Shape::torus(1.0, 0.4, 32, 16)
 }
 
-/// The default model transform: 30° about X, then 20° about Y, then `spin_deg` about Y.
+/// The default model transform: 30° about X, then 20° about Y ([`torus_tilt`]), then
+/// `spin_deg` about Y.
 #[must_use]
 pub fn torus_transform<S: Scalar>(spin_deg: f64) -> Mat4<S> {
-    Mat4::rotate_x(deg(30.0))
-        .then(&Mat4::rotate_y(deg(20.0)))
-        .then(&Mat4::rotate_y(deg(spin_deg)))
+    torus_tilt().then(&Mat4::rotate_y(deg(spin_deg)))
+}
+
+/// The fixed part of [`torus_transform`]: 30° about X, then 20° about Y.
+#[must_use]
+pub fn torus_tilt<S: Scalar>() -> Mat4<S> {
+    Mat4::rotate_x(deg(30.0)).then(&Mat4::rotate_y(deg(20.0)))
 }
 
 /// The default material: colour (255, 160, 64), ambient 0.15, diffuse 0.85, Gouraud.
@@ -542,26 +547,56 @@ pub mod board {
         Glyphs::new(&FONT_6X10, LABEL_CHARS)
     }
 
-    /// Prepares frame `frame` of the firmware's animation in `renderer` (geometry only; the
-    /// strips follow with [`draw_strip`]). `shape` is [`super::torus`], `camera`
-    /// [`super::camera`].
-    ///
-    /// # Errors
-    ///
-    /// The renderer's error when the frame does not fit its capacities (it always does: the
-    /// capacities hold for a full turn).
-    pub fn prepare<S: Scalar>(
-        renderer: &mut BoardRenderer<S>,
-        shape: &super::TorusShape<S>,
+    /// The firmware's scene, built once: the default torus mesh ([`super::torus`], 18 KB for
+    /// `Fx<I16F16>`), the camera and the fixed part of the model transform.
+    #[derive(Debug)]
+    pub struct BoardScene<S: Scalar> {
+        shape: super::TorusShape<S>,
         camera: crate::Camera<S>,
-        frame: u32,
-    ) -> Result<crate::Stats, crate::Error<core::convert::Infallible>> {
-        let objects = [Object {
-            mesh: shape.mesh(),
-            transform: super::torus_transform(spin(frame)),
-            material: super::torus_material(),
-        }];
-        renderer.prepare(&Scene::new(&objects, camera, super::lights()))
+        tilt: crate::Mat4<S>,
+    }
+
+    impl<S: Scalar> BoardScene<S> {
+        /// Generates the mesh and the camera.
+        ///
+        /// # Errors
+        ///
+        /// Never for the built-in parameters; a message naming the part that failed otherwise.
+        pub fn new() -> Result<Self, &'static str> {
+            Ok(BoardScene {
+                shape: super::torus().map_err(|_| "torus mesh")?,
+                camera: super::camera().map_err(|_| "camera")?,
+                tilt: super::torus_tilt(),
+            })
+        }
+
+        /// The model transform of frame `frame`: exactly [`super::torus_transform`] of its
+        /// [`spin`] (the same operations on the same values), with the fixed part computed once.
+        #[must_use]
+        pub fn transform(&self, frame: u32) -> crate::Mat4<S> {
+            self.tilt
+                .then(&crate::Mat4::rotate_y(super::deg(spin(frame))))
+        }
+
+        /// Prepares frame `frame` of the animation in `renderer` (geometry only; the strips
+        /// follow with [`draw_strip`]).
+        ///
+        /// # Errors
+        ///
+        /// The renderer's error when the frame does not fit its capacities (it always does: the
+        /// capacities hold for a full turn).
+        pub fn prepare(
+            &self,
+            renderer: &mut BoardRenderer<S>,
+            frame: u32,
+        ) -> Result<crate::Stats, crate::Error<core::convert::Infallible>> {
+            let objects = [Object {
+                mesh: self.shape.mesh(),
+                transform: self.transform(frame),
+                material: super::torus_material(),
+            }];
+            renderer.prepare(&Scene::new(&objects, self.camera, super::lights()))
+        }
     }
 
     /// Draws the next strip of the prepared frame into `buffer` with the label `label` composed
@@ -591,6 +626,17 @@ pub mod board {
             assert_eq!(spin(0), 0.0);
             assert_eq!(spin(121), 3.0);
             assert!(glyphs().is_ok());
+        }
+
+        #[test]
+        fn cached_tilt_gives_the_same_transform() {
+            type Q = crate::Fx<fixed::types::I16F16>;
+            let scene = BoardScene::<Q>::new().unwrap();
+            for frame in [0, 1, 7, 119, 120, 1000, u32::MAX] {
+                let a = scene.transform(frame);
+                let b = super::super::torus_transform::<Q>(spin(frame));
+                assert!(a == b, "frame {frame}");
+            }
         }
     }
 }

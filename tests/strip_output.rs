@@ -39,10 +39,10 @@ fn torus_scene_render(frame: u32, dither: bool) -> Frame<Rgb565> {
 fn strips_into_caller_lines_equal_render() {
     for (frame, dither) in [(0, false), (7, true), (50, true)] {
         let want = torus_scene_render(frame, dither);
-        let shape = demo::torus::<Q>().unwrap();
+        let scene = board::BoardScene::<Q>::new().unwrap();
         let mut r = Box::new(board::renderer::<Q>());
         r.set_dither(dither);
-        board::prepare(&mut r, &shape, demo::camera().unwrap(), frame).unwrap();
+        scene.prepare(&mut r, frame).unwrap();
         // 3 lines of caller buffer against 8 depth lines: strips of 3 rows.
         let mut lines = [[Rgb565::CSS_HOT_PINK; 240]; 3];
         let mut next = 0;
@@ -63,7 +63,7 @@ fn strips_into_caller_lines_equal_render() {
         assert_eq!(next, 240);
         // A viewport narrower than the buffer leaves the columns beyond it alone.
         r.set_viewport(100, 50);
-        board::prepare(&mut r, &shape, demo::camera().unwrap(), frame).unwrap();
+        scene.prepare(&mut r, frame).unwrap();
         let mut wide = [[Rgb565::CSS_HOT_PINK; 240]; 8];
         let rows = r.render_strip_into(&mut wide).unwrap();
         assert_eq!(rows, 0..8);
@@ -78,14 +78,14 @@ fn strips_into_caller_lines_equal_render() {
 #[test]
 fn strips_as_big_endian_bytes_equal_render() {
     let want = torus_scene_render(3, true);
-    let shape = demo::torus::<Q>().unwrap();
+    let scene = board::BoardScene::<Q>::new().unwrap();
     let mut r = Box::new(board::renderer::<Q>());
     assert_eq!(
         r.render_strip_be(&mut [0u8; 10]),
         Ok(None),
         "nothing prepared"
     );
-    board::prepare(&mut r, &shape, demo::camera().unwrap(), 3).unwrap();
+    scene.prepare(&mut r, 3).unwrap();
     assert_eq!(
         r.render_strip_be(&mut [0u8; 479]),
         Err(StripBufferTooSmall {
@@ -125,10 +125,10 @@ fn board_frame_is_render_plus_label() {
     )
     .draw(&mut want)
     .unwrap();
-    let shape = demo::torus::<Q>().unwrap();
+    let scene = board::BoardScene::<Q>::new().unwrap();
     let glyphs = board::glyphs().unwrap();
     let mut r = Box::new(board::renderer::<Q>());
-    board::prepare(&mut r, &shape, demo::camera().unwrap(), 9).unwrap();
+    scene.prepare(&mut r, 9).unwrap();
     let mut buffer = [[Rgb565::BLACK; 240]; board::STRIP_LINES];
     let mut next = 0;
     while let Some(rows) = board::draw_strip(&mut r, &glyphs, &label, &mut buffer) {
@@ -151,11 +151,11 @@ fn board_frame_is_render_plus_label() {
 fn seek_row_splits_a_frame_within_one_step() {
     for (frame, dither) in [(0, false), (11, true), (40, false)] {
         let want = torus_scene_render(frame, dither);
-        let shape = demo::torus::<Q>().unwrap();
+        let scene = board::BoardScene::<Q>::new().unwrap();
         let mut r = Box::new(board::renderer::<Q>());
         r.set_dither(dither);
         for split in [0usize, 1, 57, 100, 119, 120, 121, 183, 239, 240, 500] {
-            board::prepare(&mut r, &shape, demo::camera().unwrap(), frame).unwrap();
+            scene.prepare(&mut r, frame).unwrap();
             let mut got = vec![[Rgb565::CSS_HOT_PINK; 240]; 240];
             let mut line = [[Rgb565::CSS_HOT_PINK; 240]; 1];
             // Bottom part first, then the top: the order does not matter.
