@@ -613,6 +613,57 @@ pub mod board {
         Some(rows)
     }
 
+    /// The parts of a frame split between two cores at row `split` ([`split_frame`]).
+    #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+    pub enum SplitPart {
+        /// Geometry (shared: one core prepares it for both).
+        Geometry,
+        /// Rows `0..split`, the first core's strips.
+        Top,
+        /// [`crate::Renderer::seek_row`] to `split` and rows `split..240`, the second core's.
+        Bottom,
+    }
+
+    /// Renders frame `frame` as two cores would share it: the geometry once, then rows
+    /// `0..split` (the first core) and, from a [`crate::Renderer::seek_row`], rows
+    /// `split..240` (the second core). Here the parts run one after the other on one core,
+    /// and `mark` is called at the end of each, so a benchmark can time them; `split` is
+    /// rounded down to a multiple of [`STRIP_LINES`]. Returns the strips drawn.
+    ///
+    /// On a real two-core firmware each core needs its own active list, depth lines and strip
+    /// buffers over the shared vertex store and triangle list; the renderer keeps those in one
+    /// value today, so this measures the split's work, it does not run it on two cores.
+    ///
+    /// # Errors
+    ///
+    /// The renderer's error when the frame does not fit its capacities.
+    pub fn split_frame<S: Scalar>(
+        scene: &BoardScene<S>,
+        renderer: &mut BoardRenderer<S>,
+        frame: u32,
+        split: usize,
+        buffer: &mut StripBuffer,
+        mut mark: impl FnMut(SplitPart),
+    ) -> Result<usize, crate::Error<core::convert::Infallible>> {
+        let split = split.min(SIZE) / STRIP_LINES * STRIP_LINES;
+        scene.prepare(renderer, frame)?;
+        mark(SplitPart::Geometry);
+        let mut strips = 0;
+        while renderer.next_row() < split {
+            if renderer.render_strip_into(buffer).is_none() {
+                break;
+            }
+            strips += 1;
+        }
+        mark(SplitPart::Top);
+        renderer.seek_row(split);
+        while renderer.render_strip_into(buffer).is_some() {
+            strips += 1;
+        }
+        mark(SplitPart::Bottom);
+        Ok(strips)
+    }
+
     #[cfg(test)]
     mod tests {
         use super::*;
@@ -636,6 +687,26 @@ pub mod board {
                 let a = scene.transform(frame);
                 let b = super::super::torus_transform::<Q>(spin(frame));
                 assert!(a == b, "frame {frame}");
+            }
+        }
+
+        #[test]
+        fn split_frame_draws_every_strip_once() {
+            type Q = crate::Fx<fixed::types::I16F16>;
+            let scene = BoardScene::<Q>::new().unwrap();
+            let mut r = renderer::<Q>();
+            let mut buffer = [[Rgb565::BLACK; SIZE]; STRIP_LINES];
+            for split in [0, 8, 100, 120, 240, 999] {
+                let mut parts = heapless::Vec::<SplitPart, 3>::new();
+                let strips = split_frame(&scene, &mut r, 5, split, &mut buffer, |p| {
+                    parts.push(p).unwrap()
+                })
+                .unwrap();
+                assert_eq!(strips, SIZE / STRIP_LINES, "split {split}");
+                assert_eq!(
+                    parts.as_slice(),
+                    [SplitPart::Geometry, SplitPart::Top, SplitPart::Bottom]
+                );
             }
         }
     }

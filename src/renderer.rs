@@ -566,6 +566,13 @@ impl<
         }
     }
 
+    /// The next row the strip pass draws (the viewport's height once the frame is complete or
+    /// when nothing is prepared).
+    #[must_use]
+    pub fn next_row(&self) -> usize {
+        self.next_row
+    }
+
     /// The statistics of the frame being drawn (complete once the last strip is drawn).
     #[must_use]
     pub fn stats(&self) -> Stats {
