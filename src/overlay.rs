@@ -160,7 +160,8 @@ impl<const N: usize> Glyphs<N> {
     /// Draws the ink of `text`, top-left corner at `(x, y)` in screen pixels, in `color`, into
     /// the strip whose first row is `y0` (`lines[i]` is screen row `y0 + i`); pixels outside
     /// the lines are skipped, the background is left as it is. Characters not in the set are
-    /// left blank (their cell still advances) and counted: the return value.
+    /// left blank (their cell still advances) and counted: the return value, for a strip the
+    /// text crosses (0 for one it does not).
     ///
     /// Costs nothing but one range test for a strip the text does not cross; otherwise a few
     /// operations per glyph row it crosses.
@@ -176,21 +177,34 @@ impl<const N: usize> Glyphs<N> {
         let first = (y as i64).max(start);
         let end = (y as i64 + self.height as i64).min(start.saturating_add(lines.len() as i64));
         let mut unknown = 0;
+        if first >= end {
+            return 0;
+        }
+        let w = self.width as i64;
         for (k, ch) in text.chars().enumerate() {
             let Some(g) = self.index(ch) else {
                 unknown += 1;
                 continue;
             };
+            // The glyph's columns that fall on the line, as bit positions lo..hi.
             let gx = x as i64 + k as i64 * self.advance as i64;
+            let lo = (-gx).clamp(0, w) as u32;
+            let hi = (W as i64 - gx).clamp(0, w) as u32;
+            if lo >= hi {
+                continue;
+            }
+            // Screen columns of bits lo..hi, within 0..W.
+            let base = (gx + lo as i64) as usize;
+            let mask = &self.masks[g];
             for row in first..end {
-                let mut bits = self.masks[g][(row - y as i64) as usize];
-                let line = &mut lines[(row - start) as usize];
-                while bits != 0 {
-                    let i = bits.trailing_zeros();
-                    bits &= bits - 1;
-                    let col = gx + i as i64;
-                    if (0..W as i64).contains(&col) {
-                        line[col as usize] = color;
+                let bits = (mask[(row - y as i64) as usize] as u32) >> lo;
+                if bits == 0 {
+                    continue;
+                }
+                let line = &mut lines[(row - start) as usize][base..base + (hi - lo) as usize];
+                for (i, px) in line.iter_mut().enumerate() {
+                    if bits & (1 << i) != 0 {
+                        *px = color;
                     }
                 }
             }
@@ -256,7 +270,8 @@ mod tests {
         let glyphs = Glyphs::<4>::new(&FONT_6X10, "01").unwrap();
         let mut lines = [[0u8; 8]; 2];
         assert_eq!(glyphs.draw("0a1b", (-5, -3), 1, 0, &mut lines), 2);
-        assert_eq!(glyphs.draw("01", (1000, 1000), 1, 0, &mut lines), 0);
+        assert_eq!(glyphs.draw("0a1b", (1000, 0), 1, 0, &mut lines), 2);
+        assert_eq!(glyphs.draw("0a1b", (0, 1000), 1, 0, &mut lines), 0);
         assert_eq!(
             glyphs.draw("01", (i32::MIN, i32::MAX), 1, usize::MAX / 2, &mut lines),
             0
