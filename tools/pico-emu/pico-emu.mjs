@@ -21,11 +21,12 @@ import {
   FRAME_W,
   FRAME_H,
 } from './lib/frames.mjs';
-import { benchmarksBlock, updateBenchmarks } from './lib/report.mjs';
+import { benchmarksBlock, updateBenchmarks, twoCoreEstimate } from './lib/report.mjs';
+import { profileFrames } from './profile.mjs';
 
 const USAGE = `usage: pico-emu.mjs [--frames N] [--max-cycles N] [--min-fps X]
        [--host-tool PATH | --no-host] [--elf PATH] [--bootrom PATH] [--out DIR]
-       [--benchmarks PATH | --no-benchmarks]`;
+       [--benchmarks PATH | --no-benchmarks] [--mcu-report PATH] [--profile-frames N]`;
 
 function parseArgs(argv) {
   const o = {
@@ -38,6 +39,8 @@ function parseArgs(argv) {
     bootrom: 'target/pico-emu/bootrom.bin',
     out: 'target/pico-emu',
     benchmarks: 'BENCHMARKS.md',
+    mcuReport: 'target/mcu-bench/report.json',
+    profileFrames: 2,
   };
   const num = (name, v) => {
     const n = Number(v);
@@ -77,6 +80,12 @@ function parseArgs(argv) {
         break;
       case '--no-benchmarks':
         o.benchmarks = null;
+        break;
+      case '--mcu-report':
+        o.mcuReport = argv[++i];
+        break;
+      case '--profile-frames':
+        o.profileFrames = num(a, argv[++i]);
         break;
       case '-h':
       case '--help':
@@ -304,9 +313,25 @@ function main() {
   if (opts.minFps !== null && (report.fps === null || report.fps < opts.minFps)) {
     fpsFailure = `frame rate ${report.fps === null ? 'unknown' : report.fps.toFixed(2)} fps is below --min-fps ${opts.minFps}`;
   }
+  // Where the cycles go (a second run of the same firmware, cycles charged to functions), and
+  // what a second core would bring (the QEMU benchmark's split-frame measurement, if present).
+  let profile = null;
+  if (n >= 2 && !failure && opts.profileFrames > 0) {
+    profile = profileFrames(elf, bootrom, opts.profileFrames);
+    writeAtomic(path.join(opts.out, 'profile.json'), `${JSON.stringify(profile, null, 2)}\n`);
+  }
+  let mcu = null;
+  if (opts.mcuReport && fs.existsSync(opts.mcuReport)) {
+    mcu = JSON.parse(fs.readFileSync(opts.mcuReport, 'utf8'));
+  }
+  report.profile_top = profile ? profile.functions.slice(0, 12) : null;
+  report.two_core = twoCoreEstimate(report, mcu);
   writeAtomic(path.join(opts.out, 'report.json'), `${JSON.stringify(report, null, 2)}\n`);
   if (opts.benchmarks && n && !failure) {
-    updateBenchmarks(opts.benchmarks, benchmarksBlock({ ...report, rp2040js_version: rp2040jsVersion }));
+    updateBenchmarks(
+      opts.benchmarks,
+      benchmarksBlock({ ...report, rp2040js_version: rp2040jsVersion }, profile),
+    );
   }
 
   // Summary.
@@ -325,6 +350,21 @@ function main() {
   console.log(`  spi_busy_fraction  ${fmt(report.spi_busy_fraction, 3)}`);
   console.log(`  spi_cycles_per_byte ${fmt(report.spi_cycles_per_byte)}`);
   console.log(`  matches_host       ${matchesHost === null ? 'not compared (--no-host)' : matchesHost}`);
+  if (profile) {
+    console.log(`  profile (cycles per frame, share; target/pico-emu/profile.json):`);
+    for (const f of profile.functions.slice(0, 12)) {
+      console.log(`    ${String(f.cycles_per_frame).padStart(9)} ${(100 * f.share).toFixed(1).padStart(5)}%  ${f.function}`);
+    }
+  }
+  const tc = report.two_core;
+  if (tc && tc.measured) {
+    console.log(
+      `  two cores (estimate): ${tc.cycles_per_frame} cycles per frame, ${tc.fps.toFixed(1)} fps ` +
+        `(split at row ${tc.split}; panel limit ${tc.panel_fps.toFixed(1)} fps)`,
+    );
+  } else if (tc) {
+    console.log(`  two cores: ${tc.why}`);
+  }
   for (const w of warnings.slice(0, 10)) console.log(`  warning: ${w}`);
   console.log(`  report: ${path.join(opts.out, 'report.json')}`);
 

@@ -60,6 +60,21 @@ function functionIndex(symbols) {
 
 /** A readable name: the Rust path without hashes and generic arguments. */
 function shortName(name) {
+  // Rust v0 symbols (the standard library's): the length-prefixed identifiers after the
+  // crate's disambiguator.
+  const v0 = /^_R[A-Za-z]*C[A-Za-z0-9]*_(.*)$/.exec(name);
+  if (v0) {
+    const parts = [];
+    let s = v0[1];
+    for (;;) {
+      const n = /^[A-Za-z]*?(\d+)/.exec(s);
+      if (!n) break;
+      const len = Number(n[1]);
+      parts.push(s.slice(n[0].length, n[0].length + len));
+      s = s.slice(n[0].length + len);
+    }
+    return parts.length ? parts.join('::') : name;
+  }
   const m = /^_ZN(.*)E$/.exec(name);
   if (!m) return name;
   const parts = [];
@@ -79,11 +94,13 @@ function shortName(name) {
     .replace(/\.\./g, '..');
 }
 
-function main() {
-  const o = parseArgs(process.argv.slice(2));
-  const elf = parseElf(fs.readFileSync(o.elf));
-  const rom = fs.readFileSync(o.bootrom);
-  const bootrom = new Uint32Array(rom.buffer.slice(rom.byteOffset, rom.byteOffset + 16384));
+/**
+ * Runs the firmware `elf` (parsed) with `bootrom` and returns the cycles charged to each
+ * function over `frames` frames after frame 0: `{ frames, cycles_per_frame, functions }`, the
+ * functions sorted by cycles, each `{ function, cycles_per_frame, share }`.
+ */
+export function profileFrames(elf, bootrom, frames) {
+  const o = { frames };
   const done = [];
   let machine = null;
   const display = new St7789({ onFrame: () => done.push(machine.cycles) });
@@ -116,7 +133,7 @@ function main() {
   const rows = [...cycles.entries()]
     .sort((a, b) => b[1] - a[1])
     .map(([name, c]) => ({ function: shortName(name), cycles_per_frame: Math.round(c / o.frames), share: c / total }));
-  const report = {
+  return {
     frames: o.frames,
     cycles_per_frame: Math.round(perFrame),
     note:
@@ -124,6 +141,16 @@ function main() {
       'over the frames after frame 0; rp2040js timings, no XIP cache or bus contention.',
     functions: rows,
   };
+}
+
+function main() {
+  const o = parseArgs(process.argv.slice(2));
+  const elf = parseElf(fs.readFileSync(o.elf));
+  const rom = fs.readFileSync(o.bootrom);
+  const bootrom = new Uint32Array(rom.buffer.slice(rom.byteOffset, rom.byteOffset + 16384));
+  const report = profileFrames(elf, bootrom, o.frames);
+  const rows = report.functions;
+  const perFrame = report.cycles_per_frame;
   fs.mkdirSync(o.out, { recursive: true });
   writeAtomic(path.join(o.out, 'profile.json'), JSON.stringify(report, null, 2) + '\n');
   console.log(`profile: ${o.frames} frame(s), ${Math.round(perFrame)} cycles per frame`);
@@ -135,9 +162,11 @@ function main() {
   console.log(`profile: ${path.join(o.out, 'profile.json')}`);
 }
 
-try {
-  main();
-} catch (e) {
-  console.error(`profile: ${e.message}`);
-  process.exit(1);
+if (import.meta.url === `file://${process.argv[1]}` || process.argv[1]?.endsWith('profile.mjs')) {
+  try {
+    main();
+  } catch (e) {
+    console.error(`profile: ${e.message}`);
+    process.exit(1);
+  }
 }
