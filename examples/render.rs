@@ -12,7 +12,9 @@ use std::time::Instant;
 
 use clap::{Parser, ValueEnum};
 use common::compare::Timer;
-use common::obj::{bounds, load_obj, vertex_normals, ObjMesh};
+use common::obj::{
+    bounds, parse_obj, simplify, suggest_triangles, vertex_normals, NormalSource, ObjMesh,
+};
 use common::Frame;
 use embedded_graphics::pixelcolor::{PixelColor, Rgb565, Rgb888, RgbColor};
 use scanline3d::demo::{self, deg};
@@ -205,6 +207,13 @@ struct Args {
     /// print the renderer type for firmware, and fail if a format or capacity overflows
     #[arg(long)]
     budget: bool,
+    /// Simplify the OBJ to at most this many triangles first (meshoptimizer; as `bake
+    /// --max-triangles`), e.g. to preview a model too large for one frame
+    #[arg(long, value_name = "N", requires = "obj")]
+    max_triangles: Option<usize>,
+    /// Simplify the OBJ to at most this many vertices first (meshoptimizer)
+    #[arg(long, value_name = "N", requires = "obj")]
+    max_vertices: Option<usize>,
 }
 
 /// The model in f64, before conversion to the pipeline's number type.
@@ -213,30 +222,42 @@ struct Model {
     positions: Vec<[f64; 3]>,
     normals: Vec<[f64; 3]>,
     indices: Vec<[u16; 3]>,
+    /// What the simplification did (`--max-triangles`, `--max-vertices`).
+    simplified: Option<String>,
 }
 
 fn model(args: &Args) -> Result<Model, String> {
     if let Some(path) = &args.obj {
-        let mesh: ObjMesh = load_obj(path)?;
-        let use_file = match args.normals {
+        let file = parse_obj(path)?;
+        let source = match args.normals {
             Some(NormalsArg::File) => {
-                if mesh.normals.is_none() {
+                if !file.all_corners_have_normals {
                     return Err(format!(
                         "{}: --normals file, but the OBJ has no vn for every vertex",
                         path.display()
                     ));
                 }
-                true
+                NormalSource::File
             }
-            Some(NormalsArg::FaceAverage) => false,
-            None => mesh.normals.is_some(),
+            Some(NormalsArg::FaceAverage) => NormalSource::FaceAverage,
+            None => file.default_normals(),
         };
-        let normals = vertex_normals(&mesh, use_file);
+        let mut big = file.mesh(source)?;
+        let mut simplified = None;
+        if args.max_triangles.is_some() || args.max_vertices.is_some() {
+            let s = simplify(&big, args.max_triangles, args.max_vertices)
+                .map_err(|e| format!("{}: {e}", file.name))?;
+            simplified = Some(s.summary(&big));
+            big = s.mesh;
+        }
+        let mesh: ObjMesh = big.to_u16(&file.name)?;
+        let normals = vertex_normals(&mesh, source == NormalSource::File);
         return Ok(Model {
             name: path.display().to_string(),
             positions: mesh.positions,
             normals,
             indices: mesh.indices,
+            simplified,
         });
     }
     fn from_shape<const V: usize, const T: usize>(
@@ -255,6 +276,7 @@ fn model(args: &Args) -> Result<Model, String> {
             normals: vertex_normals(&mesh, use_file),
             positions: mesh.positions,
             indices: mesh.indices,
+            simplified: None,
         }
     }
     let e = |e: scanline3d::ShapeError| format!("shape: {e:?}");
@@ -440,11 +462,7 @@ fn run<S: Scalar, C: TargetColor>(
                 what,
                 capacity,
                 needed,
-            } => format!(
-                "{}: needs {needed} {}, more than the preview's {capacity}",
-                m.name,
-                capacity_name(what)
-            ),
+            } => capacity_message(m, what, capacity, needed),
             other => format!("{}: {other:?}", m.name),
         })?;
         for _ in 0..timed_runs {
@@ -459,6 +477,29 @@ fn run<S: Scalar, C: TargetColor>(
     times.sort_by(|a, b| a.total_cmp(b));
     out.ns_per_frame = times.get(times.len() / 2).copied().unwrap_or(0.0);
     Ok(out)
+}
+
+/// A capacity error, with what to do about it.
+fn capacity_message(m: &Model, what: Capacity, capacity: usize, needed: usize) -> String {
+    let name = &m.name;
+    let what_name = capacity_name(what);
+    match what {
+        // The preview's vertex and triangle stores are the library's largest
+        // (`Renderer::CHECK`): no renderer holds this frame.
+        Capacity::Vertices | Capacity::Triangles => {
+            let n = suggest_triangles(m.indices.len(), needed, capacity);
+            format!(
+                "{name}: one frame needs {}{needed} {what_name}, more than any renderer holds \
+                 ({capacity}, the library's limit): simplify the model, e.g. preview it with \
+                 `--max-triangles {n}`, or bake a smaller mesh with \
+                 `cargo run --release --example bake -- {name} --max-triangles {n} --obj-out smaller.obj`",
+                if what == Capacity::Triangles { "at least " } else { "" },
+            )
+        }
+        _ => format!(
+            "{name}: needs {needed} {what_name}, more than the preview's {capacity}: simplify the model (--max-triangles N)"
+        ),
+    }
 }
 
 fn capacity_name(c: Capacity) -> &'static str {
@@ -607,6 +648,9 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
         scanline3d::color::quantize::<C>(args.background),
     );
     write_image(&args.out, &tested.frames, 40).map_err(|e| (e, 1))?;
+    if let Some(note) = &m.simplified {
+        println!("{}: {note}", m.name);
+    }
     let st = tested.stats[0];
     let (w, h) = args.size;
     let need = |f: fn(&Stats) -> u32| tested.stats.iter().map(f).max().unwrap_or(0) as usize;
@@ -691,6 +735,9 @@ fn budget<C: TargetColor>(
         m.name,
         run.stats.len()
     );
+    if let Some(s) = &m.simplified {
+        println!("  {s}");
+    }
     println!("  vertices stored (mesh + clipping): {verts}");
     println!(
         "  triangles after culling and clipping: {tris} (of {} in the mesh)",

@@ -6,25 +6,171 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// A triangle mesh in f64 model units.
+/// A triangle mesh in f64 model units, with the renderer's u16 indices.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ObjMesh {
     pub positions: Vec<[f64; 3]>,
-    /// The file's `vn` normals, one per position, when every corner had one.
+    /// The file's `vn` normals, one per vertex, when the mesh was built with
+    /// [`NormalSource::File`]; `None` when normals are to be averaged ([`vertex_normals`]).
     pub normals: Option<Vec<[f64; 3]>>,
     pub indices: Vec<[u16; 3]>,
 }
 
-/// Loads an OBJ file: polygons triangulated, `v/vt/vn` forms and negative indices accepted,
-/// all objects merged into one mesh.
-pub fn load_obj(path: &Path) -> Result<ObjMesh, String> {
+/// The same with u32 indices: any size an OBJ file can have, before simplification.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BigMesh {
+    pub positions: Vec<[f64; 3]>,
+    pub normals: Option<Vec<[f64; 3]>>,
+    pub indices: Vec<[u32; 3]>,
+}
+
+/// Where vertex normals come from.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum NormalSource {
+    /// The file's `vn`: a vertex is split where the `vn` of its corners differ (hard edges).
+    File,
+    /// The normalized sum of the unit normals of the faces sharing a position: one vertex per
+    /// position.
+    FaceAverage,
+}
+
+/// One corner of a triangle as the file gives it: indices into [`ObjFile::positions`] and
+/// [`ObjFile::normals`]. A per-corner attribute added later (a texture coordinate) becomes a
+/// field here and a part of [`ObjFile::split_key`] when it is used.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Corner {
+    pub position: u32,
+    pub normal: Option<u32>,
+}
+
+/// An OBJ file's triangles with their corners' attributes, positions welded: equal
+/// coordinates are one position, whatever `v` lines, `vt` or objects they came from.
+#[derive(Clone, Debug)]
+pub struct ObjFile {
+    /// The path, for messages.
+    pub name: String,
+    /// Distinct positions, in order of first use by a face.
+    pub positions: Vec<[f64; 3]>,
+    /// Distinct `vn` values (as given, not normalized), in order of first use.
+    pub normals: Vec<[f64; 3]>,
+    pub triangles: Vec<[Corner; 3]>,
+    /// Whether every face corner has a `vn`.
+    pub all_corners_have_normals: bool,
+}
+
+impl ObjFile {
+    /// The file's normals when every corner has one, else face-averaged.
+    pub fn default_normals(&self) -> NormalSource {
+        if self.all_corners_have_normals {
+            NormalSource::File
+        } else {
+            NormalSource::FaceAverage
+        }
+    }
+
+    /// What must be equal for two corners to be one vertex: the position, and the normal when
+    /// the file's normals are used. (Texture coordinates do not exist in the renderer yet, so
+    /// `vt` never splits a vertex.)
+    fn split_key(c: &Corner, normals: NormalSource) -> (u32, Option<u32>) {
+        match normals {
+            NormalSource::File => (c.position, c.normal),
+            NormalSource::FaceAverage => (c.position, None),
+        }
+    }
+
+    /// The indexed mesh: one vertex per distinct [`Self::split_key`], in order of first use.
+    pub fn mesh(&self, normals: NormalSource) -> Result<BigMesh, String> {
+        use std::collections::HashMap;
+        if normals == NormalSource::File && !self.all_corners_have_normals {
+            return Err(format!(
+                "{}: the file's normals were asked for, but not every face corner has a vn",
+                self.name
+            ));
+        }
+        let mut ids: HashMap<(u32, Option<u32>), u32> = HashMap::new();
+        let mut out = BigMesh {
+            positions: Vec::new(),
+            normals: (normals == NormalSource::File).then(Vec::new),
+            indices: Vec::with_capacity(self.triangles.len()),
+        };
+        for t in &self.triangles {
+            out.indices.push(t.map(|c| {
+                let key = Self::split_key(&c, normals);
+                *ids.entry(key).or_insert_with(|| {
+                    out.positions.push(self.positions[c.position as usize]);
+                    if let (Some(ns), Some(n)) = (&mut out.normals, key.1) {
+                        ns.push(self.normals[n as usize]);
+                    }
+                    (out.positions.len() - 1) as u32
+                })
+            }));
+        }
+        Ok(out)
+    }
+}
+
+/// Largest number of vertices u16 indices address.
+pub const U16_VERTICES: usize = 65536;
+
+impl BigMesh {
+    /// The mesh with u16 indices, or a message that says what to do when it has too many
+    /// vertices.
+    pub fn to_u16(&self, name: &str) -> Result<ObjMesh, String> {
+        let n = self.positions.len();
+        if n > U16_VERTICES {
+            let target = suggest_triangles(self.indices.len(), n, 32768);
+            return Err(format!(
+                "{name}: {n} vertices, more than the 65536 that u16 indices address: simplify it, \
+                 e.g. `--max-triangles {target}` (render) or \
+                 `cargo run --release --example bake -- {name} --max-triangles {target} --obj-out smaller.obj`"
+            ));
+        }
+        Ok(ObjMesh {
+            positions: self.positions.clone(),
+            normals: self.normals.clone(),
+            indices: self.indices.iter().map(|t| t.map(|i| i as u16)).collect(),
+        })
+    }
+}
+
+/// A triangle budget that should bring a mesh of `tris` triangles and `verts` vertices under
+/// `cap` vertices (90 % of the proportional share, rounded down to a thousand when that large).
+pub fn suggest_triangles(tris: usize, verts: usize, cap: usize) -> usize {
+    let t = (tris as f64 * 0.9 * cap as f64 / verts.max(1) as f64) as usize;
+    if t >= 2000 {
+        t / 1000 * 1000
+    } else {
+        t.max(1)
+    }
+}
+
+/// Reads and parses an OBJ file (tobj parses; polygons triangulated, `v/vt/vn` forms and
+/// negative indices accepted, all objects merged, equal positions welded).
+pub fn parse_obj(path: &Path) -> Result<ObjFile, String> {
+    use std::collections::HashMap;
     let name = path.display();
+    if path.is_dir() {
+        return Err(format!("{name}: is a directory, not an OBJ file"));
+    }
     let text = std::fs::read_to_string(path).map_err(|e| format!("{name}: cannot read: {e}"))?;
+    // Lines tobj would reject and indices out of range, with their line numbers.
+    let scan = scan(&text);
+    if let Some((line, why)) = scan.bad {
+        return Err(format!("{name}:{line}: {why}"));
+    }
+    if scan.faces == 0 {
+        return Err(format!(
+            "{name}: no triangles (no `f` lines with three or more vertices; {} `v` lines)",
+            scan.vertices
+        ));
+    }
     // The remaining options exist only with some tobj features: keep the update.
+    // `single_index: false`: corners keep their own position and normal indices; vertices are
+    // made here, split only where the attributes used differ ([`ObjFile::mesh`]).
     #[allow(clippy::needless_update)]
     let opts = tobj::LoadOptions {
         triangulate: true,
-        single_index: true,
+        single_index: false,
         ignore_points: true,
         ignore_lines: true,
         ..Default::default()
@@ -33,64 +179,93 @@ pub fn load_obj(path: &Path) -> Result<ObjMesh, String> {
     let (models, _) = tobj::load_obj_buf(&mut reader, &opts, |_| {
         Err(tobj::LoadError::MaterialParseError)
     })
-    .map_err(|e| match find_bad_line(&text) {
-        Some((line, why)) => format!("{name}:{line}: {why} ({e})"),
-        None => format!("{name}: {e}"),
-    })?;
-    // Indices out of range are not always reported by tobj: check them ourselves.
-    if let Some((line, why)) = find_bad_line(&text) {
-        return Err(format!("{name}:{line}: {why}"));
-    }
-    let mut mesh = ObjMesh {
+    .map_err(|e| format!("{name}: {e}"))?;
+    let mut file = ObjFile {
+        name: name.to_string(),
         positions: Vec::new(),
-        normals: Some(Vec::new()),
-        indices: Vec::new(),
+        normals: Vec::new(),
+        triangles: Vec::new(),
+        all_corners_have_normals: scan.corners_without_normal == 0,
     };
+    // -0.0 and 0.0 are one coordinate.
+    let key = |v: [f64; 3]| v.map(|c| (c + 0.0).to_bits());
+    let mut pos_ids: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut nor_ids: HashMap<[u64; 3], u32> = HashMap::new();
     for m in &models {
-        let base = mesh.positions.len();
         let m = &m.mesh;
-        let n = m.positions.len() / 3;
-        for k in 0..n {
-            mesh.positions.push([
-                m.positions[3 * k] as f64,
-                m.positions[3 * k + 1] as f64,
-                m.positions[3 * k + 2] as f64,
-            ]);
-        }
-        match (&mut mesh.normals, m.normals.len() == m.positions.len()) {
-            (Some(ns), true) => {
-                for k in 0..n {
-                    ns.push([
-                        m.normals[3 * k] as f64,
-                        m.normals[3 * k + 1] as f64,
-                        m.normals[3 * k + 2] as f64,
-                    ]);
+        let read3 = |v: &[f32], i: u32| -> Option<[f64; 3]> {
+            let i = 3 * i as usize;
+            Some([
+                *v.get(i)? as f64,
+                *v.get(i + 1)? as f64,
+                *v.get(i + 2)? as f64,
+            ])
+        };
+        let use_normals =
+            file.all_corners_have_normals && m.normal_indices.len() == m.indices.len();
+        for (k, t) in m.indices.chunks_exact(3).enumerate() {
+            let mut tri = [Corner {
+                position: 0,
+                normal: None,
+            }; 3];
+            for j in 0..3 {
+                let p = read3(&m.positions, t[j])
+                    .ok_or_else(|| format!("{name}: a face refers to a missing vertex"))?;
+                let n = pos_ids.len() as u32;
+                tri[j].position = *pos_ids.entry(key(p)).or_insert_with(|| {
+                    file.positions.push(p);
+                    n
+                });
+                if use_normals {
+                    let v = read3(&m.normals, m.normal_indices[3 * k + j])
+                        .ok_or_else(|| format!("{name}: a face refers to a missing normal"))?;
+                    let n = nor_ids.len() as u32;
+                    tri[j].normal = Some(*nor_ids.entry(key(v)).or_insert_with(|| {
+                        file.normals.push(v);
+                        n
+                    }));
                 }
             }
-            (normals, _) => *normals = None,
+            file.triangles.push(tri);
         }
-        if mesh.positions.len() > 65536 {
-            return Err(format!(
-                "{name}: {} vertices after splitting by normals; u16 indices address at most 65536",
-                mesh.positions.len()
-            ));
-        }
-        for t in m.indices.chunks_exact(3) {
-            mesh.indices
-                .push([0, 1, 2].map(|k| (base + t[k] as usize) as u16));
+        if !use_normals {
+            file.all_corners_have_normals = false;
         }
     }
-    if mesh.indices.is_empty() {
-        return Err(format!(
-            "{name}: no triangles (no `f` lines with three or more vertices)"
-        ));
+    if file.triangles.is_empty() {
+        return Err(format!("{name}: no triangles"));
     }
-    Ok(mesh)
+    Ok(file)
+}
+
+/// Loads an OBJ file as one mesh with u16 indices, normals from the file when every corner has
+/// a `vn` ([`ObjFile::default_normals`]).
+pub fn load_obj(path: &Path) -> Result<ObjMesh, String> {
+    let file = parse_obj(path)?;
+    file.mesh(file.default_normals())?.to_u16(&file.name)
+}
+
+/// What [`scan`] finds in an OBJ text.
+#[derive(Debug, Default)]
+pub struct Scan {
+    /// The first line tobj would reject or that refers to something not defined:
+    /// (1-based line number, reason).
+    pub bad: Option<(usize, String)>,
+    pub vertices: usize,
+    pub faces: usize,
+    /// Face corners without a `vn` index.
+    pub corners_without_normal: usize,
 }
 
 /// The first line of an OBJ text that tobj would reject or that refers to a vertex that does
 /// not exist: (1-based line number, reason).
 pub fn find_bad_line(text: &str) -> Option<(usize, String)> {
+    scan(text).bad
+}
+
+/// Checks every line of an OBJ text and counts what the faces have.
+pub fn scan(text: &str) -> Scan {
+    let mut out = Scan::default();
     let (mut nv, mut nt, mut nn) = (0i64, 0i64, 0i64);
     for (k, raw) in text.lines().enumerate() {
         let line = raw.split('#').next().unwrap_or("").trim();
@@ -98,17 +273,24 @@ pub fn find_bad_line(text: &str) -> Option<(usize, String)> {
         let Some(kind) = words.next() else { continue };
         let rest: Vec<&str> = words.collect();
         let floats = |need: usize| {
-            rest.len() >= need && rest.iter().take(need).all(|w| w.parse::<f64>().is_ok())
+            rest.len() >= need
+                && rest
+                    .iter()
+                    .take(need)
+                    .all(|w| w.parse::<f64>().is_ok_and(f64::is_finite))
         };
         let bad = match kind {
-            "v" if !floats(3) => Some("a vertex needs three numbers".to_string()),
-            "vn" if !floats(3) => Some("a normal needs three numbers".to_string()),
+            "v" if !floats(3) => Some("a vertex needs three numbers, all finite".to_string()),
+            "vn" if !floats(3) => Some("a normal needs three numbers, all finite".to_string()),
             "vt" if !floats(1) => Some("a texture coordinate needs numbers".to_string()),
             "f" => {
                 if rest.len() < 3 {
                     Some("a face needs at least three vertices".to_string())
                 } else {
                     rest.iter().find_map(|corner| {
+                        if corner.split('/').nth(2).is_none_or(str::is_empty) {
+                            out.corners_without_normal += 1;
+                        }
                         for (i, part) in corner.split('/').enumerate() {
                             if part.is_empty() {
                                 if i == 0 {
@@ -121,7 +303,10 @@ pub fn find_bad_line(text: &str) -> Option<(usize, String)> {
                             };
                             let count = [nv, nt, nn][i.min(2)];
                             let what = ["vertex", "texture coordinate", "normal"][i.min(2)];
-                            let ok = if v > 0 { v <= count } else { v < 0 && -v <= count };
+                            if v == 0 {
+                                return Some(format!("face corner {corner:?} refers to {what} 0, but OBJ indices start at 1"));
+                            }
+                            let ok = if v > 0 { v <= count } else { -v <= count };
                             if !ok {
                                 return Some(format!("face refers to {what} {v}, but only {count} are defined so far"));
                             }
@@ -133,23 +318,26 @@ pub fn find_bad_line(text: &str) -> Option<(usize, String)> {
             _ => None,
         };
         if let Some(why) = bad {
-            return Some((k + 1, why));
+            out.bad = Some((k + 1, why));
+            return out;
         }
         match kind {
             "v" => nv += 1,
             "vt" => nt += 1,
             "vn" => nn += 1,
+            "f" => out.faces += 1,
             _ => {}
         }
     }
-    None
+    out.vertices = nv as usize;
+    out
 }
 
 /// Writes an indexed mesh as an OBJ text (with normals when given).
-pub fn to_obj(
+pub fn to_obj<I: Copy + Into<u64>>(
     positions: &[[f64; 3]],
     normals: Option<&[[f64; 3]]>,
-    indices: &[[u16; 3]],
+    indices: &[[I; 3]],
 ) -> String {
     let mut s = String::from("# written by scanline3d\n");
     for p in positions {
@@ -161,7 +349,7 @@ pub fn to_obj(
         }
     }
     for t in indices {
-        let [a, b, c] = t.map(|i| i as usize + 1);
+        let [a, b, c] = t.map(|i| i.into() + 1);
         if normals.is_some() {
             let _ = writeln!(s, "f {a}//{a} {b}//{b} {c}//{c}");
         } else {
@@ -289,4 +477,217 @@ pub static INDICES: [[u16; 3]; {nt}] = [
         scale,
         offset: c,
     }
+}
+
+/// Writes `text` to `path` through a temporary file and a rename: never a half-written file.
+pub fn write_atomic(path: &Path, text: &str) -> Result<(), String> {
+    let tmp = path.with_extension("partial");
+    std::fs::write(&tmp, text)
+        .and_then(|_| std::fs::rename(&tmp, path))
+        .map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            format!("{}: {e}", path.display())
+        })
+}
+
+/// A simplified mesh and the geometric error the simplification introduced.
+pub struct Simplified {
+    pub mesh: BigMesh,
+    /// meshoptimizer's own error estimate, relative to the mesh extents, and in model units.
+    pub meshopt_relative: f64,
+    pub meshopt_absolute: f64,
+    /// Whether meshoptimizer's topology-keeping simplifier could not reach the budget and its
+    /// "sloppy" one (vertex clustering) was used.
+    pub sloppy: bool,
+    /// The largest distance, in model units, from points sampled on either surface to the
+    /// other surface (a symmetric Hausdorff estimate), and the number of points each way.
+    pub hausdorff: f64,
+    pub samples: usize,
+    /// The bounding-box diagonal of the original, model units.
+    pub diagonal: f64,
+}
+
+impl Simplified {
+    /// One line for the tools' output.
+    pub fn summary(&self, before: &BigMesh) -> String {
+        format!(
+            "simplified {} -> {} triangles, {} -> {} vertices{}: error {:.3e} model units = {:.3} % of the bounding-box diagonal ({:.4e}) \
+             (largest distance between the two surfaces, {} points sampled on each); meshoptimizer's estimate {:.3e} ({:.3} % of its extent)",
+            before.indices.len(),
+            self.mesh.indices.len(),
+            before.positions.len(),
+            self.mesh.positions.len(),
+            if self.sloppy { " (meshoptimizer's sloppy simplifier: the topology-keeping one could not reach the budget)" } else { "" },
+            self.hausdorff,
+            100.0 * self.hausdorff / self.diagonal.max(1e-300),
+            self.diagonal,
+            self.samples,
+            self.meshopt_absolute,
+            100.0 * self.meshopt_relative,
+        )
+    }
+}
+
+/// Simplifies `mesh` to at most `max_triangles` triangles and/or `max_vertices` vertices with
+/// meshoptimizer (edge collapses that keep the topology, and where those cannot reach the
+/// budget its vertex-clustering simplifier), drops the vertices no triangle uses, and orders
+/// triangles and vertices with meshoptimizer's vertex-cache and vertex-fetch orders (the
+/// triangles that share vertices come together and vertices are stored in order of first use:
+/// reads of the vertex store and of the mesh in flash stay local). Normals, when the mesh has
+/// the file's, follow their vertices; face-averaged ones are to be recomputed on the result.
+///
+/// Chosen over a hand-written simplifier: meshoptimizer is maintained, widely used (glTF
+/// tools, game engines) and reports its own error; the `meshopt` crate builds it from source.
+pub fn simplify(
+    mesh: &BigMesh,
+    max_triangles: Option<usize>,
+    max_vertices: Option<usize>,
+) -> Result<Simplified, String> {
+    let n_tris = mesh.indices.len();
+    let n_verts = mesh.positions.len();
+    if max_triangles == Some(0) || max_vertices.is_some_and(|v| v < 3) {
+        return Err("the budget must allow at least one triangle (3 vertices)".into());
+    }
+    let flat: Vec<u32> = mesh.indices.iter().flatten().copied().collect();
+    let pos32: Vec<[f32; 3]> = mesh.positions.iter().map(|p| p.map(|c| c as f32)).collect();
+    let adapter = meshopt::VertexDataAdapter::new(meshopt::typed_to_bytes(&pos32), 12, 0)
+        .map_err(|e| format!("meshoptimizer: {e}"))?;
+    let scale = meshopt::simplify_scale(&adapter) as f64;
+    let used = |idx: &[u32]| {
+        let mut seen = vec![false; n_verts];
+        idx.iter()
+            .filter(|&&i| !std::mem::replace(&mut seen[i as usize], true))
+            .count()
+    };
+    let tri_cap = max_triangles.unwrap_or(n_tris).min(n_tris);
+    let mut target = match max_vertices {
+        // A closed mesh has about two triangles per vertex.
+        Some(v) => tri_cap.min(2 * v),
+        None => tri_cap,
+    };
+    let mut result = None;
+    for _ in 0..24 {
+        let mut err = 0.0f32;
+        let mut idx = meshopt::simplify(
+            &flat,
+            &adapter,
+            3 * target,
+            1.0,
+            meshopt::SimplifyOptions::None,
+            Some(&mut err),
+        );
+        let mut sloppy = false;
+        if idx.len() / 3 > target {
+            err = 0.0;
+            idx = meshopt::simplify_sloppy(&flat, &adapter, 3 * target, 1.0, Some(&mut err));
+            sloppy = true;
+        }
+        let verts = used(&idx);
+        let fits = idx.len() / 3 <= tri_cap && max_vertices.is_none_or(|m| verts <= m);
+        if fits && !idx.is_empty() {
+            result = Some((idx, err as f64, sloppy));
+            break;
+        }
+        if idx.is_empty() || target <= 1 {
+            break;
+        }
+        // Too many vertices: aim lower in proportion.
+        let ratio = max_vertices.map_or(0.9, |m| (m as f64 / verts as f64).min(0.95));
+        target = ((target as f64 * ratio) as usize).max(1);
+    }
+    let Some((mut idx, rel, sloppy)) = result else {
+        return Err(format!(
+            "meshoptimizer could not bring {n_tris} triangles under {} triangles{}",
+            tri_cap,
+            max_vertices.map_or(String::new(), |v| format!(" and {v} vertices"))
+        ));
+    };
+    meshopt::optimize_vertex_cache_in_place(&mut idx, n_verts);
+    let order: Vec<u32> = (0..n_verts as u32).collect();
+    // New vertex k is old vertex order[k]; `idx` is rewritten to the new numbering.
+    let order = meshopt::optimize_vertex_fetch(&mut idx, &order);
+    let out = BigMesh {
+        positions: order.iter().map(|&i| mesh.positions[i as usize]).collect(),
+        normals: mesh
+            .normals
+            .as_ref()
+            .map(|ns| order.iter().map(|&i| ns[i as usize]).collect()),
+        indices: idx.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+    };
+    let (lo, hi, _, _) = bounds(&mesh.positions);
+    let diagonal =
+        ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt();
+    let samples = 20_000;
+    let hausdorff = hausdorff(mesh, &out, samples)?;
+    Ok(Simplified {
+        mesh: out,
+        meshopt_relative: rel,
+        meshopt_absolute: rel * scale,
+        sloppy,
+        hausdorff,
+        samples,
+        diagonal,
+    })
+}
+
+/// A symmetric Hausdorff estimate between the surfaces of `a` and `b`: the largest distance
+/// from a point of one to the other surface, over every vertex of each and `samples`
+/// area-weighted pseudo-random points on each (fixed seed: the same figure every run).
+/// Distances by parry's triangle-mesh point queries (a bounding-volume hierarchy).
+pub fn hausdorff(a: &BigMesh, b: &BigMesh, samples: usize) -> Result<f64, String> {
+    Ok(one_sided(a, b, samples)?.max(one_sided(b, a, samples)?))
+}
+
+fn trimesh(m: &BigMesh) -> Result<parry3d_f64::shape::TriMesh, String> {
+    let v = m
+        .positions
+        .iter()
+        .map(|p| parry3d_f64::math::Vector::new(p[0], p[1], p[2]))
+        .collect();
+    parry3d_f64::shape::TriMesh::new(v, m.indices.clone()).map_err(|e| format!("parry: {e:?}"))
+}
+
+/// Largest distance from points of `from` (its vertices and `samples` points on its triangles)
+/// to the surface of `to`.
+fn one_sided(from: &BigMesh, to: &BigMesh, samples: usize) -> Result<f64, String> {
+    use parry3d_f64::query::PointQuery;
+    let target = trimesh(to)?;
+    let dist = |p: [f64; 3]| {
+        target.distance_to_local_point(parry3d_f64::math::Vector::new(p[0], p[1], p[2]), false)
+    };
+    let mut worst = 0.0f64;
+    for &p in &from.positions {
+        worst = worst.max(dist(p));
+    }
+    // Area-weighted triangle choice by a cumulative table, barycentric points by a fixed LCG.
+    let mut cum = Vec::with_capacity(from.indices.len());
+    let mut total = 0.0;
+    for t in &from.indices {
+        let [a, b, c] = t.map(|i| from.positions[i as usize]);
+        let n = scanline3d::math::cross(scanline3d::math::sub(b, a), scanline3d::math::sub(c, a));
+        total += scanline3d::math::length(n);
+        cum.push(total);
+    }
+    if total <= 0.0 {
+        return Ok(worst);
+    }
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..samples {
+        let r = next() * total;
+        let k = cum.partition_point(|&c| c < r).min(cum.len() - 1);
+        let [a, b, c] = from.indices[k].map(|i| from.positions[i as usize]);
+        let (mut u, mut v) = (next(), next());
+        if u + v > 1.0 {
+            (u, v) = (1.0 - u, 1.0 - v);
+        }
+        let p = [0, 1, 2].map(|j| a[j] + u * (b[j] - a[j]) + v * (c[j] - a[j]));
+        worst = worst.max(dist(p));
+    }
+    Ok(worst)
 }

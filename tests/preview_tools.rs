@@ -1,0 +1,328 @@
+//! The preview tools on large models (issue #20, defect 4) and on bad inputs: `render` refuses
+//! a model no renderer can hold with a message that says what to do, `--max-triangles`
+//! previews it simplified, and `bake --max-triangles` simplifies it to a budget and reports the
+//! error. Large models are made here, never committed.
+
+mod common;
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::process::Command;
+
+use common::obj::{load_obj, parse_obj, NormalSource};
+
+fn example(name: &str) -> PathBuf {
+    // target/<profile>/deps/preview_tools-… → target/<profile>/examples/<name>
+    let exe = std::env::current_exe().unwrap();
+    let dir = exe.parent().unwrap().parent().unwrap();
+    dir.join("examples")
+        .join(format!("{name}{}", std::env::consts::EXE_SUFFIX))
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("preview_tools");
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+fn run(tool: &str, args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(example(tool))
+        .args(args)
+        .output()
+        .expect("run the example (built by cargo test)");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+/// A closed torus of `nu × nv` vertices and twice as many triangles (no normals).
+fn torus_obj(nu: usize, nv: usize) -> String {
+    use std::f64::consts::TAU;
+    let mut s = String::new();
+    for i in 0..nu {
+        let u = TAU * i as f64 / nu as f64;
+        for j in 0..nv {
+            let v = TAU * j as f64 / nv as f64;
+            let (x, y, z) = (
+                (1.0 + 0.35 * v.cos()) * u.cos(),
+                0.35 * v.sin(),
+                (1.0 + 0.35 * v.cos()) * u.sin(),
+            );
+            writeln!(s, "v {x} {y} {z}").unwrap();
+        }
+    }
+    let id = |i: usize, j: usize| (i % nu) * nv + j % nv + 1;
+    for i in 0..nu {
+        for j in 0..nv {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            writeln!(s, "f {a} {d} {c}\nf {a} {c} {b}").unwrap();
+        }
+    }
+    s
+}
+
+/// "error X model units = Y % of the bounding-box diagonal": (X, Y).
+fn reported_error(stdout: &str) -> (f64, f64) {
+    let rest = stdout
+        .split("error ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no error reported: {stdout}"));
+    let words: Vec<&str> = rest.split_whitespace().collect();
+    assert_eq!(&words[1..4], &["model", "units", "="], "{stdout}");
+    (words[0].parse().unwrap(), words[4].parse().unwrap())
+}
+
+#[test]
+fn a_model_too_large_for_a_frame_is_refused_clearly_and_can_be_simplified() {
+    // 36 000 vertices, 72 000 triangles: within u16 indices, beyond any renderer's frame.
+    let obj = tmp("big_torus.obj");
+    std::fs::write(&obj, torus_obj(300, 120)).unwrap();
+    let o = obj.to_str().unwrap();
+    let png = tmp("big_torus.png");
+    let _ = std::fs::remove_file(&png);
+    for budget in [false, true] {
+        let mut args = vec!["--obj", o, "--fit", "--out", png.to_str().unwrap()];
+        if budget {
+            args.push("--budget");
+        }
+        let (code, _, stderr) = run("render", &args);
+        assert_eq!(code, 1, "{stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        for part in [
+            "big_torus.obj",
+            "36000 vertices",
+            "32768",
+            "--max-triangles",
+            "example bake",
+        ] {
+            assert!(stderr.contains(part), "{stderr:?} lacks {part:?}");
+        }
+        assert!(!png.exists());
+    }
+    // Previewed simplified, with the error in the summary and in the budget.
+    let (code, stdout, stderr) = run(
+        "render",
+        &[
+            "--obj",
+            o,
+            "--fit",
+            "--max-triangles",
+            "20000",
+            "--out",
+            png.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("72000 -> 20000 triangles"), "{stdout}");
+    assert!(stdout.contains("triangles in 20000"), "{stdout}");
+    assert_eq!(common::read_png(&png).map(|p| (p.0, p.1)), Some((240, 240)));
+    let (code, stdout, stderr) = run(
+        "render",
+        &["--obj", o, "--fit", "--max-triangles", "20000", "--budget"],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("simplified 72000 -> 20000"), "{stdout}");
+    assert!(stdout.contains("renderer type:"), "{stdout}");
+    let (_, rel) = reported_error(&stdout);
+    assert!(rel < 0.2, "{stdout}");
+
+    // bake to 4000 triangles: Rust source and OBJ, a small reported error.
+    let rs = tmp("big_torus_mesh.rs");
+    let small = tmp("big_torus_4k.obj");
+    let (code, stdout, stderr) = run(
+        "bake",
+        &[
+            o,
+            "--max-triangles",
+            "4000",
+            "--out",
+            rs.to_str().unwrap(),
+            "--obj-out",
+            small.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    println!("{stdout}");
+    let (abs, rel) = reported_error(&stdout);
+    // A 4000-triangle torus of radii 1 and 0.35 is within a few thousandths of the original
+    // (its chords alone sag about 2e-3); the diagonal is 3.88.
+    assert!(abs > 0.0 && abs < 0.02, "{stdout}");
+    assert!(rel < 0.5, "{stdout}");
+    let mesh = load_obj(&small).unwrap();
+    assert!(mesh.indices.len() <= 4000 && mesh.indices.len() > 3000);
+    // The baked source: array lengths as declared, every index in range, no vertex unused.
+    let src = std::fs::read_to_string(&rs).unwrap();
+    let section = |name: &str| -> Vec<Vec<i64>> {
+        let start = src.find(&format!("pub static {name}")).unwrap();
+        let body = &src[start..];
+        let body = &body[body.find("= [\n").unwrap() + 4..body.find("\n];").unwrap()];
+        body.lines()
+            .map(|l| {
+                l.trim()
+                    .trim_end_matches(',')
+                    .trim_matches(['[', ']'])
+                    .split(',')
+                    .map(|w| {
+                        w.trim()
+                            .trim_start_matches("q(")
+                            .trim_end_matches(')')
+                            .parse()
+                            .unwrap()
+                    })
+                    .collect()
+            })
+            .collect()
+    };
+    let (pos, nor, idx) = (section("POSITIONS"), section("NORMALS"), section("INDICES"));
+    assert!(src.contains(&format!("[[Fx<I16F16>; 3]; {}]", pos.len())));
+    assert!(src.contains(&format!("[[u16; 3]; {}]", idx.len())));
+    assert_eq!(pos.len(), nor.len());
+    assert_eq!(idx.len(), mesh.indices.len());
+    let mut used = vec![false; pos.len()];
+    for t in &idx {
+        assert_eq!(t.len(), 3);
+        for &i in t {
+            assert!(
+                (0..pos.len() as i64).contains(&i),
+                "index {i} of {}",
+                pos.len()
+            );
+            used[i as usize] = true;
+        }
+    }
+    assert!(
+        used.iter().all(|&u| u),
+        "the baked mesh keeps unused vertices"
+    );
+    assert!(
+        src.contains("simplified 72000 -> "),
+        "the source says it was simplified"
+    );
+}
+
+#[test]
+fn beyond_u16_indices_the_message_says_what_to_do_and_bake_can_simplify() {
+    // 70 000 vertices in a strip of two rows: more than u16 indices address.
+    let n = 35_000;
+    let mut s = String::new();
+    for row in 0..2 {
+        for k in 0..n {
+            writeln!(s, "v {} {row} 0", k as f64 * 0.01).unwrap();
+        }
+    }
+    for k in 1..n {
+        let (a, b, c, d) = (k, k + 1, n + k + 1, n + k);
+        writeln!(s, "f {a} {b} {c}\nf {a} {c} {d}").unwrap();
+    }
+    let obj = tmp("strip70k.obj");
+    std::fs::write(&obj, s).unwrap();
+    let o = obj.to_str().unwrap();
+    let png = tmp("strip70k.png");
+    let _ = std::fs::remove_file(&png);
+    let (code, _, stderr) = run("render", &["--obj", o, "--out", png.to_str().unwrap()]);
+    assert_ne!(code, 0);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    for part in ["strip70k.obj", "70000 vertices", "65536", "--max-triangles"] {
+        assert!(stderr.contains(part), "{stderr:?} lacks {part:?}");
+    }
+    assert!(!png.exists());
+    // What the message suggests works.
+    let small = tmp("strip_small.obj");
+    let (code, stdout, stderr) = run(
+        "bake",
+        &[
+            o,
+            "--max-triangles",
+            "1000",
+            "--obj-out",
+            small.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("69998 -> "), "{stdout}");
+    let mesh = load_obj(&small).unwrap();
+    assert!(mesh.indices.len() <= 1000);
+    // The strip is flat, so nothing leaves its plane, but meshoptimizer may cut a corner of the
+    // outline (its own estimate does not count that; the sampled distance does): small
+    // against the 350-unit strip all the same.
+    let (abs, rel) = reported_error(&stdout);
+    assert!(abs < 0.2 && rel < 0.1, "{stdout}");
+}
+
+#[test]
+fn max_vertices_is_a_vertex_budget() {
+    let obj = tmp("torus_mid.obj");
+    std::fs::write(&obj, torus_obj(60, 30)).unwrap();
+    let out = tmp("torus_mid_500.obj");
+    let (code, stdout, stderr) = run(
+        "bake",
+        &[
+            obj.to_str().unwrap(),
+            "--max-vertices",
+            "500",
+            "--obj-out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let file = parse_obj(&out).unwrap();
+    let mesh = file.mesh(NormalSource::FaceAverage).unwrap();
+    assert!(
+        mesh.positions.len() <= 500 && mesh.positions.len() > 300,
+        "{} vertices: {stdout}",
+        mesh.positions.len()
+    );
+}
+
+/// A bad input: non-zero exit, no panic, a message naming the file and the problem, no output.
+fn bad(tool: &str, path: &std::path::Path, expect: &[&str]) {
+    let out = tmp("bad_out.png");
+    let rs = tmp("bad_out.rs");
+    let _ = std::fs::remove_file(&out);
+    let _ = std::fs::remove_file(&rs);
+    let p = path.to_str().unwrap();
+    let (code, _, stderr) = match tool {
+        "render" => run("render", &["--obj", p, "--out", out.to_str().unwrap()]),
+        _ => run("bake", &[p, "--out", rs.to_str().unwrap()]),
+    };
+    let name = path.file_name().unwrap().to_str().unwrap();
+    assert_ne!(code, 0, "{tool} {name}: exit status 0");
+    assert!(!stderr.contains("panicked"), "{tool} {name}: {stderr}");
+    assert!(
+        stderr.contains(name),
+        "{tool} {name}: the message does not name the file: {stderr}"
+    );
+    for e in expect {
+        assert!(stderr.contains(e), "{tool} {name}: {stderr:?} lacks {e:?}");
+    }
+    for f in [&out, &rs] {
+        assert!(
+            !f.exists() && !f.with_extension("partial").exists(),
+            "{tool} {name}: output written"
+        );
+    }
+}
+
+#[test]
+fn bad_inputs_are_clear_errors() {
+    let dir = tmp("a_directory.obj");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = |name: &str, text: &str| {
+        let p = tmp(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    };
+    let empty = file("empty.obj", "");
+    let only_v = file("only_v.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    let zero = file("index_zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n");
+    let nan = file("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n");
+    for tool in ["render", "bake"] {
+        bad(tool, &dir, &["is a directory"]);
+        bad(tool, &empty, &["no triangles"]);
+        bad(tool, &only_v, &["no triangles", "3 `v` lines"]);
+        bad(tool, &zero, &[":4:", "vertex 0", "start at 1"]);
+        bad(tool, &nan, &[":3:", "finite"]);
+    }
+}
