@@ -273,15 +273,18 @@ fn torus_sized<const W: usize>() {
     }
 }
 
-fn bench<S: Scalar>(scene: Bench) {
+/// One benchmark scene, `dither` on or off: with dithering the line's scene name gets the
+/// suffix `_dithered` (`examples/mcu_report.rs` renders the host's frame the same way).
+fn bench<S: Scalar>(scene: Bench, dither: bool) {
     // The renderer alone: one `render` call into a target that does nothing.
     let mut null = NullTarget::<Rgb565>::new(240, 240);
     let mut ft = FrameTimer { start: 0, ticks: 0 };
-    let r = render_bench::<S, Rgb565, _, _>(scene, 0.0, false, &mut null, &mut ft);
+    let r = render_bench::<S, Rgb565, _, _>(scene, 0.0, dither, &mut null, &mut ft);
     let ticks = ft.ticks as u64;
     // The image hash.
     let mut target = HashTarget::<Rgb565>::new(240, 240);
-    let _ = render_bench::<S, Rgb565, _, _>(scene, 0.0, false, &mut target, &mut NoProbe);
+    let _ = render_bench::<S, Rgb565, _, _>(scene, 0.0, dither, &mut target, &mut NoProbe);
+    let suffix = if dither { "_dithered" } else { "" };
     let frame = match r {
         Ok(f) => f,
         Err(e) => {
@@ -296,19 +299,21 @@ fn bench<S: Scalar>(scene: Bench) {
         ticks: [0; 7],
     };
     let mut t2 = HashTarget::<Rgb565>::new(240, 240);
-    let _ = render_bench::<S, Rgb565, _, _>(scene, 0.0, false, &mut t2, &mut probe);
+    let _ = render_bench::<S, Rgb565, _, _>(scene, 0.0, dither, &mut t2, &mut probe);
     let i = |k: usize| timer::instructions(probe.ticks[k]);
     // Read the probed run's frame, so that its hashing is not optimised away as dead.
     if t2.hash() != target.hash() {
         hprintln!(
-            "ERROR scene={} number={} probed frame differs",
+            "ERROR scene={}{} number={} probed frame differs",
             scene.name(),
+            suffix,
             S::NAME
         );
     }
     hprintln!(
-        "BENCH scene={} number={} instructions={} vertices={} lighting={} triangles={} setup={} raster={} output={} hash={:016x} pixels={} renderer_ram={} drawn={} written={}",
+        "BENCH scene={}{} number={} instructions={} vertices={} lighting={} triangles={} setup={} raster={} output={} hash={:016x} pixels={} renderer_ram={} drawn={} written={}",
         scene.name(),
+        suffix,
         S::NAME,
         timer::instructions(ticks),
         i(0),
@@ -377,9 +382,12 @@ fn main() -> ! {
             );
             continue;
         }
-        bench::<Fx<I16F16>>(scene);
-        bench::<f32>(scene);
+        bench::<Fx<I16F16>>(scene, false);
+        bench::<f32>(scene, false);
     }
+    // The default torus with 4×4 ordered dithering (as the Pico firmware renders it).
+    #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
+    bench::<Fx<I16F16>>(Bench::Torus, true);
     #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
     strip_bench::<8>();
     #[cfg(feature = "microbit")]
