@@ -1129,6 +1129,8 @@ impl<
                     i,
                     &mut self.color[l][..vw],
                     &mut self.depth[l][..vw],
+                    row,
+                    self.dither,
                 ) {
                     self.stats.add_row(frag, written);
                     i = next;

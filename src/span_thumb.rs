@@ -2585,6 +2585,8 @@ pub(crate) fn rows565<C: TargetColor, const N: usize>(
     start: usize,
     colors: &mut [C],
     depth: &mut [u16],
+    _row: usize,
+    _dither: bool,
 ) -> Option<(usize, u32, u32)> {
     if !rgb565_words::<C>() || start >= active.len() || !active.routine_may_draw(start) {
         return None;
