@@ -20,9 +20,9 @@ const BUDGET_INSTRUCTIONS: u64 = 1_400_000;
 /// The renderer RAM budget for the same frame.
 const BUDGET_RAM: u64 = 16 * 1024;
 
-fn host_hash<S: Scalar>(b: Bench) -> Result<u64, String> {
+fn host_hash<S: Scalar>(b: Bench, dither: bool) -> Result<u64, String> {
     let mut t = HashTarget::<Rgb565>::new(240, 240);
-    render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut t, &mut NoProbe)
+    render_bench::<S, Rgb565, _, _>(b, 0.0, dither, &mut t, &mut NoProbe)
         .map_err(|e| format!("{e:?}"))?;
     Ok(t.hash())
 }
@@ -152,15 +152,25 @@ fn run() -> Result<(), String> {
         }
         for line in text.lines().filter(|l| l.starts_with("BENCH ")) {
             let f = parse_fields(line);
-            let scene = f.get("scene").cloned().unwrap_or_default();
+            let name = f.get("scene").cloned().unwrap_or_default();
             let number = f.get("number").cloned().unwrap_or_default();
+            // `NAME_dithered`: the scene with 4×4 ordered dithering, shown as "NAME, dithered".
+            let (base, dither) = match name.strip_suffix("_dithered") {
+                Some(b) => (b.to_string(), true),
+                None => (name.clone(), false),
+            };
+            let scene = if dither {
+                format!("{base}, dithered")
+            } else {
+                base.clone()
+            };
             let bench = Bench::ALL
                 .into_iter()
-                .find(|b| b.name() == scene)
-                .ok_or_else(|| format!("unknown scene {scene}"))?;
+                .find(|b| b.name() == base)
+                .ok_or_else(|| format!("unknown scene {name}"))?;
             let host = match number.as_str() {
-                "I16F16" => host_hash::<Fx<I16F16>>(bench)?,
-                "f32" => host_hash::<f32>(bench)?,
+                "I16F16" => host_hash::<Fx<I16F16>>(bench, dither)?,
+                "f32" => host_hash::<f32>(bench, dither)?,
                 other => return Err(format!("unknown number type {other}")),
             };
             let hash = u64::from_str_radix(f.get("hash").map_or("", |s| s.as_str()), 16)

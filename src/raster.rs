@@ -475,6 +475,139 @@ pub fn triangle_setup_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
     None
 }
 
+/// Cortex-M only, for the benchmark firmware: the assembly dithered span
+/// (`span_thumb::span565_less_dither`) against [`span_packed_dither_portable`] (RGB565,
+/// `DepthTest::Less`) on `n` pseudo-random spans: any start words and steps (small and large),
+/// lengths 1 to 40, every column phase and Bayer row, depth lines that hide about half the
+/// pixels. Returns the first mismatch's `[case, length, x0, row]`.
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+#[doc(hidden)]
+pub fn dither_span_self_test(n: u32) -> Option<[u32; 4]> {
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    let mut next = xorshift32(0x3c6e_f372u32);
+    for case in 0..n {
+        let len = 1 + (next() % 40) as usize;
+        let x0 = (next() % 1024) as usize;
+        let row = (next() % 1024) as i32;
+        let mut word_and_step = || {
+            let (v, s, k) = (next(), next(), next() % 32);
+            [v, s >> k]
+        };
+        let [z0, gz] = word_and_step();
+        let rb = word_and_step();
+        let [g0, gg] = word_and_step();
+        let (z, g) = ([z0 as i32, gz as i32], [g0 as i32, gg as i32]);
+        let mut za = [0u16; 40];
+        let mut ca = [Rgb565::new(0, 0, 0); 40];
+        for (zp, cp) in za.iter_mut().zip(ca.iter_mut()) {
+            let r = next();
+            *zp = r as u16;
+            *cp = Rgb565::new((r >> 16) as u8 & 31, (r >> 21) as u8 & 63, (r >> 27) as u8);
+        }
+        let (mut zb, mut cb) = (za, ca);
+        let wa = crate::span_thumb::span565_less_dither(
+            &mut za[..len],
+            &mut ca[..len],
+            z,
+            rb,
+            g,
+            x0,
+            row,
+        );
+        let wb = span_packed_dither_portable::<Rgb565, LESS>(
+            &mut zb[..len],
+            &mut cb[..len],
+            z,
+            rb,
+            g,
+            x0,
+            row,
+        );
+        if wa != wb || za != zb || ca != cb {
+            return Some([case, len as u32, x0 as u32, row as u32]);
+        }
+    }
+    None
+}
+
+/// Cortex-M only, for the benchmark firmware: the dithered row routine
+/// (`span_thumb::rows565` with dithering, the renderer's path) against `draw_row` alone on `n`
+/// pseudo-random strips of four Gouraud triangles (RGB565, 96 × 48 px, some across the left
+/// border, any depths and colours, set up while dithering as the renderer sets them up: on
+/// their first row), row by row. Returns the first mismatching case.
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+#[doc(hidden)]
+pub fn dither_rows_self_test(n: u32) -> Option<u32> {
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    const W: usize = 96;
+    const H: i32 = 48;
+    let mut next = xorshift32(0xa54f_f53au32);
+    let mode = SpanMode::new::<Rgb565>(DepthTest::Less, true);
+    for case in 0..n {
+        let mut v = [ScreenVertex::default(); 12];
+        for p in &mut v {
+            let r = next();
+            p.x = ((r % (W as u32 * 16 + 320)) as i32 - 160) as i16;
+            p.y = ((r >> 16) % (H as u32 * 16)) as i16;
+            random_depth_and_colour(p, &mut next);
+            if case % 2 == 0 {
+                // Colours inside the RGB565 range (most of these triangles are DITHER_OK).
+                let c = p.color();
+                p.set_color([c[0] % 993, c[1] % 1009, c[2] % 993]);
+            }
+        }
+        let tris = [[0u16, 1, 2], [3, 4, 5], [6, 7, 8], [9, 10, 11]].map(|v| TriRecord { v });
+        let first = |t: &TriRecord| {
+            let [i0, i1, i2] = t.indices();
+            first_pixel(v[i0].y.min(v[i1].y).min(v[i2].y) as i32).max(0)
+        };
+        let mut a = ActiveList::<4>::new();
+        let mut b = ActiveList::<4>::new();
+        for row in 0..H {
+            for t in tris.iter().filter(|t| first(t) == row) {
+                a.push_with(|r| r.setup::<Rgb565>(t, &v, row, H, mode));
+                b.push_with(|r| r.setup::<Rgb565>(t, &v, row, H, mode));
+            }
+            let (mut ca, mut za) = ([Rgb565::new(0, 0, 0); W], [u16::MAX; W]);
+            let (mut cb, mut zb) = (ca, za);
+            let mut i = 0;
+            loop {
+                if let Some((next_i, _, _)) =
+                    crate::span_thumb::rows565(&mut a, i, &mut ca, &mut za, row as usize, true)
+                {
+                    i = next_i;
+                }
+                if i >= a.len() {
+                    break;
+                }
+                let (_, _, done) =
+                    a.get_mut(i)
+                        .draw_row(row, &mut ca, &mut za, DepthTest::Less, true);
+                if done {
+                    a.swap_remove(i);
+                } else {
+                    i += 1;
+                }
+            }
+            let mut i = 0;
+            while i < b.len() {
+                let (_, _, done) =
+                    b.get_mut(i)
+                        .draw_row(row, &mut cb, &mut zb, DepthTest::Less, true);
+                if done {
+                    b.swap_remove(i);
+                } else {
+                    i += 1;
+                }
+            }
+            if ca != cb || za != zb || a.len() != b.len() {
+                return Some(case);
+            }
+        }
+    }
+    None
+}
+
 /// Bias of the column in [`EdgeDda::w`]: every column an edge takes on a row where it is used
 /// (|c| ≤ 1025), and every sum `c + sq` on the way to the next such row, is in
 /// `−2¹⁵..2¹⁵`, so the biased column is a 16-bit unsigned half that never carries into `e`.
@@ -570,8 +703,9 @@ const FLAT: u8 = 2;
 /// is ≤ 1024 px, so the rounding drift of the attribute rows (≤ ½ unit per pixel of distance
 /// from the anchor) stays far inside the depth bias and the colour fields' headroom and span
 /// starts need no clamping; the depth test is [`DepthTest::Less`] and, for Gouraud triangles,
-/// the colour has channels of at most 6 bits without dithering. A fast Gouraud triangle keeps
-/// its rows *packed* (see [`ActiveTri::row`]), ready for [`span_packed`].
+/// the colour has channels of at most 6 bits. A fast Gouraud triangle keeps its rows *packed*
+/// (see [`ActiveTri::row`]), ready for [`span_packed`] (or, dithered, [`span_packed_dither`]
+/// when it has [`DITHER_OK`]).
 const FAST: u8 = 4;
 /// [`ActiveTri::flags`]: the row where [`ActiveTri::routine_rows`] runs out is the triangle's
 /// last, which the Cortex-M row routine draws too (and then removes the triangle).
@@ -581,14 +715,26 @@ const LAST_IN_ROUTINE: u8 = 8;
 /// kept by [`ActiveTri::set_pending`] (a fast Gouraud triangle only).
 const SWITCH_IN_ROUTINE: u8 = 16;
 
+/// [`ActiveTri::flags`]: a [`FAST`] Gouraud triangle set up while dithering whose packed
+/// fields are within ¼ unit of the exact colour plane and keep 15/32 of a channel unit of
+/// headroom at both ends of their ranges at every point of the triangle
+/// ([`ActiveTri::dither_fits`]), so the dithered fast span ([`span_packed_dither`]) may add any
+/// Bayer offset without a carry between fields. (A triangle that fails is set up without the
+/// fast path; a fast triangle set up while dithering was off is dithered by
+/// [`span_packed_dither_clamped`].)
+const DITHER_OK: u8 = 32;
+
 /// Which fast span loops a strip may use, decided once per strip from the colour type, the
 /// depth test and dithering (see [`FAST`]).
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub(crate) struct SpanMode {
     /// Flat triangles: the depth test is [`DepthTest::Less`].
     pub fast_flat: bool,
-    /// Gouraud triangles: also channels of at most 6 bits, and no dithering that changes them.
+    /// Gouraud triangles: also channels of at most 6 bits.
     pub fast_gouraud: bool,
+    /// Dithering changes the colour (so fast Gouraud triangles are checked for
+    /// [`DITHER_OK`] at setup).
+    pub dither: bool,
 }
 
 impl SpanMode {
@@ -596,7 +742,8 @@ impl SpanMode {
         let less = test == DepthTest::Less;
         SpanMode {
             fast_flat: less,
-            fast_gouraud: less && packable::<C>() && !(dither && C::can_dither()),
+            fast_gouraud: less && packable::<C>(),
+            dither: dither && C::can_dither(),
         }
     }
 }
@@ -634,6 +781,52 @@ fn packed_rb_half<C: TargetColor>() -> u32 {
     ((1u32 << (fr - 1)) << 16) + (1 << (fb - 1))
 }
 
+/// The dithered fast span's offsets for pixel row `row` ([`span_packed_dither`]): for each
+/// column phase `p = x & 3`, the word to add to a packed red-blue value and the word to add
+/// to a packed green value. The packed start values already carry the ½-unit rounding bias
+/// of the non-dithered path ([`attribute_words`]); the Bayer threshold (2·B + 1)/32 of a unit
+/// (B = `BAYER[row & 3][p]`) is that bias plus `d = (2·B − 15)/32`, from −15/32 to +15/32 of a
+/// unit in steps of 1/16. `d` is exact in every packed format (channels of at most 6 bits
+/// have at least 10 fraction bits): `d·2^(frac − 5)` in the red half and in the blue half
+/// (added as one wrapping word, so red gets `d` and blue gets `d` — no carry crosses the
+/// halves when both fields stay in `0..2¹⁶`, see [`DITHER_OK`]), and `d·2^(32 − bits − 5)`
+/// in the green word.
+#[inline(always)]
+pub(crate) fn dither_words<C: TargetColor>(row: i32) -> [[u32; 2]; 4] {
+    let (fr, fb) = packed_frac_bits::<C>();
+    let gs = 32 - channel_bits(C::CHANNEL_MAX[1]) - 5;
+    let b = &BAYER[(row & 3) as usize];
+    let mut out = [[0u32; 2]; 4];
+    for (o, &bv) in out.iter_mut().zip(b) {
+        let d = 2 * bv as i32 - 15;
+        o[0] = ((d << (fr - 5)) as u32)
+            .wrapping_shl(16)
+            .wrapping_add((d << (fb - 5)) as u32);
+        o[1] = (d as u32).wrapping_shl(gs);
+    }
+    out
+}
+
+/// [`dither_words`] of RGB565 (red and blue with 11 fraction bits, green with 26) for the
+/// four Bayer rows, as the Cortex-M routines read them: per row, eight words, the red-blue
+/// and green offsets of column phases 0, 1, 2, 3 in turn.
+#[cfg(all(target_arch = "arm", target_os = "none"))]
+pub(crate) static DITHER565: [[u32; 8]; 4] = {
+    let mut t = [[0u32; 8]; 4];
+    let mut r = 0;
+    while r < 4 {
+        let mut p = 0;
+        while p < 4 {
+            let d = 2 * BAYER[r][p] as i32 - 15;
+            t[r][2 * p] = ((d << 6) as u32).wrapping_mul(0x1_0001);
+            t[r][2 * p + 1] = (d as u32).wrapping_shl(21);
+            p += 1;
+        }
+        r += 1;
+    }
+    t
+};
+
 /// Left shift of a packed depth word: depth (16.12) times 2⁴, so that the stored depth is the
 /// high half (the shifted value wraps exactly as the unshifted one, modulo 2³²).
 const PACKED_Z_SHIFT: u32 = 32 - 16 - DEPTH_FRAC_BITS;
@@ -667,7 +860,8 @@ fn pack_zrgb<C: TargetColor>(z: i32, r: i32, g: i32, b: i32) -> [i32; 3] {
 #[derive(Clone, Debug)]
 #[repr(C)] // field offsets are used by the Cortex-M row loop (`span_thumb`)
 pub(crate) struct ActiveTri {
-    /// [`MID_LEFT`], [`FLAT`], [`FAST`].
+    /// [`MID_LEFT`], [`FLAT`], [`FAST`], [`LAST_IN_ROUTINE`], [`SWITCH_IN_ROUTINE`],
+    /// [`DITHER_OK`].
     flags: u8,
     /// Rows from the current one on that the Cortex-M row routine may draw without asking:
     /// a fast Gouraud triangle's rows before the one that switches its short edge or ends it
@@ -836,6 +1030,7 @@ pub(crate) mod offsets {
     pub const BX: usize = offset_of!(ActiveTri, bx);
     pub const CX: usize = offset_of!(ActiveTri, cx);
     pub const FAST: u8 = super::FAST;
+    pub const DITHER_OK_BIT: u32 = super::DITHER_OK.trailing_zeros();
     /// The pending short edge of a fast Gouraud triangle ([`ActiveTri::set_pending`]): its
     /// `w` word in the fourth `gx` word, `s` in the fourth `row` word, `dy` in the fourth
     /// `inc` word.
@@ -1049,6 +1244,9 @@ impl ActiveTri {
         height: i32,
         mode: SpanMode,
     ) -> bool {
+        if mode.dither {
+            return self.setup_dither::<C>(t, verts, row, height, mode);
+        }
         #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
         if mode.fast_gouraud && C::CHANNEL_MAX == [31, 63, 31] {
             if let Some(kept) = crate::span_thumb::setup565(self, t, verts, row, height) {
@@ -1056,6 +1254,126 @@ impl ActiveTri {
             }
         }
         self.setup_portable::<C>(t, verts, row, height, mode)
+    }
+
+    /// [`ActiveTri::setup`] while dithering: a fast Gouraud triangle gets [`DITHER_OK`] if
+    /// [`ActiveTri::dither_fits`] holds, and otherwise is set up again without the fast path
+    /// (its rows are then dithered from the 20-bit values by `Span::fill_gouraud_dither`, as
+    /// every dithered triangle was before). Out of line, so that the undithered setup is the
+    /// same code as before.
+    #[inline(never)]
+    fn setup_dither<C: TargetColor>(
+        &mut self,
+        t: &TriRecord,
+        verts: &[ScreenVertex],
+        row: i32,
+        height: i32,
+        mode: SpanMode,
+    ) -> bool {
+        #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+        let kept = match (mode.fast_gouraud && C::CHANNEL_MAX == [31, 63, 31])
+            .then(|| crate::span_thumb::setup565(self, t, verts, row, height))
+            .flatten()
+        {
+            Some(kept) => kept,
+            None => self.setup_portable::<C>(t, verts, row, height, mode),
+        };
+        #[cfg(not(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32"))))]
+        let kept = self.setup_portable::<C>(t, verts, row, height, mode);
+        if !kept || self.flags & (FAST | FLAT) != FAST {
+            return kept;
+        }
+        let [i0, i1, i2] = t.indices();
+        if self.dither_fits::<C>([&verts[i0], &verts[i1], &verts[i2]], row) {
+            self.flags |= DITHER_OK;
+            return true;
+        }
+        let slow = SpanMode {
+            fast_gouraud: false,
+            ..mode
+        };
+        self.setup_portable::<C>(t, verts, row, height, slow)
+    }
+
+    /// Whether the packed fields of this fast Gouraud triangle (just set up on `row`, `p` its
+    /// vertices) are fit for the dithered fast span: at every pixel centre of the triangle,
+    /// each field is within ¼ unit of the exact plane through the vertex colours (plus the
+    /// ½-unit bias), and at least 15/32 of a unit inside its range, so that adding any offset
+    /// of [`dither_words`] (|d| ≤ 15/32 of a unit) neither carries from blue into red nor
+    /// leaves the red half or the green word.
+    ///
+    /// Why this is checked per triangle: the packed fields hold the value plus ½ unit, and the
+    /// values the packed rows produce are not exactly within the channel's range. The colour
+    /// gradients come from coefficients rounded to 16 bits (a few 2⁻¹⁴ of the channel's change
+    /// across the triangle), and the packed steps are rounded to `16 − bits` fraction bits:
+    /// 2⁻¹² unit per pixel, and per row 2⁻¹² unit times `1 + |sq|` (the row step is
+    /// `inc = gy + gx·sq`, and after the short edge's switch `inc` changes by the *packed*
+    /// `gx·dsq`, so the rounding of `gx` comes back `|sq|` times per row): a steep left edge
+    /// across a tall triangle drifts by units. Rounding to nearest tolerates ½ unit (less in
+    /// such triangles); the thresholds 1/32 and 31/32 leave 1/32 unit, so a field near 0 or
+    /// the channel's maximum would borrow or carry between fields (blue 0 would read as 31).
+    /// Neither bound holds in general, so both are checked, exactly:
+    ///
+    /// The packed rows are stepped with wrapping additions of constant words, so every packed
+    /// field is an exact linear function of the pixel: `F(c, r) = F₀ + Gx·(c − c₀) +
+    /// Gy·(r − r₀)` with `F₀` the field at the first pixel `(c₀, r₀)` (the left edge's column
+    /// on `row`), `Gx` the field of `gx` and `Gy = inc − gx·sq` (the left edge's `sq`). The
+    /// row step `inc + carry·gx` and the column move `sq + carry` keep `Gy` constant, and so
+    /// does the switch to the short edge b → c (`inc` changes by `gx·dsq` when `sq` changes by
+    /// `dsq`; `row` moves by `gx·dc`). The exact plane is linear too, so the extremes of `F`
+    /// and of `F` minus the exact plane over the triangle are at its vertices: checking `16·F`
+    /// at the three vertices (in subpixels, so in integers) bounds both at every pixel centre
+    /// inside. Reading the word as fields (blue the low half, red the high half minus blue's
+    /// borrow, gradients as signed halves) picks one of the decompositions `R·2¹⁶ + B
+    /// (mod 2³²)`; any other one differs by a multiple of 2¹⁶ in `B` everywhere and fails the
+    /// range check, so a pass proves that the word's halves are these fields at every pixel.
+    /// Range: the fields are below 2¹⁶, their gradient halves below 2¹⁵ and the vertices
+    /// within 16 400 subpixels of the first pixel (width + height ≤ 1024 px), so each sum is
+    /// below 2³¹; green is summed in 64 bits.
+    fn dither_fits<C: TargetColor>(&self, p: [&ScreenVertex; 3], row: i32) -> bool {
+        let c0 = self.edges[0].c();
+        let sq = self.edges[0].sq() as u32;
+        let (ox, oy) = (
+            SUBPIXELS * c0 + SUBPIXELS / 2,
+            SUBPIXELS * row + SUBPIXELS / 2,
+        );
+        let d = p.map(|v| (v.x as i32 - ox, v.y as i32 - oy));
+        let colors = p.map(|v| v.color());
+        let (fr, fb) = packed_frac_bits::<C>();
+        // Field `k` of 16-bit fields with `frac` fraction bits: F₀, Gx, Gy. Bounds: the
+        // headroom `lo` (15/32 of a unit) and the distance from the exact plane (¼ unit).
+        let field_ok = |k: usize, frac: u32, f0: i32, gx: i32, gy: i32| -> bool {
+            let vf = vertex_frac_bits(C::CHANNEL_MAX[k]);
+            let (lo, e) = (15 << (frac - 5), 1 << (frac - 2));
+            d.iter().zip(&colors).all(|(&(dx, dy), c)| {
+                let v = 16 * f0 + gx * dx + gy * dy;
+                let ideal = 16 * (((c[k] as i32) << (frac - vf)) + (1 << (frac - 1)));
+                v >= 16 * lo && v < 16 * ((1 << 16) - lo) && (v - ideal).abs() <= 16 * e
+            })
+        };
+        let (a, gx) = (self.row[1] as u32, self.gx[1] as u32);
+        let gy = (self.inc[1] as u32).wrapping_sub(gx.wrapping_mul(sq));
+        let (bx, by) = (gx as i16 as i32, gy as i16 as i32);
+        let (rx, ry) = (
+            (gx.wrapping_sub(bx as u32) as i32) >> 16,
+            (gy.wrapping_sub(by as u32) as i32) >> 16,
+        );
+        if !field_ok(2, fb, (a & 0xffff) as i32, bx, by)
+            || !field_ok(0, fr, (a >> 16) as i32, rx, ry)
+        {
+            return false;
+        }
+        // Green: the whole word, 32 − bits fraction bits.
+        let frac = 32 - channel_bits(C::CHANNEL_MAX[1]);
+        let vf = vertex_frac_bits(C::CHANNEL_MAX[1]);
+        let (lo, e) = (15i64 << (frac - 5), 1i64 << (frac - 2));
+        let (a, gx) = (self.row[2] as u32, self.gx[2]);
+        let gy = (self.inc[2] as u32).wrapping_sub((gx as u32).wrapping_mul(sq)) as i32;
+        d.iter().zip(&colors).all(|(&(dx, dy), c)| {
+            let v = 16 * a as i64 + mul_wide16(gx, dx) + mul_wide16(gy, dy);
+            let ideal = 16 * (((c[1] as i64) << (frac - vf)) + (1i64 << (frac - 1)));
+            v >= 16 * lo && v < 16 * ((1i64 << 32) - lo) && (v - ideal).abs() <= 16 * e
+        })
     }
 
     /// [`ActiveTri::setup`] in portable code (on ARMv6-M, for what `span_thumb::setup565`
@@ -1341,6 +1659,17 @@ impl ActiveTri {
                 let written = if flat {
                     let c = C::from_channels(self.flat_channels());
                     span_flat::<C, LESS>(zs, cs, v[0], self.gx[0], c)
+                } else if dither && C::can_dither() {
+                    let (z, rb, g) = (
+                        [v[0], self.gx[0]],
+                        [v[1] as u32, self.gx[1] as u32],
+                        [v[2], self.gx[2]],
+                    );
+                    if self.flags & DITHER_OK != 0 {
+                        span_packed_dither::<C, LESS>(zs, cs, z, rb, g, x0, row)
+                    } else {
+                        span_packed_dither_clamped::<C>(zs, cs, z, rb, g, x0, row)
+                    }
                 } else {
                     span_packed::<C, LESS>(
                         zs,
@@ -1465,6 +1794,116 @@ fn span_packed<C: TargetColor, const T: u8>(
                 (rb >> (16 + fr)) as u8,
                 (g as u32 >> g_low) as u8,
                 ((rb & 0xffff) >> fb) as u8,
+            ]);
+            written += 1;
+        }
+        z = z.wrapping_add(gz);
+        rb = rb.wrapping_add(grb);
+        g = g.wrapping_add(gg);
+    }
+    written
+}
+
+/// [`span_packed`] with 4×4 ordered dithering, for a [`DITHER_OK`] triangle: the pixels are
+/// columns `x0..` of pixel row `row`, and each written pixel's packed red-blue and green
+/// values get the offset of its column phase from [`dither_words`] before the channels are
+/// read, so each channel is `floor(v + (2·B + 1)/32)` of the packed value `v` (the ½ bias
+/// the start values carry and the offset `d` add up to the threshold). The accumulators step
+/// as in [`span_packed`]. This is the definition the Cortex-M routine
+/// (`span_thumb::span565_less_dither`, and the row routine's dithered variant) equals bit
+/// for bit.
+#[inline(never)]
+fn span_packed_dither<C: TargetColor, const T: u8>(
+    zs: &mut [u16],
+    cs: &mut [C],
+    z: [i32; 2],
+    rb: [u32; 2],
+    g: [i32; 2],
+    x0: usize,
+    row: i32,
+) -> u32 {
+    #[cfg(all(target_arch = "arm", target_os = "none"))]
+    if T == LESS && crate::span_thumb::rgb565_words::<C>() {
+        return crate::span_thumb::span565_less_dither(zs, cs, z, rb, g, x0, row);
+    }
+    span_packed_dither_portable::<C, T>(zs, cs, z, rb, g, x0, row)
+}
+
+/// [`span_packed_dither`] in portable code (the twin of the Cortex-M routines).
+#[inline(always)]
+pub(crate) fn span_packed_dither_portable<C: TargetColor, const T: u8>(
+    zs: &mut [u16],
+    cs: &mut [C],
+    z: [i32; 2],
+    rb: [u32; 2],
+    g: [i32; 2],
+    x0: usize,
+    row: i32,
+) -> u32 {
+    let (fr, fb) = packed_frac_bits::<C>();
+    let g_low = 32 - channel_bits(C::CHANNEL_MAX[1]);
+    let offsets = dither_words::<C>(row);
+    let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
+    let mut written = 0;
+    for (x, (zb, cb)) in (x0..).zip(zs.iter_mut().zip(cs.iter_mut())) {
+        let z16 = (z as u32 >> 16) as u16;
+        if passes::<T>(z16, *zb) {
+            let [drb, dg] = offsets[x & 3];
+            let (rbd, gd) = (rb.wrapping_add(drb), (g as u32).wrapping_add(dg));
+            *zb = z16;
+            *cb = C::from_channels([
+                (rbd >> (16 + fr)) as u8,
+                (gd >> g_low) as u8,
+                ((rbd & 0xffff) >> fb) as u8,
+            ]);
+            written += 1;
+        }
+        z = z.wrapping_add(gz);
+        rb = rb.wrapping_add(grb);
+        g = g.wrapping_add(gg);
+    }
+    written
+}
+
+/// The dithered fast span (`DepthTest::Less`) for a fast triangle without [`DITHER_OK`] (its
+/// packed values may come within 15/32 of a unit of a field's end, or it was set up while
+/// dithering was off): each field is read out of the packed words (exact: the ½ bias keeps
+/// every field inside `0..2¹⁶` at pixel centres of the triangle, see [`ActiveTri::row`]),
+/// the offset `d` is added in an `i32` and the channel is clamped to its range. Portable on
+/// every core (rare).
+#[inline(never)]
+fn span_packed_dither_clamped<C: TargetColor>(
+    zs: &mut [u16],
+    cs: &mut [C],
+    z: [i32; 2],
+    rb: [u32; 2],
+    g: [i32; 2],
+    x0: usize,
+    row: i32,
+) -> u32 {
+    let (fr, fb) = packed_frac_bits::<C>();
+    let gbits = channel_bits(C::CHANNEL_MAX[1]);
+    let bayer = &BAYER[(row & 3) as usize];
+    let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
+    let q = |v: i64, frac: u32, max: u8| (v >> frac).clamp(0, max as i64) as u8;
+    let mut written = 0;
+    for (x, (zb, cb)) in (x0..).zip(zs.iter_mut().zip(cs.iter_mut())) {
+        let z16 = (z as u32 >> 16) as u16;
+        if z16 < *zb {
+            let d = 2 * bayer[x & 3] as i64 - 15;
+            *zb = z16;
+            *cb = C::from_channels([
+                q((rb >> 16) as i64 + (d << (fr - 5)), fr, C::CHANNEL_MAX[0]),
+                q(
+                    g as u32 as i64 + (d << (32 - gbits - 5)),
+                    32 - gbits,
+                    C::CHANNEL_MAX[1],
+                ),
+                q(
+                    (rb & 0xffff) as i64 + (d << (fb - 5)),
+                    fb,
+                    C::CHANNEL_MAX[2],
+                ),
             ]);
             written += 1;
         }
@@ -1809,6 +2248,140 @@ mod tests {
                     let want = (m.div_euclid(d), m.rem_euclid(d));
                     assert_eq!(div_floor_small(m, d), want, "{m} / {d}");
                 }
+            }
+        }
+    }
+
+    /// Dithered Gouraud triangles (RGB565) on pseudo-random triangles that take the fast path
+    /// without dithering, small to the fast path's largest, with colours over the whole range
+    /// (channels at 0 and at the maximum included, and changes across the whole range): row by
+    /// row through `draw_row`,
+    /// - a triangle is either fast with [`DITHER_OK`] or not fast at all;
+    /// - a [`DITHER_OK`] triangle's spans ([`span_packed_dither`]) equal those of the same
+    ///   record drawn by the clamped span, which reads each field separately: no carry
+    ///   between fields and no field leaving its range, at any pixel;
+    /// - every pixel of a fast triangle is within 1 LSB per channel of the exact dithered
+    ///   quantization of the plane through the vertex colours at its centre,
+    ///   `floor(v + (2·B + 1)/32)`.
+    #[test]
+    fn dithered_fast_span_is_exact_and_within_one_lsb() {
+        use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+        let mut state = 0x2468_ace1u32;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            state
+        };
+        let mode = SpanMode::new::<Rgb565>(DepthTest::Less, true);
+        assert!(mode.fast_gouraud && mode.dither);
+        const W: usize = 1100;
+        let (mut ok, mut slow, mut pixels, mut worst) = (0u32, 0u32, 0u64, [0i32; 3]);
+        for i in 0..6000u32 {
+            let size = [24i32, 160, 1200, 8000][(i % 4) as usize];
+            let mut v = [ScreenVertex::default(); 3];
+            for p in &mut v {
+                let r = next();
+                p.x = (400 + (r % size as u32) as i32) as i16;
+                p.y = (300 + ((r >> 16) % size as u32) as i32) as i16;
+                p.z = 1000 + (next() % 5000) as u16;
+                let c = next();
+                let pick = |k: u32, max: u16| match (c >> (k * 8)) & 3 {
+                    0 => 0,
+                    1 => max,
+                    _ => ((c >> (k * 8 + 2)) % (max as u32 + 1)) as u16,
+                };
+                p.set_color([pick(0, 992), pick(1, 1008), pick(2, 992)]);
+            }
+            let t = TriRecord { v: [0, 1, 2] };
+            let row0 = v.iter().map(|p| first_pixel(p.y as i32)).min().unwrap();
+            let mut rec = ActiveTri::EMPTY;
+            let plain = SpanMode {
+                dither: false,
+                ..mode
+            };
+            if !rec.setup::<Rgb565>(&t, &v, row0, 1024, plain) || rec.flags & FAST == 0 {
+                continue;
+            }
+            assert!(rec.setup::<Rgb565>(&t, &v, row0, 1024, mode));
+            let safe = rec.flags & DITHER_OK != 0;
+            if safe {
+                ok += 1;
+            } else {
+                assert_eq!(rec.flags & FAST, 0, "a fast triangle without DITHER_OK");
+                slow += 1;
+            }
+            let mut other = rec.clone();
+            other.flags &= !DITHER_OK;
+            // The exact plane through the vertex colours (channel units).
+            let [a, b, c] = v.map(|p| (p.x as f64 / 16.0, p.y as f64 / 16.0, p.color()));
+            let det = (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1);
+            let scale = [32.0, 16.0, 32.0];
+            let mut row = row0.max(0);
+            loop {
+                let mut cs = [Rgb565::BLACK; W];
+                let mut zs = [u16::MAX; W];
+                let (mut cs2, mut zs2) = (cs, zs);
+                let (_, _, done) = rec.draw_row(row, &mut cs, &mut zs, DepthTest::Less, true);
+                let _ = other.draw_row(row, &mut cs2, &mut zs2, DepthTest::Less, true);
+                if safe {
+                    assert_eq!(
+                        cs, cs2,
+                        "triangle {i} row {row}: fast and clamped spans differ"
+                    );
+                }
+                let yc = row as f64 + 0.5;
+                for x in 0..W {
+                    // Triangles set up without the fast path are drawn by the dithered span
+                    // of before (the same code): only the fast ones are compared here.
+                    if zs[x] == u16::MAX || !safe {
+                        continue;
+                    }
+                    pixels += 1;
+                    let xc = x as f64 + 0.5;
+                    let l1 = ((xc - a.0) * (c.1 - a.1) - (c.0 - a.0) * (yc - a.1)) / det;
+                    let l2 = ((b.0 - a.0) * (yc - a.1) - (xc - a.0) * (b.1 - a.1)) / det;
+                    let th = (2.0 * BAYER[(row & 3) as usize][x & 3] as f64 + 1.0) / 32.0;
+                    let got = [cs[x].r(), cs[x].g(), cs[x].b()];
+                    for k in 0..3 {
+                        let val = (a.2[k] as f64
+                            + l1 * (b.2[k] as f64 - a.2[k] as f64)
+                            + l2 * (c.2[k] as f64 - a.2[k] as f64))
+                            / scale[k];
+                        let max = [31.0, 63.0, 31.0][k];
+                        let want = (val + th).floor().clamp(0.0, max) as i32;
+                        let e = (got[k] as i32 - want).abs();
+                        worst[k] = worst[k].max(e);
+                        assert!(e <= 1, "triangle {i} (DITHER_OK {safe}, {v:?}) pixel ({x}, {row}) channel {k}: {} vs exact {want} ({val})", got[k]);
+                    }
+                }
+                if done {
+                    break;
+                }
+                row += 1;
+            }
+        }
+        extern crate std;
+        std::println!(
+            "triangles fast without dithering: {ok} fast and DITHER_OK with it, {slow} set up without the fast path; {pixels} pixels, worst |Δ| per channel against the exact dithered value {worst:?} LSB"
+        );
+        assert!(ok > 1000 && slow > 0);
+    }
+
+    #[test]
+    fn dither_words_are_the_thresholds() {
+        use embedded_graphics_core::pixelcolor::Rgb565;
+        for row in 0..4 {
+            for (p, [rb, g]) in dither_words::<Rgb565>(row).into_iter().enumerate() {
+                let d = 2 * BAYER[row as usize][p] as i32 - 15;
+                // ½ (the start values' bias) + d = (2·B + 1)/32 of a unit.
+                assert_eq!((rb & 0xffff) as i16 as i32, d * 64);
+                assert_eq!(
+                    (rb.wrapping_sub(rb as i16 as i32 as u32) as i32) >> 16,
+                    d * 64
+                );
+                assert_eq!(g as i32, d << 21);
+                assert_eq!(1024 + d * 64, (2 * BAYER[row as usize][p] as i32 + 1) * 64);
             }
         }
     }

@@ -1278,9 +1278,14 @@ impl<
             let mut i = 0;
             loop {
                 #[cfg(all(target_arch = "arm", target_os = "none"))]
-                if let Some((next, frag, written)) =
-                    crate::span_thumb::rows565(active, i, &mut color[l][..vw], &mut depth[l][..vw])
-                {
+                if let Some((next, frag, written)) = crate::span_thumb::rows565(
+                    active,
+                    i,
+                    &mut color[l][..vw],
+                    &mut depth[l][..vw],
+                    row,
+                    *dither,
+                ) {
                     stats.add_row(frag, written);
                     i = next;
                 }

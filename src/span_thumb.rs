@@ -10,6 +10,15 @@
 //! the three accumulators, the index and both line ends in low registers and the three steps
 //! in r8–r10: 19 instructions per written pixel and 12 per hidden one.
 //!
+//! With 4×4 ordered dithering the span and the row routine have dithered twins
+//! (`scanline3d_span565_less_dither`, `scanline3d_rows565_dither`; the plain loops are
+//! unchanged): the row's eight Bayer offsets (`raster::dither_words`) sit on the stack, the
+//! pixel loop is unrolled over the four column phases so that each loads its two offsets with
+//! an immediate sp offset, and a written pixel adds them to copies of the red-blue and green
+//! words before reading the channels: 23 instructions per written pixel, 12 per hidden one.
+//! The row routine draws its dithered spans through a subroutine (one copy of the unrolled
+//! loop instead of four) and only triangles with `DITHER_OK`.
+//!
 //! The routines compute exactly what the portable code in [`crate::raster`] computes
 //! (`span_packed` for `DepthTest::Less` and 5-6-5 channels, `ActiveTri::draw_row` for a fast
 //! Gouraud row: same truncations, same wrapping additions), so the image is bit-identical;
@@ -23,7 +32,7 @@
 
 use crate::color::TargetColor;
 use crate::project::ScreenVertex;
-use crate::raster::{offsets as o, ActiveList, ActiveTri, Edge, Sorted};
+use crate::raster::{offsets as o, ActiveList, ActiveTri, Edge, Sorted, DITHER565};
 use crate::scalar::Fx;
 use fixed::types::I16F16;
 
@@ -166,6 +175,159 @@ core::arch::global_asm!(
     ".size scanline3d_span565_less, . - scanline3d_span565_less",
 );
 
+/// One pixel of the dithered loop ([`dither_loop`]) for column phase `$p` (0..=3): as
+/// [`pixel_loop`], but the red-blue and green values get the phase's offsets (the frame words
+/// `{trb$p}` and `{tg$p}` above sp, `raster::dither_words`) before the channels are read; the
+/// accumulators themselves step as in the plain loop. A hidden pixel branches to `$hidden`;
+/// `$end` is the end test after the index step. 23 instructions per written pixel (the plain
+/// loop's 19 and two loads and two additions), 12 per hidden one.
+macro_rules! dither_pixel {
+    ($p:literal, $hidden:literal, $end:literal) => {
+        concat!(
+            "ldrh r5, [r7, r0]\n",
+            "lsrs r6, r2, #16\n",
+            "cmp r6, r5\n",
+            "bhs ",
+            $hidden,
+            "\n",
+            "strh r6, [r7, r0]\n",
+            "ldr r6, [sp, #{trb",
+            $p,
+            "}]\n",
+            "adds r6, r6, r3\n",
+            "lsrs r5, r6, #27\n",
+            "lsls r5, r5, #11\n",
+            "lsls r6, r6, #16\n",
+            "lsrs r6, r6, #27\n",
+            "orrs r5, r6\n",
+            "ldr r6, [sp, #{tg",
+            $p,
+            "}]\n",
+            "adds r6, r6, r4\n",
+            "lsrs r6, r6, #26\n",
+            "lsls r6, r6, #5\n",
+            "orrs r5, r6\n",
+            "strh r5, [r1, r0]\n",
+            gouraud_steps!(),
+            "adds r0, #2\n",
+            $end,
+            "\n",
+        )
+    };
+}
+
+/// The hidden pixel of [`dither_loop`] for the phase whose written pixel continues with
+/// `$next` (the next phase's loop label): counts it with `$count` (using r5), steps, and goes
+/// on with the next phase, or leaves through label 49.
+macro_rules! dither_hidden {
+    ($count:expr, $next:literal) => {
+        concat!(
+            $count,
+            gouraud_steps!(),
+            "adds r0, #2\n",
+            "bne ",
+            $next,
+            "\n",
+            "b 49f\n",
+        )
+    };
+}
+
+/// The pixel loop with 4×4 ordered dithering, unrolled over the four column phases so that
+/// each phase loads its offsets with an immediate sp offset. In: as [`pixel_loop`], and r5 =
+/// the first pixel's column times two (its bits 1 and 2 are the column phase); the offsets of
+/// the row's Bayer row in the frame words `{trb0}`, `{tg0}`, … `{tg3}` above sp. Hidden
+/// pixels are counted by `$count` (using r5). Ends at label 49, placed after the loop. The
+/// hidden paths come first, so that every branch is within the 256 bytes of Thumb-1's
+/// conditional branches.
+macro_rules! dither_loop {
+    ($count:expr) => {
+        concat!(
+            // Phase = bits 1 (into N) and 2 (into C) of r5.
+            "lsls r5, r5, #30\n",
+            "bcs 45f\n",
+            "bmi 51f\n",
+            "b 50f\n",
+            "45:\n",
+            "bmi 53f\n",
+            "b 52f\n",
+            "60:\n",
+            dither_hidden!($count, "51f"),
+            "61:\n",
+            dither_hidden!($count, "52f"),
+            "62:\n",
+            dither_hidden!($count, "53f"),
+            "63:\n",
+            dither_hidden!($count, "50f"),
+            "50:\n",
+            dither_pixel!("0", "60b", "beq 49f"),
+            "51:\n",
+            dither_pixel!("1", "61b", "beq 49f"),
+            "52:\n",
+            dither_pixel!("2", "62b", "beq 49f"),
+            "53:\n",
+            dither_pixel!("3", "63b", "bne 50b"),
+            "49:\n",
+        )
+    };
+}
+
+core::arch::global_asm!(
+    ".syntax unified",
+    ".thumb",
+    ".section .text.scanline3d_span565_less_dither,\"ax\",%progbits",
+    ".global scanline3d_span565_less_dither",
+    ".type scanline3d_span565_less_dither,%function",
+    ".p2align 2",
+    ".thumb_func",
+    // As `scanline3d_span565_less`, with r3 = &[z, gz, rb, grb, g, gg, offsets, 2·x0]:
+    // `offsets` points to the eight words of the row's `raster::DITHER565` row, copied to
+    // the bottom of the frame; x0 is the first pixel's column.
+    "scanline3d_span565_less_dither:",
+    save_registers!(),
+    "ldr r4, [r3, #24]",
+    "adds r4, #16",
+    "ldm r4, {{r4, r5, r6, r7}}",
+    "push {{r4, r5, r6, r7}}",
+    "ldr r4, [r3, #24]",
+    "ldm r4, {{r4, r5, r6, r7}}",
+    "push {{r4, r5, r6, r7}}",
+    "subs r0, r0, r2",
+    "adds r1, r1, r2",
+    "mov r7, r2",
+    "mov r12, r0",
+    "ldr r4, [r3, #4]",
+    "mov r8, r4",
+    "ldr r4, [r3, #12]",
+    "mov r9, r4",
+    "ldr r4, [r3, #20]",
+    "mov r10, r4",
+    "movs r5, #0",
+    "mov r11, r5",
+    "ldr r2, [r3, #0]",
+    "ldr r4, [r3, #16]",
+    "ldr r5, [r3, #28]",
+    "ldr r3, [r3, #8]",
+    dither_loop!(count_in!("r11")),
+    // Written = run length − hidden.
+    "mov r0, r12",
+    "negs r0, r0",
+    "lsrs r0, r0, #1",
+    "mov r1, r11",
+    "subs r0, r0, r1",
+    "add sp, #32",
+    restore_registers_and_return!(),
+    ".size scanline3d_span565_less_dither, . - scanline3d_span565_less_dither",
+    trb0 = const 0,
+    tg0 = const 4,
+    trb1 = const 8,
+    tg1 = const 12,
+    trb2 = const 16,
+    tg2 = const 20,
+    trb3 = const 24,
+    tg3 = const 28,
+);
+
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
@@ -221,7 +383,7 @@ core::arch::global_asm!(
 /// `right.c ≥ left.c ≥ 0`, so both biased columns (`raster::EdgeDda`) give twice the column
 /// as `(w << 17) >> 16`.
 macro_rules! row_span {
-    () => {
+    ($run:ident) => {
         concat!(
             "mov r12, r3\n",
             "lsls r4, r5, #1\n",
@@ -241,7 +403,7 @@ macro_rules! row_span {
             "ble 5f\n",
             "adds r3, #{row0}\n",
             "ldm r3, {{r2, r3, r4}}\n",
-            span_run!(),
+            $run!(),
         )
     };
 }
@@ -266,11 +428,35 @@ macro_rules! span_run {
     };
 }
 
+/// [`span_run`] for the dithered row routine: the same run, drawn by its [`dither_loop`]
+/// subroutine (label 40; lr, the fragment count, is kept on the stack across the call, so the
+/// subroutine's frame words are 4 bytes further from sp). Ends with r0 = r12.
+macro_rules! span_run_dither {
+    () => {
+        concat!(
+            "add lr, r6\n",
+            "ldr r1, [sp, #12]\n",
+            "adds r7, r1, r5\n",
+            "ldr r1, [sp, #16]\n",
+            "adds r1, r1, r5\n",
+            "negs r0, r6\n",
+            "subs r5, r5, r6\n",
+            "mov r6, lr\n",
+            "push {{r6}}\n",
+            "bl 40f\n",
+            "pop {{r6}}\n",
+            "mov lr, r6\n",
+            "5:\n",
+            "mov r0, r12\n",
+        )
+    };
+}
+
 /// [`row_span`] for a row with `left.c < 0` (r5 = the left edge's `w << 16`): the span
 /// `0..min(right.c, width)`, its attributes at column 0 as `ActiveTri::draw_row` has them,
 /// `row + gx·(−left.c)` (wrapping). Same registers in and out.
 macro_rules! row_span_left_clamped {
-    () => {
+    ($run:ident) => {
         concat!(
             "mov r12, r3\n",
             // r4 = −left.c = 2¹⁵ − biased column.
@@ -307,7 +493,7 @@ macro_rules! row_span_left_clamped {
             "ble 5f\n",
             clamp_right!(),
             "movs r6, r5\n",
-            span_run!(),
+            $run!(),
         )
     };
 }
@@ -459,18 +645,27 @@ macro_rules! carry_attr {
     };
 }
 
+/// The row routine `$name` (`scanline3d_rows565`, or its dithered twin): `$table` runs first
+/// (the dithered routine copies its eight offsets to the top of its frame there), `$qualify`
+/// is an extra test of a triangle at the loop head (leaving with 1 when it fails), `$run`
+/// draws a span, `$frame` is the frame's size in bytes, `$tail` code after the routine (the
+/// dithered span's subroutine) and `$extra` more operands.
+macro_rules! rows565_routine {
+    ($name:literal, $table:expr, $qualify:expr, $run:ident, $frame:literal, $tail:expr,
+     [$($extra:tt)*]) => {
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
-    ".section .text.scanline3d_rows565,\"ax\",%progbits",
-    ".global scanline3d_rows565",
-    ".type scanline3d_rows565,%function",
+    concat!(".section .text.", $name, ",\"ax\",%progbits"),
+    concat!(".global ", $name),
+    concat!(".type ", $name, ",%function"),
     ".p2align 2",
     ".thumb_func",
     // r0 = &mut RowCtx. Draws the row of active triangles i, i+1, … while they qualify (see
     // `rows565`); returns 0 when it reached n, 1 when triangle i needs the portable path.
-    "scanline3d_rows565:",
+    concat!($name, ":"),
     save_registers!(),
+    $table,
     // The context's first six words are copied to the stack, each a single load away, with
     // the indices as slot addresses and the colour offset as the colour line: [sp] = tris,
     // [sp, #4] = slot n, [sp, #8] = slot i, [sp, #12] = the depth line, [sp, #16] = the
@@ -509,7 +704,7 @@ core::arch::global_asm!(
     "ldr r5, [r3, #{lw}]",
     "lsls r5, r5, #16",
     "bpl 12b",
-    row_span!(),
+    row_span!($run),
     // The last record (slot n − 1) moves into slot i, as `ActiveList::swap_remove`: 21 words
     // through r0 and r3–r7.
     "ldr r1, [sp, #8]",
@@ -538,7 +733,7 @@ core::arch::global_asm!(
     "ldr r5, [r3, #{lw}]",
     "lsls r5, r5, #16",
     "bpl 12b",
-    row_span!(),
+    row_span!($run),
     // Count and flags for the rows from the switch on: row_end − 1 − row_mid, last row flag
     // when it is at most 255.
     "ldrh r1, [r0, #{row_end}]",
@@ -609,6 +804,7 @@ core::arch::global_asm!(
     "bhs 11b",
     // Entry i's record is slot i (`ActiveList`).
     "mov r3, r1",
+    $qualify,
     // Qualifies: rows left on the triangle's routine count (a fast Gouraud row that neither
     // switches its short edge nor ends it); left.c < 0 goes to 18. The count goes down by
     // one.
@@ -621,7 +817,7 @@ core::arch::global_asm!(
     "b 18f",
     "16:",
     "strb r4, [r3, #{rrows}]",
-    row_span!(),
+    row_span!($run),
     // Both edges step (as `edge_step!`), loaded and stored with one `ldm` and one `stm`
     // (r1, r2 = left w, s; r3, r4 = right w, s), and the packed rows with them: row += inc,
     // and + gx (still in r8–r10) when the left edge carried; one path for each.
@@ -679,7 +875,7 @@ core::arch::global_asm!(
     // as any other.
     "18:",
     "strb r4, [r3, #{rrows}]",
-    row_span_left_clamped!(),
+    row_span_left_clamped!($run),
     "b 17b",
     // Slot addresses back to indices (exact divisions by 84, as above).
     "13:",
@@ -701,9 +897,10 @@ core::arch::global_asm!(
     "str r2, [r1, #{cfrag}]",
     "ldr r2, [sp, #20]",
     "str r2, [r1, #{chidden}]",
-    "add sp, #28",
+    concat!("add sp, #", $frame),
     restore_registers_and_return!(),
-    ".size scanline3d_rows565, . - scanline3d_rows565",
+    $tail,
+    concat!(".size ", $name, ", . - ", $name),
     ci = const core::mem::offset_of!(RowCtx, i),
     cn = const core::mem::offset_of!(RowCtx, n),
     cfrag = const core::mem::offset_of!(RowCtx, fragments),
@@ -736,6 +933,53 @@ core::arch::global_asm!(
     gx0 = const o::GX,
     row0 = const o::ROW,
     row_after_edges = const o::ROW - (o::RIGHT + o::S + 4),
+    $($extra)*
+);
+    };
+}
+
+rows565_routine!("scanline3d_rows565", "", "", span_run, "28", "", []);
+
+// The dithered row routine (r1 = the eight offsets of the row's Bayer row in
+// `raster::DITHER565`): before the context's six words, the offsets go on the stack ([sp, #28] to [sp, #60] in the routine; the
+// span subroutine sees them 4 bytes further, after the saved fragment count); a triangle
+// without `DITHER_OK` leaves for the portable row (`raster::span_packed_dither_clamped`).
+rows565_routine!(
+    "scanline3d_rows565_dither",
+    concat!(
+        "adds r1, #16\n",
+        "ldm r1!, {{r2, r3, r4, r5}}\n",
+        "push {{r2, r3, r4, r5}}\n",
+        "subs r1, #32\n",
+        "ldm r1!, {{r2, r3, r4, r5}}\n",
+        "push {{r2, r3, r4, r5}}\n",
+    ),
+    concat!(
+        "ldrb r4, [r3, #{flags}]\n",
+        "lsls r4, r4, #{dither_ok_shift}\n",
+        "bmi 14f\n",
+        "movs r0, #1\n",
+        "b 13f\n",
+        "14:\n",
+    ),
+    span_run_dither,
+    "60",
+    concat!(
+        "40:\n",
+        dither_loop!("ldr r5, [sp, #24]\nadds r5, #1\nstr r5, [sp, #24]\n"),
+        "bx lr\n",
+    ),
+    [
+        dither_ok_shift = const 31 - o::DITHER_OK_BIT,
+        trb0 = const 32,
+        tg0 = const 36,
+        trb1 = const 40,
+        tg1 = const 44,
+        trb2 = const 48,
+        tg2 = const 52,
+        trb3 = const 56,
+        tg3 = const 60,
+    ]
 );
 
 // The immediate offsets above must be encodable in 16-bit Thumb loads and stores (some are 0
@@ -2456,6 +2700,13 @@ extern "C" {
         end: *mut u16,
         acc: *const [u32; 6],
     ) -> u32;
+    fn scanline3d_span565_less_dither(
+        z: *mut u16,
+        color_offset: isize,
+        end: *mut u16,
+        acc: *const [u32; 8],
+    ) -> u32;
+    fn scanline3d_rows565_dither(ctx: *mut RowCtx, offsets: *const u32) -> u32;
     #[cfg(not(target_has_atomic = "32"))]
     fn scanline3d_span565_flat_less(
         z: *mut u16,
@@ -2514,6 +2765,42 @@ pub(crate) fn span565_less<C: TargetColor>(
     // `cs` (reached as `zp + offset`), both exclusively borrowed; a colour is written as one
     // aligned `u16`, which `rgb565_words` showed is the representation of `C`.
     unsafe { scanline3d_span565_less(zp, offset, zp.add(n), &acc) }
+}
+
+/// The dithered `DepthTest::Less` Gouraud span for RGB565 words (`raster::span_packed_dither`):
+/// the same arguments as the portable loop, `x0` the first pixel's column and `row` the pixel
+/// row. `zs` and `cs` have the same length ≥ 1 and `rgb565_words::<C>()` holds.
+#[inline(always)]
+pub(crate) fn span565_less_dither<C: TargetColor>(
+    zs: &mut [u16],
+    cs: &mut [C],
+    z: [i32; 2],
+    rb: [u32; 2],
+    g: [i32; 2],
+    x0: usize,
+    row: i32,
+) -> u32 {
+    let n = zs.len().min(cs.len());
+    if n == 0 || !rgb565_words::<C>() {
+        return 0;
+    }
+    let offsets: &'static [u32; 8] = &DITHER565[(row & 3) as usize];
+    let acc = [
+        z[0] as u32,
+        z[1] as u32,
+        rb[0],
+        rb[1],
+        g[0] as u32,
+        g[1] as u32,
+        offsets.as_ptr() as u32,
+        (x0 as u32) << 1,
+    ];
+    let zp = zs.as_mut_ptr();
+    let offset = (cs.as_mut_ptr() as isize).wrapping_sub(zp as isize);
+    // SAFETY: as in `span565_less`: `n ≥ 1` pixels at `zp[0..n]` and the same indices of `cs`,
+    // both exclusively borrowed, colours stored as the `u16` that `rgb565_words` showed is the
+    // representation of `C`; the routine also reads the eight words of `offsets` (static).
+    unsafe { scanline3d_span565_less_dither(zp, offset, zp.add(n), &acc) }
 }
 
 #[cfg(not(target_has_atomic = "32"))]
@@ -2576,7 +2863,9 @@ const _: () = {
 /// RGB565 words, then both edges and the packed attribute rows step — or, on the row before
 /// the short edge's switch, the edges and rows move as `ActiveTri::advance` moves them there,
 /// to the edge setup kept — or, on a triangle's last row, the triangle leaves the list as
-/// `ActiveList::swap_remove` does.
+/// `ActiveList::swap_remove` does. With `dither` (for a colour it changes), the spans are
+/// `raster::span_packed_dither`'s for pixel row `row`, and only triangles with `DITHER_OK`
+/// are drawn.
 /// Returns `(index reached, fragments, written)`: the index is `active.len()` or the first
 /// triangle that needs `draw_row`. `None` when `C` is not an RGB565 word.
 #[inline(always)]
@@ -2585,10 +2874,13 @@ pub(crate) fn rows565<C: TargetColor, const N: usize>(
     start: usize,
     colors: &mut [C],
     depth: &mut [u16],
+    row: usize,
+    dither: bool,
 ) -> Option<(usize, u32, u32)> {
     if !rgb565_words::<C>() || start >= active.len() || !active.routine_may_draw(start) {
         return None;
     }
+    let dither = dither && C::can_dither();
     let (tris, n) = active.raw_parts();
     let zp = depth.as_mut_ptr();
     let mut ctx = RowCtx {
@@ -2607,7 +2899,16 @@ pub(crate) fn rows565<C: TargetColor, const N: usize>(
     // it checked to have `left.c ≥ 0`, with `width` at most both lengths; colours are written
     // as `u16` words, which `rgb565_words` showed is the representation of `C`. It never goes
     // past `n`.
-    unsafe { scanline3d_rows565(&mut ctx) };
+    // With dithering (which changes an RGB565 colour), the dithered routine: the same, with
+    // the row's offsets (eight static words), and only for triangles with `DITHER_OK`; it
+    // also reads those eight words.
+    unsafe {
+        if dither {
+            scanline3d_rows565_dither(&mut ctx, DITHER565[row & 3].as_ptr())
+        } else {
+            scanline3d_rows565(&mut ctx)
+        }
+    };
     active.set_len_after_routine(ctx.n);
     Some((
         ctx.i,

@@ -273,15 +273,20 @@ fn torus_sized<const W: usize>() {
     }
 }
 
-fn bench<S: Scalar>(scene: Bench) {
+/// One benchmark scene, dithering on or off (`DITHER`, a constant as it is in firmware that
+/// never changes it): with dithering the line's scene name gets the suffix `_dithered`
+/// (`examples/mcu_report.rs` renders the host's frame the same way).
+fn bench<S: Scalar, const DITHER: bool>(scene: Bench) {
+    let dither = DITHER;
     // The renderer alone: one `render` call into a target that does nothing.
     let mut null = NullTarget::<Rgb565>::new(240, 240);
     let mut ft = FrameTimer { start: 0, ticks: 0 };
-    let r = render_bench::<S, Rgb565, _, _>(scene, 0.0, false, &mut null, &mut ft);
+    let r = render_bench::<S, Rgb565, _, _>(scene, 0.0, dither, &mut null, &mut ft);
     let ticks = ft.ticks as u64;
     // The image hash.
     let mut target = HashTarget::<Rgb565>::new(240, 240);
-    let _ = render_bench::<S, Rgb565, _, _>(scene, 0.0, false, &mut target, &mut NoProbe);
+    let _ = render_bench::<S, Rgb565, _, _>(scene, 0.0, dither, &mut target, &mut NoProbe);
+    let suffix = if dither { "_dithered" } else { "" };
     let frame = match r {
         Ok(f) => f,
         Err(e) => {
@@ -296,19 +301,21 @@ fn bench<S: Scalar>(scene: Bench) {
         ticks: [0; 7],
     };
     let mut t2 = HashTarget::<Rgb565>::new(240, 240);
-    let _ = render_bench::<S, Rgb565, _, _>(scene, 0.0, false, &mut t2, &mut probe);
+    let _ = render_bench::<S, Rgb565, _, _>(scene, 0.0, dither, &mut t2, &mut probe);
     let i = |k: usize| timer::instructions(probe.ticks[k]);
     // Read the probed run's frame, so that its hashing is not optimised away as dead.
     if t2.hash() != target.hash() {
         hprintln!(
-            "ERROR scene={} number={} probed frame differs",
+            "ERROR scene={}{} number={} probed frame differs",
             scene.name(),
+            suffix,
             S::NAME
         );
     }
     hprintln!(
-        "BENCH scene={} number={} instructions={} vertices={} lighting={} triangles={} setup={} raster={} output={} hash={:016x} pixels={} renderer_ram={} drawn={} written={}",
+        "BENCH scene={}{} number={} instructions={} vertices={} lighting={} triangles={} setup={} raster={} output={} hash={:016x} pixels={} renderer_ram={} drawn={} written={}",
         scene.name(),
+        suffix,
         S::NAME,
         timer::instructions(ticks),
         i(0),
@@ -377,9 +384,12 @@ fn main() -> ! {
             );
             continue;
         }
-        bench::<Fx<I16F16>>(scene);
-        bench::<f32>(scene);
+        bench::<Fx<I16F16>, false>(scene);
+        bench::<f32, false>(scene);
     }
+    // The default torus with 4×4 ordered dithering (as the Pico firmware renders it).
+    #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
+    bench::<Fx<I16F16>, true>(Bench::Torus);
     #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
     strip_bench::<8>();
     #[cfg(feature = "microbit")]
@@ -487,6 +497,8 @@ fn transform_matches_rows() -> bool {
 /// The assembly edge setup gives the portable one's edges on 20 000 pseudo-random edges, the
 /// assembly projection the portable one's screen words on 20 000 pseudo-random points, and the
 /// assembly Gouraud setup the portable attribute words on 20 000 pseudo-random triangles, and
+/// the assembly dithered span the portable one on 20 000 pseudo-random spans and the
+/// dithered row routine the portable rows on 2 000 strips of four triangles, and
 /// the assembly triangle loop the portable one on 5 000 objects of 24 triangles, and on ARMv6-M
 /// (where they are used) the assembly triangle setup the portable one on 20 000 more and the
 /// assembly vertex loop the portable one on 5 000 objects of 16 positions (the
@@ -510,6 +522,14 @@ fn assembly_matches_portable() -> bool {
     #[cfg(not(target_has_atomic = "32"))]
     if let Some(e) = scanline3d::raster::triangle_setup_self_test(20_000) {
         hprintln!("TRIANGLE SETUP MISMATCH {:?}", e);
+        return false;
+    }
+    if let Some(e) = scanline3d::raster::dither_span_self_test(20_000) {
+        hprintln!("DITHERED SPAN MISMATCH {:?}", e);
+        return false;
+    }
+    if let Some(case) = scanline3d::raster::dither_rows_self_test(2_000) {
+        hprintln!("DITHERED ROWS MISMATCH case {}", case);
         return false;
     }
     if let Some(seed) = scanline3d::renderer::cull_self_test(5_000) {
