@@ -1337,20 +1337,7 @@ impl ActiveTri {
             SUBPIXELS * c0 + SUBPIXELS / 2,
             SUBPIXELS * row + SUBPIXELS / 2,
         );
-        let d = p.map(|v| (v.x as i32 - ox, v.y as i32 - oy));
-        let colors = p.map(|v| v.color());
-        let (fr, fb) = packed_frac_bits::<C>();
-        // Field `k` of 16-bit fields with `frac` fraction bits: F₀, Gx, Gy. Bounds: the
-        // headroom `lo` (15/32 of a unit) and the distance from the exact plane (¼ unit).
-        let field_ok = |k: usize, frac: u32, f0: i32, gx: i32, gy: i32| -> bool {
-            let vf = vertex_frac_bits(C::CHANNEL_MAX[k]);
-            let (lo, e) = (15 << (frac - 5), 1 << (frac - 2));
-            d.iter().zip(&colors).all(|(&(dx, dy), c)| {
-                let v = 16 * f0 + gx * dx + gy * dy;
-                let ideal = 16 * (((c[k] as i32) << (frac - vf)) + (1 << (frac - 1)));
-                v >= 16 * lo && v < 16 * ((1 << 16) - lo) && (v - ideal).abs() <= 16 * e
-            })
-        };
+        // Red and blue: the halves of the packed word (F₀, Gx, Gy of each).
         let (a, gx) = (self.row[1] as u32, self.gx[1] as u32);
         let gy = (self.inc[1] as u32).wrapping_sub(gx.wrapping_mul(sq));
         let (bx, by) = (gx as i16 as i32, gy as i16 as i32);
@@ -1358,21 +1345,18 @@ impl ActiveTri {
             (gx.wrapping_sub(bx as u32) as i32) >> 16,
             (gy.wrapping_sub(by as u32) as i32) >> 16,
         );
-        if !field_ok(2, fb, (a & 0xffff) as i32, bx, by)
-            || !field_ok(0, fr, (a >> 16) as i32, rx, ry)
-        {
-            return false;
-        }
-        // Green: the whole word, 32 − bits fraction bits.
-        let frac = 32 - channel_bits(C::CHANNEL_MAX[1]);
-        let vf = vertex_frac_bits(C::CHANNEL_MAX[1]);
-        let (lo, e) = (15i64 << (frac - 5), 1i64 << (frac - 2));
-        let (a, gx) = (self.row[2] as u32, self.gx[2]);
-        let gy = (self.inc[2] as u32).wrapping_sub((gx as u32).wrapping_mul(sq)) as i32;
-        d.iter().zip(&colors).all(|(&(dx, dy), c)| {
-            let v = 16 * a as i64 + mul_wide16(gx, dx) + mul_wide16(gy, dy);
-            let ideal = 16 * (((c[1] as i64) << (frac - vf)) + (1i64 << (frac - 1)));
-            v >= 16 * lo && v < 16 * ((1i64 << 32) - lo) && (v - ideal).abs() <= 16 * e
+        let (b0, r0) = ((a & 0xffff) as i32, (a >> 16) as i32);
+        // Green: the whole word.
+        let (ga, ggx) = (self.row[2] as u32, self.gx[2]);
+        let ggy = (self.inc[2] as u32).wrapping_sub((ggx as u32).wrapping_mul(sq)) as i32;
+        // Vertex by vertex, leaving at the first field that does not fit (fewer live values
+        // than field by field: this runs once per dithered fast triangle).
+        p.iter().all(|v| {
+            let (dx, dy) = (v.x as i32 - ox, v.y as i32 - oy);
+            let c = v.color();
+            field16_fits::<C, 2>(b0, bx, by, dx, dy, c[2])
+                && field16_fits::<C, 0>(r0, rx, ry, dx, dy, c[0])
+                && green_fits::<C>(ga, ggx, ggy, dx, dy, c[1])
         })
     }
 
@@ -2080,6 +2064,40 @@ impl Span {
         }
         written
     }
+}
+
+/// For [`ActiveTri::dither_fits`]: whether a 16-bit field of the packed red-blue word (channel
+/// `K`, `16 − bits` fraction bits), `F = f0 + (gx·dx + gy·dy)/16` at a vertex `(dx, dy)`
+/// subpixels from the first pixel's centre with vertex colour `c`, is at least 15/32 of a unit
+/// inside `0..2¹⁶` and within ¼ unit of the exact value plus the ½-unit bias. Each sum is below
+/// 2³¹ (see `dither_fits`).
+#[inline(always)]
+fn field16_fits<C: TargetColor, const K: usize>(
+    f0: i32,
+    gx: i32,
+    gy: i32,
+    dx: i32,
+    dy: i32,
+    c: u16,
+) -> bool {
+    let frac = 16 - channel_bits(C::CHANNEL_MAX[K]);
+    let vf = vertex_frac_bits(C::CHANNEL_MAX[K]);
+    let (lo, e) = (15 << (frac - 5), 1 << (frac - 2));
+    let v = 16 * f0 + gx * dx + gy * dy;
+    let ideal = 16 * (((c as i32) << (frac - vf)) + (1 << (frac - 1)));
+    v >= 16 * lo && v < 16 * ((1 << 16) - lo) && (v - ideal).abs() <= 16 * e
+}
+
+/// For [`ActiveTri::dither_fits`]: the same test for the green word (`32 − bits` fraction
+/// bits, unsigned `a`), summed in 64 bits.
+#[inline(always)]
+fn green_fits<C: TargetColor>(a: u32, gx: i32, gy: i32, dx: i32, dy: i32, c: u16) -> bool {
+    let frac = 32 - channel_bits(C::CHANNEL_MAX[1]);
+    let vf = vertex_frac_bits(C::CHANNEL_MAX[1]);
+    let (lo, e) = (15i64 << (frac - 5), 1i64 << (frac - 2));
+    let v = 16 * a as i64 + mul_wide16(gx, dx) + mul_wide16(gy, dy);
+    let ideal = 16 * (((c as i64) << (frac - vf)) + (1i64 << (frac - 1)));
+    v >= 16 * lo && v < 16 * ((1i64 << 32) - lo) && (v - ideal).abs() <= 16 * e
 }
 
 #[cfg(test)]
