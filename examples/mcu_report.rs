@@ -127,6 +127,20 @@ fn run() -> Result<(), String> {
                 }
                 small.push(v);
             }
+            if line.starts_with("SPLIT ") {
+                let f = parse_fields(line);
+                strips.push(json!({
+                    "kind": "split",
+                    "core": machine(core).0,
+                    "machine": machine(core).1,
+                    "label": core,
+                    "frame": num(&f, "frame")?,
+                    "split": num(&f, "split")?,
+                    "geometry": num(&f, "geometry")?,
+                    "top": num(&f, "top")?,
+                    "bottom": num(&f, "bottom")?,
+                }));
+            }
             if line.starts_with("STRIP ") {
                 let f = parse_fields(line);
                 strips.push(json!({
@@ -215,7 +229,7 @@ fn run() -> Result<(), String> {
         r["stack_bytes"] = json!(stack);
         r["flash_bytes"] = json!(flash);
     }
-    for st in &strips {
+    for st in strips.iter().filter(|s| s["kind"] == "strip") {
         let one = rows.iter().find(|r| {
             r["scene"] == st["scene"] && r["number"] == st["number"] && r["label"] == st["label"]
         });
@@ -245,9 +259,9 @@ fn run() -> Result<(), String> {
     .map_err(|e| e.to_string())?;
     let mut md = markdown(&rows, &mem, budget, &small);
     if let Some(t) = torus {
-        let strip = strips
-            .iter()
-            .find(|st| st["label"] == t["label"] && st["number"] == t["number"]);
+        let strip = strips.iter().find(|st| {
+            st["kind"] == "strip" && st["label"] == t["label"] && st["number"] == t["number"]
+        });
         md.push_str(&breakdown(t, strip)?);
     }
     // scripts/pico-emu writes its own section (the emulated Pico's figures): keep it, unchanged,

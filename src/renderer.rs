@@ -546,8 +546,8 @@ impl<
     /// geometry (the Pico benchmark measures that split), or for redrawing part of the screen
     /// from the same geometry, also after the frame was drawn.
     ///
-    /// Costs one triangle setup per stored triangle that starts above `row` (most return at
-    /// once: those that end above it).
+    /// Costs a look at the lowest vertex of each stored triangle that starts above `row`, and
+    /// one triangle setup for each of those that cross it.
     pub fn seek_row(&mut self, row: usize) {
         let vh = self.vh;
         let row = row.min(vh);
@@ -559,6 +559,13 @@ impl<
         let mode = SpanMode::new::<C>(self.depth_test, self.dither);
         let verts = &self.verts;
         for rec in &self.tris[..self.heads[row] as usize] {
+            // A triangle that ends above the row needs no setup to be skipped: its lowest
+            // vertex's first row (what setup would find) is at most `row`.
+            let [i, j, k] = rec.indices();
+            let y_max = verts[i].y.max(verts[j].y).max(verts[k].y);
+            if first_pixel(y_max as i32) <= row as i32 {
+                continue;
+            }
             // Cannot be full: the largest number of triangles crossing one row was checked
             // when the frame was prepared.
             self.active

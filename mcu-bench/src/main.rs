@@ -6,6 +6,8 @@
 //! Output lines (parsed by `examples/mcu_report.rs`):
 //! `BENCH scene=.. number=.. instructions=.. vertices=.. lighting=.. triangles=.. setup=..
 //!  raster=.. output=.. hash=.. pixels=.. renderer_ram=.. drawn=..`, then
+//! `SPLIT frame=.. split=.. geometry=.. top=.. bottom=..` (the Pico firmware's frame
+//! split between two cores at each strip boundary, `demo::board::split_frame`),
 //! `MEM static=.. stack=.. flash=..` and `DONE`.
 #![no_std]
 #![no_main]
@@ -360,6 +362,47 @@ fn strip_bench<const LINES: usize>() {
     }
 }
 
+/// The Pico firmware's frame `frame` (`demo::board`: the dithered torus, 8-line strips) split
+/// between two cores at every strip boundary: the instructions of the shared geometry, of the
+/// rows above the split (the first core) and of the seek and the rows below (the second core),
+/// run one after the other here (`demo::board::split_frame`; the host tests check that the
+/// split frame is the whole frame, within what `seek_row` allows).
+#[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
+fn split_bench(frame: u32) {
+    use embedded_graphics_core::pixelcolor::RgbColor;
+    use scanline3d::demo::board::{self, SplitPart};
+    let Ok(scene) = board::BoardScene::<Fx<I16F16>>::new() else {
+        hprintln!("ERROR split: scene");
+        return;
+    };
+    let mut renderer = board::renderer::<Fx<I16F16>>();
+    let mut buffer = [[Rgb565::BLACK; board::SIZE]; board::STRIP_LINES];
+    for split in (0..=board::SIZE).step_by(board::STRIP_LINES) {
+        let mut marks = [0u32; 3];
+        let start = timer::now();
+        let r = board::split_frame(&scene, &mut renderer, frame, split, &mut buffer, |p| {
+            let i = match p {
+                SplitPart::Geometry => 0,
+                SplitPart::Top => 1,
+                SplitPart::Bottom => 2,
+            };
+            marks[i] = timer::now();
+        });
+        let ins = |a: u32, b: u32| timer::instructions(b.wrapping_sub(a) as u64);
+        match r {
+            Ok(_) => hprintln!(
+                "SPLIT frame={} split={} geometry={} top={} bottom={}",
+                frame,
+                split,
+                ins(start, marks[0]),
+                ins(marks[0], marks[1]),
+                ins(marks[1], marks[2])
+            ),
+            Err(e) => hprintln!("ERROR split frame={} split={} {:?}", frame, split, e),
+        }
+    }
+}
+
 #[entry]
 fn main() -> ! {
     if !cfg!(feature = "profile-torus") {
@@ -392,6 +435,10 @@ fn main() -> ! {
     bench::<Fx<I16F16>, true>(Bench::Torus);
     #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
     strip_bench::<8>();
+    #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
+    for frame in [0, 15] {
+        split_bench(frame);
+    }
     #[cfg(feature = "microbit")]
     {
         torus_sized::<MICROBIT_TORUS_SIZE>();
