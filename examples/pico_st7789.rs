@@ -66,9 +66,9 @@ mod firmware {
 
     type Q = Fx<I16F16>;
 
-    /// Strip buffers in the ring (6 × 3 840 B in SRAM): enough for the renderer to run ahead
+    /// Strip buffers in the ring (10 × 3 840 B in SRAM): enough for the renderer to run ahead
     /// through the empty rows above and below the torus while the SPI catches up.
-    const RING: usize = 6;
+    const RING: usize = 10;
 
     /// The ring of strip buffers, shared by the renderer (main) and the DMA (started from main
     /// or from the DMA interrupt). Buffer `k % RING` holds strip `k`; the counters below say
