@@ -103,7 +103,7 @@ export function benchmarksBlock(r, profile = null) {
     two.push(
       '',
       `The panel's own limit, the SPI time of one frame (${240 * 240 * 2} bytes): ${tc.panel_cycles_per_frame} cycles, ` +
-        `${tc.panel_fps.toFixed(1)} fps; the one-core firmware above is at ${((100 * tc.panel_cycles_per_frame) / r.cycles_per_frame).toFixed(0)} % of it.`,
+        `${tc.panel_fps.toFixed(1)} fps; the one-core firmware above reaches ${((100 * tc.panel_cycles_per_frame) / r.cycles_per_frame).toFixed(0)} % of that frame rate.`,
       '',
       '**Two cores (estimate, not measured: the emulator runs one core).** The QEMU benchmark',
       `measures the board frame split at each strip boundary (\`demo::board::split_frame\`). For the`,
