@@ -2,7 +2,7 @@
 //! then copied into the lines of whichever strips a label crosses.
 //!
 //! [`Renderer::render_overlaid`](crate::Renderer::render_overlaid) draws any embedded-graphics
-//! [`Drawable`](embedded_graphics_core::Drawable) into every strip, which runs the drawable's
+//! [`Drawable`] into every strip, which runs the drawable's
 //! text layout once per strip: with a one-line strip that is 240 layouts a frame for a label
 //! that covers ten rows. [`Glyphs`] does the font work once, when it is built, and
 //! [`Glyphs::draw`] then touches only the rows of a strip that the text covers: a strip the text
