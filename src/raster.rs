@@ -2085,7 +2085,9 @@ fn field16_fits<C: TargetColor, const K: usize>(
     let (lo, e) = (15 << (frac - 5), 1 << (frac - 2));
     let v = 16 * f0 + gx * dx + gy * dy;
     let ideal = 16 * (((c as i32) << (frac - vf)) + (1 << (frac - 1)));
-    v >= 16 * lo && v < 16 * ((1 << 16) - lo) && (v - ideal).abs() <= 16 * e
+    // One unsigned comparison per interval: 16·lo ≤ v < 16·(2¹⁶ − lo), |v − ideal| ≤ 16·e.
+    (v.wrapping_sub(16 * lo) as u32) < (16 * ((1 << 16) - 2 * lo)) as u32
+        && (v.wrapping_sub(ideal).wrapping_add(16 * e) as u32) <= (32 * e) as u32
 }
 
 /// For [`ActiveTri::dither_fits`]: the same test for the green word (`32 − bits` fraction
@@ -2097,7 +2099,8 @@ fn green_fits<C: TargetColor>(a: u32, gx: i32, gy: i32, dx: i32, dy: i32, c: u16
     let (lo, e) = (15i64 << (frac - 5), 1i64 << (frac - 2));
     let v = 16 * a as i64 + mul_wide16(gx, dx) + mul_wide16(gy, dy);
     let ideal = 16 * (((c as i64) << (frac - vf)) + (1i64 << (frac - 1)));
-    v >= 16 * lo && v < 16 * ((1i64 << 32) - lo) && (v - ideal).abs() <= 16 * e
+    ((v - 16 * lo) as u64) < (16 * ((1i64 << 32) - 2 * lo)) as u64
+        && ((v - ideal + 16 * e) as u64) <= (32 * e) as u64
 }
 
 #[cfg(test)]
