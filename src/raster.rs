@@ -2091,21 +2091,156 @@ fn field16_fits<C: TargetColor, const K: usize>(
 }
 
 /// For [`ActiveTri::dither_fits`]: the same test for the green word (`32 − bits` fraction
-/// bits, unsigned `a`), summed in 64 bits.
+/// bits, unsigned `a`): `16·F = 16·a + gx·dx + gy·dy` (a 64-bit value in principle) at least
+/// `16·lo` and below `16·(2³² − lo)`, and within `16·e` of `16·ideal` ([`green_fits_wide`]
+/// states it in 64 bits). A Cortex-M0 has no 64-bit arithmetic, so here `16·F` is formed as
+/// `T·2¹⁶ + L` (`0 ≤ L < 2¹⁶`) in 32-bit operations: `T = 16·a_hi + gx_hi·dx + gy_hi·dy` plus
+/// the carries of the low products `16·a_lo`, `gx_lo·dx`, `gy_lo·dy` (each |·| < 2³¹: |dx|,
+/// |dy| ≤ 16 400). Every bound is a multiple of 2¹⁶ (`frac ≥ 24`, `frac − vf = 22` for the
+/// packable colour types), so the comparisons need `T` alone, and `L` only for equality at
+/// the upper bound of the distance. The same decisions (tested on random and extreme cases).
 #[inline(always)]
 fn green_fits<C: TargetColor>(a: u32, gx: i32, gy: i32, dx: i32, dy: i32, c: u16) -> bool {
     let frac = 32 - channel_bits(C::CHANNEL_MAX[1]);
     let vf = vertex_frac_bits(C::CHANNEL_MAX[1]);
+    green_fits_split(a, gx, gy, dx, dy, c, frac, vf)
+}
+
+/// [`green_fits`] for `frac` and `vf` given (`frac ≥ 17`, `frac − vf ≥ 12`).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn green_fits_split(
+    a: u32,
+    gx: i32,
+    gy: i32,
+    dx: i32,
+    dy: i32,
+    c: u16,
+    frac: u32,
+    vf: u32,
+) -> bool {
+    // The bounds over 2¹⁶: 16·lo, 16·(2³² − lo), 16·ideal and 16·e.
+    let floor = 15 << (frac - 17);
+    let ceil = (1 << 20) - floor;
+    let ideal = ((c as i32) << (frac - vf - 12)) + (1 << (frac - 13));
+    let e = 1 << (frac - 14);
+    let (ah, al) = ((a >> 16) as i32, (a & 0xffff) as i32);
+    let (p1, p2) = ((gx & 0xffff) * dx, (gy & 0xffff) * dy);
+    let low = ((al << 4) & 0xffff) + (p1 & 0xffff) + (p2 & 0xffff);
+    let t = 16 * ah
+        + (gx >> 16) * dx
+        + (gy >> 16) * dy
+        + (al >> 12)
+        + (p1 >> 16)
+        + (p2 >> 16)
+        + (low >> 16);
+    let upper = ideal + e;
+    t >= floor.max(ideal - e) && t < ceil && (t < upper || (t == upper && low & 0xffff == 0))
+}
+
+/// [`green_fits`] as it is specified, in 64-bit arithmetic (the reference of its test).
+#[cfg(test)]
+#[allow(clippy::too_many_arguments)]
+fn green_fits_wide(a: u32, gx: i32, gy: i32, dx: i32, dy: i32, c: u16, frac: u32, vf: u32) -> bool {
     let (lo, e) = (15i64 << (frac - 5), 1i64 << (frac - 2));
-    let v = 16 * a as i64 + mul_wide16(gx, dx) + mul_wide16(gy, dy);
+    let v = 16 * a as i64 + gx as i64 * dx as i64 + gy as i64 * dy as i64;
     let ideal = 16 * (((c as i64) << (frac - vf)) + (1i64 << (frac - 1)));
-    ((v - 16 * lo) as u64) < (16 * ((1i64 << 32) - 2 * lo)) as u64
-        && ((v - ideal + 16 * e) as u64) <= (32 * e) as u64
+    v >= 16 * lo && v < 16 * ((1i64 << 32) - lo) && (v - ideal).abs() <= 16 * e
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn green_fits_equals_its_64_bit_specification() {
+        let mut x = 0x9e37_79b9_u32;
+        let mut rnd = move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        };
+        let edges = [
+            0,
+            1,
+            -1,
+            i32::MAX,
+            i32::MIN,
+            1 << 16,
+            -(1 << 16),
+            0xffff,
+            -0xffff,
+        ];
+        let mut agree = [0u32; 2];
+        for k in 0..400_000u32 {
+            let (gx, gy) = if k % 4 == 0 {
+                (edges[rnd() as usize % 9], edges[rnd() as usize % 9])
+            } else {
+                // Mostly a real triangle's small gradients, some anywhere.
+                let g = |r: u32, s: u32| {
+                    if s % 3 == 0 {
+                        r as i32
+                    } else {
+                        (r as i32) >> (8 + s % 16)
+                    }
+                };
+                (g(rnd(), rnd()), g(rnd(), rnd()))
+            };
+            let a = if k % 8 == 0 {
+                [0, u32::MAX, 1 << 31, 15 << 21][rnd() as usize % 4]
+            } else {
+                rnd()
+            };
+            let r = rnd();
+            let v = |r: u32| {
+                if r % 7 == 0 {
+                    [16_400, -16_400, 0][r as usize % 3]
+                } else {
+                    (r % 32_801) as i32 - 16_400
+                }
+            };
+            let (dx, dy) = (v(r), v(r.rotate_left(16)));
+            let (frac, vf) = [(26, 4), (24, 2), (25, 3)][k as usize % 3];
+            // Half the cases: the colour the field itself rounds to (±1), so many pass; and
+            // exactly at the distance bound now and then.
+            let c = if k % 2 == 0 {
+                let f = 16 * a as i64 + gx as i64 * dx as i64 + gy as i64 * dy as i64;
+                let unit = 16i64 << (frac - vf);
+                ((f - (16i64 << (frac - 1)) + unit / 2).div_euclid(unit) + (rnd() % 3) as i64 - 1)
+                    .clamp(0, 1023) as u16
+            } else {
+                rnd() as u16 % 1024
+            };
+            let fast = green_fits_split(a, gx, gy, dx, dy, c, frac, vf);
+            assert_eq!(
+                fast,
+                green_fits_wide(a, gx, gy, dx, dy, c, frac, vf),
+                "a {a:#x} gx {gx} gy {gy} d ({dx}, {dy}) c {c} frac {frac}"
+            );
+            agree[fast as usize] += 1;
+        }
+        // At the distance bound exactly (16·F = 16·ideal ± 16·e), both sides.
+        for (frac, vf) in [(26u32, 4u32), (24, 2)] {
+            for c in [0u16, 1, 512, 1023] {
+                let ideal = 16 * (((c as i64) << (frac - vf)) + (1i64 << (frac - 1)));
+                for target in [ideal + (16i64 << (frac - 2)), ideal - (16i64 << (frac - 2))] {
+                    for nudge in [-1i64, 0, 1] {
+                        // 16·a = target + nudge with dx = 1, gx = the remainder.
+                        let t = target + nudge;
+                        let a = (t.div_euclid(16)).clamp(0, u32::MAX as i64) as u32;
+                        let gx = (t - 16 * a as i64) as i32;
+                        assert_eq!(
+                            green_fits_split(a, gx, 0, 1, 0, c, frac, vf),
+                            green_fits_wide(a, gx, 0, 1, 0, c, frac, vf),
+                            "bound c {c} frac {frac} nudge {nudge}"
+                        );
+                    }
+                }
+            }
+        }
+        assert!(agree[0] > 10_000 && agree[1] > 10_000, "{agree:?}");
+    }
 
     /// Exact reference: first pixel whose centre is at or right of the edge at `row`.
     fn reference(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> i32 {
