@@ -1621,13 +1621,46 @@ macro_rules! round_channel {
     };
 }
 
-/// For [`scanline3d_gouraud_setup`]: colour channel `$k` (`$rgb` = its byte's offset in a
-/// vertex, `$fl` = the left shift that brings its two low bits to the top of the flags, `$sh`
-/// = its shift to 20 fraction bits, `$less` = [`round_channel`]'s adjustment for green): its value
-/// at the first vertex, `c0 << sh`, and its gradients from the 16-bit coefficients,
-/// `round(c0·d1 − c1·d2)` and `round(c2·d2 − c3·d1)`, into the frame. Uses r0–r7.
-macro_rules! channel_gradients {
-    ($rgb:literal, $fl:literal, $sh:literal, $less:literal, $a0:literal, $gx:literal, $gy:literal) => {
+/// For [`scanline3d_gouraud_setup`]: `(gx·dx + gy·dy) >> 4` (the low word of the exact
+/// shifted sum) for r0 = gx, r3 = gy, into r0 — the offset of an attribute's value at the
+/// first pixel from its value at the first vertex. With g = gh·2¹⁶ + gl and gl the signed low
+/// half: |gl·dx| ≤ 2³⁰, and dy > −2¹⁵ (rows are on the screen, ay ≤ 2¹⁴), so the low
+/// products' sum fits an `i32` and the sum is `(Σ gh·d)·2¹⁶ + Σ gl·d`. Uses r1, r2, r4.
+macro_rules! prestep {
+    () => {
+        concat!(
+            "ldr r1, [sp, #gs_dx]\n",
+            "sxth r2, r0\n",
+            "subs r0, r0, r2\n",
+            "asrs r0, r0, #16\n",
+            "muls r2, r1, r2\n",
+            "muls r0, r1, r0\n",
+            "ldr r1, [sp, #gs_dy]\n",
+            "sxth r4, r3\n",
+            "subs r3, r3, r4\n",
+            "asrs r3, r3, #16\n",
+            "muls r4, r1, r4\n",
+            "muls r3, r1, r3\n",
+            "adds r0, r0, r3\n",
+            "adds r2, r2, r4\n",
+            "lsls r0, r0, #12\n",
+            "asrs r2, r2, #4\n",
+            "adds r0, r0, r2\n",
+        )
+    };
+}
+
+/// For [`scanline3d_gouraud_setup`]: colour channel `$rgb` (its byte's offset in a vertex;
+/// `$fl` = the left shift that brings its two low bits to the top of the flags, `$sh` = its
+/// shift to 20 fraction bits, `$less` = [`round_channel`]'s adjustment for green), from its
+/// value at the first vertex `c0 << sh` and its gradients from the 16-bit coefficients,
+/// `gx = round(c0·d1 − c1·d2)` and `gy = round(c2·d2 − c3·d1)`, to its value at the first
+/// pixel (`+ `[`prestep`]) and its row step `gy + gx·sq`, all three packed into the record
+/// (r7) by `$gx`, `$inc` and `$row` ([`pack_blue`], [`pack_red`], [`pack_green`]: each
+/// stores the word in the register it names, with r6 = 2⁸). Nothing goes through the frame
+/// but the constants. Uses r0–r7.
+macro_rules! channel {
+    ($rgb:literal, $fl:literal, $sh:literal, $less:literal, $gx:expr, $inc:expr, $row:expr) => {
         concat!(
             "ldr r4, [sp, #gs_va]\n",
             vertex_channel!("r5", $rgb, $fl),
@@ -1640,82 +1673,94 @@ macro_rules! channel_gradients {
             "lsls r5, r5, #",
             $sh,
             "\n",
-            "str r5, [sp, #",
-            $a0,
-            "]\n",
+            // r0 = gx, r3 = gy.
             "ldr r0, [sp, #gs_c16]\n",
             "muls r0, r6, r0\n",
             "ldr r1, [sp, #gs_c16 + 4]\n",
             "muls r1, r7, r1\n",
             "subs r0, r0, r1\n",
             round_channel!($less),
-            "str r0, [sp, #",
-            $gx,
-            "]\n",
-            "ldr r0, [sp, #gs_c16 + 8]\n",
-            "muls r0, r7, r0\n",
+            "ldr r3, [sp, #gs_c16 + 8]\n",
+            "muls r3, r7, r3\n",
             "ldr r1, [sp, #gs_c16 + 12]\n",
             "muls r1, r6, r1\n",
-            "subs r0, r0, r1\n",
-            round_channel!($less),
-            "str r0, [sp, #",
-            $gy,
+            "subs r3, r3, r1\n",
+            // Rounded as r0 was, by the shift left in r2.
+            "lsls r3, r3, #4\n",
+            "asrs r3, r3, r2\n",
+            "adds r3, #1\n",
+            "asrs r3, r3, #1\n",
+            // r1 = gy + gx·sq; the packed gx and row step.
+            "ldr r7, [sp, #gs_rec]\n",
+            "ldr r1, [sp, #gs_lsq]\n",
+            "muls r1, r0, r1\n",
+            "adds r1, r1, r3\n",
+            "movs r6, #1\n",
+            "lsls r6, r6, #8\n",
+            "mov r2, r0\n",
+            $gx,
+            $inc,
+            // r0 = the value at the first pixel.
+            prestep!(),
+            "adds r0, r0, r5\n",
+            $row,
+        )
+    };
+}
+
+/// For [`channel`]: blue's packed word `(r$v + 2⁸) >> 9` (`$bias`: the start value's
+/// ½-unit bias, or nothing) into the record at `$off` (red adds its half later).
+macro_rules! pack_blue {
+    ($v:literal, $off:literal, $bias:literal) => {
+        concat!(
+            "adds ", $v, ", ", $v, ", r6\n", "asrs ", $v, ", ", $v, ", #9\n", $bias, "str ", $v,
+            ", [r7, #", $off, "]\n",
+        )
+    };
+}
+
+/// For [`channel`]: red's half `(r$v + 2⁸) >> 9` (`$bias` as [`pack_blue`]) shifted to the
+/// high half and added to blue's word at `$off` (wrapping: `R·2¹⁶ + B mod 2³²`). Uses r4.
+macro_rules! pack_red {
+    ($v:literal, $off:literal, $bias:literal) => {
+        concat!(
+            "adds ",
+            $v,
+            ", ",
+            $v,
+            ", r6\n",
+            "asrs ",
+            $v,
+            ", ",
+            $v,
+            ", #9\n",
+            $bias,
+            "lsls ",
+            $v,
+            ", ",
+            $v,
+            ", #16\n",
+            "ldr r4, [r7, #",
+            $off,
+            "]\n",
+            "adds ",
+            $v,
+            ", ",
+            $v,
+            ", r4\n",
+            "str ",
+            $v,
+            ", [r7, #",
+            $off,
             "]\n",
         )
     };
 }
 
-/// For [`scanline3d_gouraud_setup`]: attribute `$k`'s value at the first pixel,
-/// `a0 + ((gx·dx + gy·dy) >> 4)` (the low word of the exact shifted sum), into `a0`'s slot,
-/// and its row step `gy + gx·sq` into the frame word `$inc`. With g = gh·2¹⁶ + gl and gl the
-/// signed low half: |gl·dx| ≤ 2³⁰, and dy > −2¹⁵ (rows are on the screen, ay ≤ 2¹⁴), so the
-/// low products' sum fits an `i32` and the sum is `(Σ gh·d)·2¹⁶ + Σ gl·d`. Uses r0–r4.
-macro_rules! prestep {
-    ($gx:literal, $gy:literal, $a0:literal, $inc:literal) => {
-        concat!(
-            "ldr r0, [sp, #",
-            $gx,
-            "]\n",
-            "ldr r1, [sp, #gs_dx]\n",
-            "sxth r2, r0\n",
-            "subs r0, r0, r2\n",
-            "asrs r0, r0, #16\n",
-            "muls r2, r1, r2\n",
-            "muls r0, r1, r0\n",
-            "ldr r3, [sp, #",
-            $gy,
-            "]\n",
-            "ldr r1, [sp, #gs_dy]\n",
-            "sxth r4, r3\n",
-            "subs r3, r3, r4\n",
-            "asrs r3, r3, #16\n",
-            "muls r4, r1, r4\n",
-            "muls r3, r1, r3\n",
-            "adds r0, r0, r3\n",
-            "adds r2, r2, r4\n",
-            "lsls r0, r0, #12\n",
-            "asrs r2, r2, #4\n",
-            "adds r0, r0, r2\n",
-            "ldr r1, [sp, #",
-            $a0,
-            "]\n",
-            "adds r0, r0, r1\n",
-            "str r0, [sp, #",
-            $a0,
-            "]\n",
-            "ldr r0, [sp, #",
-            $gx,
-            "]\n",
-            "ldr r1, [sp, #gs_lsq]\n",
-            "muls r0, r1, r0\n",
-            "ldr r1, [sp, #",
-            $gy,
-            "]\n",
-            "adds r0, r0, r1\n",
-            "str r0, [sp, #",
-            $inc,
-            "]\n",
-        )
+/// For [`channel`]: green's packed word `r$v << 6` into the record at `$off`.
+macro_rules! pack_green {
+    ($v:literal, $off:literal) => {
+        concat!("lsls ", $v, ", ", $v, ", #6\n", "str ", $v, ", [r7, #", $off, "]\n")
     };
 }
 
@@ -1776,14 +1821,6 @@ macro_rules! coefficient {
             $c16,
             "]\n",
         )
-    };
-}
-
-/// For [`scanline3d_gouraud_setup`]: `(r$v + 2⁸) >> 9` — a red or blue value or gradient
-/// (20 fraction bits) rounded to the 11 of a packed red-blue half (r6 = 2⁸).
-macro_rules! conv_rb {
-    ($r:literal) => {
-        concat!("adds ", $r, ", ", $r, ", r6\n", "asrs ", $r, ", ", $r, ", #9\n")
     };
 }
 
@@ -1943,70 +1980,51 @@ core::arch::global_asm!(
     "str r0, [sp, #gs_da2]",
     depth_gradient!("gs_da1", "gs_bx1", "gs_da2", "gs_bx2", "gs_gx"),
     depth_gradient!("gs_da2", "gs_by1", "gs_da1", "gs_by2", "gs_gy"),
-    // Red, green, blue: 10-bit channels with 5, 4, 5 fraction bits, to 20.
-    channel_gradients!("{vrgb}", "20", "15", "", "gs_a0 + 4", "gs_gx + 4", "gs_gy + 4"),
-    channel_gradients!("{vrgb} + 1", "18", "16", "subs r2, #1\n", "gs_a0 + 8", "gs_gx + 8", "gs_gy + 8"),
-    channel_gradients!("{vrgb} + 2", "16", "15", "", "gs_a0 + 12", "gs_gx + 12", "gs_gy + 12"),
-    // Values at the first pixel (into a0) and row steps (into the coefficients' 16-bit
-    // roundings, no longer needed).
-    prestep!("gs_gx", "gs_gy", "gs_a0", "gs_c16"),
-    prestep!("gs_gx + 4", "gs_gy + 4", "gs_a0 + 4", "gs_c16 + 4"),
-    prestep!("gs_gx + 8", "gs_gy + 8", "gs_a0 + 8", "gs_c16 + 8"),
-    prestep!("gs_gx + 12", "gs_gy + 12", "gs_a0 + 12", "gs_c16 + 12"),
-    // Packed (`raster::pack_zrgb`): gradients, then values with their rounding biases, then
-    // row steps; each [depth << 4, red << 16 + blue (rounded to 11 fraction bits), green << 6,
-    // 0].
+    // Packed (`raster::pack_zrgb`) into the record (r7) as each attribute is done: its
+    // gradient, its value at the first pixel with its rounding bias, and its row step
+    // `gy + gx·sq`; each word of the record is [depth << 4, red << 16 + blue (rounded to 11
+    // fraction bits), green << 6, 0]. Depth: gy is in r5.
     "ldr r7, [sp, #gs_rec]",
-    "adds r7, #{gx}",
-    "movs r6, #1",
-    "lsls r6, r6, #8",
-    "movs r5, #0",
     "ldr r0, [sp, #gs_gx]",
-    "lsls r0, r0, #4",
-    "ldr r1, [sp, #gs_gx + 4]",
-    conv_rb!("r1"),
-    "lsls r1, r1, #16",
-    "ldr r2, [sp, #gs_gx + 12]",
-    conv_rb!("r2"),
-    "adds r1, r1, r2",
-    "ldr r2, [sp, #gs_gx + 8]",
-    "lsls r2, r2, #6",
     "mov r3, r5",
-    "stm r7!, {{r0, r1, r2, r3}}",
-    "ldr r0, [sp, #gs_a0]",
+    "ldr r1, [sp, #gs_lsq]",
+    "muls r1, r0, r1",
+    "adds r1, r1, r3",
+    "lsls r1, r1, #4",
+    "str r1, [r7, #{inc}]",
+    "lsls r2, r0, #4",
+    "str r2, [r7, #{gx}]",
+    prestep!(),
+    "ldr r1, [sp, #gs_a0]",
+    "adds r0, r0, r1",
     "lsls r0, r0, #4",
-    "movs r4, #1",
-    "lsls r4, r4, #15",
-    "adds r0, r0, r4",
-    "ldr r1, [sp, #gs_a0 + 4]",
-    conv_rb!("r1"),
-    "lsls r1, r1, #16",
-    "ldr r2, [sp, #gs_a0 + 12]",
-    conv_rb!("r2"),
-    "adds r1, r1, r2",
-    "lsls r4, r6, #2",
-    "adds r1, r1, r4",
-    "lsls r4, r4, #16",
-    "adds r1, r1, r4",
-    "ldr r2, [sp, #gs_a0 + 8]",
-    "lsls r2, r2, #6",
-    "movs r4, #1",
-    "lsls r4, r4, #25",
-    "adds r2, r2, r4",
-    "mov r3, r5",
-    "stm r7!, {{r0, r1, r2, r3}}",
-    "ldr r0, [sp, #gs_c16]",
-    "lsls r0, r0, #4",
-    "ldr r1, [sp, #gs_c16 + 4]",
-    conv_rb!("r1"),
-    "lsls r1, r1, #16",
-    "ldr r2, [sp, #gs_c16 + 12]",
-    conv_rb!("r2"),
-    "adds r1, r1, r2",
-    "ldr r2, [sp, #gs_c16 + 8]",
-    "lsls r2, r2, #6",
-    "mov r3, r5",
-    "stm r7!, {{r0, r1, r2, r3}}",
+    "movs r1, #1",
+    "lsls r1, r1, #15",
+    "adds r0, r0, r1",
+    "str r0, [r7, #{row}]",
+    "movs r0, #0",
+    "str r0, [r7, #{gx} + 12]",
+    "str r0, [r7, #{row} + 12]",
+    "str r0, [r7, #{inc} + 12]",
+    // Blue, red, green: 10-bit channels with 5, 4, 5 fraction bits, to 20.
+    channel!(
+        "{vrgb} + 2", "16", "15", "",
+        pack_blue!("r2", "{gx} + 4", ""),
+        pack_blue!("r1", "{inc} + 4", ""),
+        pack_blue!("r0", "{row} + 4", "lsls r4, r6, #2\nadds r0, r0, r4\n")
+    ),
+    channel!(
+        "{vrgb}", "20", "15", "",
+        pack_red!("r2", "{gx} + 4", ""),
+        pack_red!("r1", "{inc} + 4", ""),
+        pack_red!("r0", "{row} + 4", "lsls r4, r6, #2\nadds r0, r0, r4\n")
+    ),
+    channel!(
+        "{vrgb} + 1", "18", "16", "subs r2, #1\n",
+        pack_green!("r2", "{gx} + 8"),
+        pack_green!("r1", "{inc} + 8"),
+        concat!("lsls r4, r6, #11\nadds r0, r0, r4\n", pack_green!("r0", "{row} + 8"))
+    ),
     "movs r0, #1",
     "add sp, #gs_frame",
     "pop {{r4, r5, r6, r7, pc}}",
@@ -2022,6 +2040,8 @@ core::arch::global_asm!(
     vrgb = const crate::project::RGB_HI_OFFSET,
     vfl = const crate::project::FLAGS_OFFSET,
     gx = const o::GX,
+    row = const o::ROW,
+    inc = const o::INC,
 );
 
 /// For [`scanline3d_setup565`]: the edge that [`scanline3d_edge_dda`] returned (r1 = w,
