@@ -1621,13 +1621,46 @@ macro_rules! round_channel {
     };
 }
 
-/// For [`scanline3d_gouraud_setup`]: colour channel `$k` (`$rgb` = its byte's offset in a
-/// vertex, `$fl` = the left shift that brings its two low bits to the top of the flags, `$sh`
-/// = its shift to 20 fraction bits, `$less` = [`round_channel`]'s adjustment for green): its value
-/// at the first vertex, `c0 << sh`, and its gradients from the 16-bit coefficients,
-/// `round(c0·d1 − c1·d2)` and `round(c2·d2 − c3·d1)`, into the frame. Uses r0–r7.
-macro_rules! channel_gradients {
-    ($rgb:literal, $fl:literal, $sh:literal, $less:literal, $a0:literal, $gx:literal, $gy:literal) => {
+/// For [`scanline3d_gouraud_setup`]: `(gx·dx + gy·dy) >> 4` (the low word of the exact
+/// shifted sum) for r0 = gx, r3 = gy, into r0 — the offset of an attribute's value at the
+/// first pixel from its value at the first vertex. With g = gh·2¹⁶ + gl and gl the signed low
+/// half: |gl·dx| ≤ 2³⁰, and dy > −2¹⁵ (rows are on the screen, ay ≤ 2¹⁴), so the low
+/// products' sum fits an `i32` and the sum is `(Σ gh·d)·2¹⁶ + Σ gl·d`. Uses r1, r2, r4.
+macro_rules! prestep {
+    () => {
+        concat!(
+            "ldr r1, [sp, #gs_dx]\n",
+            "sxth r2, r0\n",
+            "subs r0, r0, r2\n",
+            "asrs r0, r0, #16\n",
+            "muls r2, r1, r2\n",
+            "muls r0, r1, r0\n",
+            "ldr r1, [sp, #gs_dy]\n",
+            "sxth r4, r3\n",
+            "subs r3, r3, r4\n",
+            "asrs r3, r3, #16\n",
+            "muls r4, r1, r4\n",
+            "muls r3, r1, r3\n",
+            "adds r0, r0, r3\n",
+            "adds r2, r2, r4\n",
+            "lsls r0, r0, #12\n",
+            "asrs r2, r2, #4\n",
+            "adds r0, r0, r2\n",
+        )
+    };
+}
+
+/// For [`scanline3d_gouraud_setup`]: colour channel `$rgb` (its byte's offset in a vertex;
+/// `$fl` = the left shift that brings its two low bits to the top of the flags, `$sh` = its
+/// shift to 20 fraction bits, `$less` = [`round_channel`]'s adjustment for green), from its
+/// value at the first vertex `c0 << sh` and its gradients from the 16-bit coefficients,
+/// `gx = round(c0·d1 − c1·d2)` and `gy = round(c2·d2 − c3·d1)`, to its value at the first
+/// pixel (`+ `[`prestep`]) and its row step `gy + gx·sq`, all three packed into the record
+/// (r7) by `$gx`, `$inc` and `$row` ([`pack_blue`], [`pack_red`], [`pack_green`]: each
+/// stores the word in the register it names, with r6 = 2⁸). Nothing goes through the frame
+/// but the constants. Uses r0–r7.
+macro_rules! channel {
+    ($rgb:literal, $fl:literal, $sh:literal, $less:literal, $gx:expr, $inc:expr, $row:expr) => {
         concat!(
             "ldr r4, [sp, #gs_va]\n",
             vertex_channel!("r5", $rgb, $fl),
@@ -1640,82 +1673,94 @@ macro_rules! channel_gradients {
             "lsls r5, r5, #",
             $sh,
             "\n",
-            "str r5, [sp, #",
-            $a0,
-            "]\n",
+            // r0 = gx, r3 = gy.
             "ldr r0, [sp, #gs_c16]\n",
             "muls r0, r6, r0\n",
             "ldr r1, [sp, #gs_c16 + 4]\n",
             "muls r1, r7, r1\n",
             "subs r0, r0, r1\n",
             round_channel!($less),
-            "str r0, [sp, #",
-            $gx,
-            "]\n",
-            "ldr r0, [sp, #gs_c16 + 8]\n",
-            "muls r0, r7, r0\n",
+            "ldr r3, [sp, #gs_c16 + 8]\n",
+            "muls r3, r7, r3\n",
             "ldr r1, [sp, #gs_c16 + 12]\n",
             "muls r1, r6, r1\n",
-            "subs r0, r0, r1\n",
-            round_channel!($less),
-            "str r0, [sp, #",
-            $gy,
+            "subs r3, r3, r1\n",
+            // Rounded as r0 was, by the shift left in r2.
+            "lsls r3, r3, #4\n",
+            "asrs r3, r3, r2\n",
+            "adds r3, #1\n",
+            "asrs r3, r3, #1\n",
+            // r1 = gy + gx·sq; the packed gx and row step.
+            "ldr r7, [sp, #gs_rec]\n",
+            "ldr r1, [sp, #gs_lsq]\n",
+            "muls r1, r0, r1\n",
+            "adds r1, r1, r3\n",
+            "movs r6, #1\n",
+            "lsls r6, r6, #8\n",
+            "mov r2, r0\n",
+            $gx,
+            $inc,
+            // r0 = the value at the first pixel.
+            prestep!(),
+            "adds r0, r0, r5\n",
+            $row,
+        )
+    };
+}
+
+/// For [`channel`]: blue's packed word `(r$v + 2⁸) >> 9` (`$bias`: the start value's
+/// ½-unit bias, or nothing) into the record at `$off` (red adds its half later).
+macro_rules! pack_blue {
+    ($v:literal, $off:literal, $bias:literal) => {
+        concat!(
+            "adds ", $v, ", ", $v, ", r6\n", "asrs ", $v, ", ", $v, ", #9\n", $bias, "str ", $v,
+            ", [r7, #", $off, "]\n",
+        )
+    };
+}
+
+/// For [`channel`]: red's half `(r$v + 2⁸) >> 9` (`$bias` as [`pack_blue`]) shifted to the
+/// high half and added to blue's word at `$off` (wrapping: `R·2¹⁶ + B mod 2³²`). Uses r4.
+macro_rules! pack_red {
+    ($v:literal, $off:literal, $bias:literal) => {
+        concat!(
+            "adds ",
+            $v,
+            ", ",
+            $v,
+            ", r6\n",
+            "asrs ",
+            $v,
+            ", ",
+            $v,
+            ", #9\n",
+            $bias,
+            "lsls ",
+            $v,
+            ", ",
+            $v,
+            ", #16\n",
+            "ldr r4, [r7, #",
+            $off,
+            "]\n",
+            "adds ",
+            $v,
+            ", ",
+            $v,
+            ", r4\n",
+            "str ",
+            $v,
+            ", [r7, #",
+            $off,
             "]\n",
         )
     };
 }
 
-/// For [`scanline3d_gouraud_setup`]: attribute `$k`'s value at the first pixel,
-/// `a0 + ((gx·dx + gy·dy) >> 4)` (the low word of the exact shifted sum), into `a0`'s slot,
-/// and its row step `gy + gx·sq` into the frame word `$inc`. With g = gh·2¹⁶ + gl and gl the
-/// signed low half: |gl·dx| ≤ 2³⁰, and dy > −2¹⁵ (rows are on the screen, ay ≤ 2¹⁴), so the
-/// low products' sum fits an `i32` and the sum is `(Σ gh·d)·2¹⁶ + Σ gl·d`. Uses r0–r4.
-macro_rules! prestep {
-    ($gx:literal, $gy:literal, $a0:literal, $inc:literal) => {
-        concat!(
-            "ldr r0, [sp, #",
-            $gx,
-            "]\n",
-            "ldr r1, [sp, #gs_dx]\n",
-            "sxth r2, r0\n",
-            "subs r0, r0, r2\n",
-            "asrs r0, r0, #16\n",
-            "muls r2, r1, r2\n",
-            "muls r0, r1, r0\n",
-            "ldr r3, [sp, #",
-            $gy,
-            "]\n",
-            "ldr r1, [sp, #gs_dy]\n",
-            "sxth r4, r3\n",
-            "subs r3, r3, r4\n",
-            "asrs r3, r3, #16\n",
-            "muls r4, r1, r4\n",
-            "muls r3, r1, r3\n",
-            "adds r0, r0, r3\n",
-            "adds r2, r2, r4\n",
-            "lsls r0, r0, #12\n",
-            "asrs r2, r2, #4\n",
-            "adds r0, r0, r2\n",
-            "ldr r1, [sp, #",
-            $a0,
-            "]\n",
-            "adds r0, r0, r1\n",
-            "str r0, [sp, #",
-            $a0,
-            "]\n",
-            "ldr r0, [sp, #",
-            $gx,
-            "]\n",
-            "ldr r1, [sp, #gs_lsq]\n",
-            "muls r0, r1, r0\n",
-            "ldr r1, [sp, #",
-            $gy,
-            "]\n",
-            "adds r0, r0, r1\n",
-            "str r0, [sp, #",
-            $inc,
-            "]\n",
-        )
+/// For [`channel`]: green's packed word `r$v << 6` into the record at `$off`.
+macro_rules! pack_green {
+    ($v:literal, $off:literal) => {
+        concat!("lsls ", $v, ", ", $v, ", #6\n", "str ", $v, ", [r7, #", $off, "]\n")
     };
 }
 
@@ -1776,14 +1821,6 @@ macro_rules! coefficient {
             $c16,
             "]\n",
         )
-    };
-}
-
-/// For [`scanline3d_gouraud_setup`]: `(r$v + 2⁸) >> 9` — a red or blue value or gradient
-/// (20 fraction bits) rounded to the 11 of a packed red-blue half (r6 = 2⁸).
-macro_rules! conv_rb {
-    ($r:literal) => {
-        concat!("adds ", $r, ", ", $r, ", r6\n", "asrs ", $r, ", ", $r, ", #9\n")
     };
 }
 
@@ -1943,70 +1980,51 @@ core::arch::global_asm!(
     "str r0, [sp, #gs_da2]",
     depth_gradient!("gs_da1", "gs_bx1", "gs_da2", "gs_bx2", "gs_gx"),
     depth_gradient!("gs_da2", "gs_by1", "gs_da1", "gs_by2", "gs_gy"),
-    // Red, green, blue: 10-bit channels with 5, 4, 5 fraction bits, to 20.
-    channel_gradients!("{vrgb}", "20", "15", "", "gs_a0 + 4", "gs_gx + 4", "gs_gy + 4"),
-    channel_gradients!("{vrgb} + 1", "18", "16", "subs r2, #1\n", "gs_a0 + 8", "gs_gx + 8", "gs_gy + 8"),
-    channel_gradients!("{vrgb} + 2", "16", "15", "", "gs_a0 + 12", "gs_gx + 12", "gs_gy + 12"),
-    // Values at the first pixel (into a0) and row steps (into the coefficients' 16-bit
-    // roundings, no longer needed).
-    prestep!("gs_gx", "gs_gy", "gs_a0", "gs_c16"),
-    prestep!("gs_gx + 4", "gs_gy + 4", "gs_a0 + 4", "gs_c16 + 4"),
-    prestep!("gs_gx + 8", "gs_gy + 8", "gs_a0 + 8", "gs_c16 + 8"),
-    prestep!("gs_gx + 12", "gs_gy + 12", "gs_a0 + 12", "gs_c16 + 12"),
-    // Packed (`raster::pack_zrgb`): gradients, then values with their rounding biases, then
-    // row steps; each [depth << 4, red << 16 + blue (rounded to 11 fraction bits), green << 6,
-    // 0].
+    // Packed (`raster::pack_zrgb`) into the record (r7) as each attribute is done: its
+    // gradient, its value at the first pixel with its rounding bias, and its row step
+    // `gy + gx·sq`; each word of the record is [depth << 4, red << 16 + blue (rounded to 11
+    // fraction bits), green << 6, 0]. Depth: gy is in r5.
     "ldr r7, [sp, #gs_rec]",
-    "adds r7, #{gx}",
-    "movs r6, #1",
-    "lsls r6, r6, #8",
-    "movs r5, #0",
     "ldr r0, [sp, #gs_gx]",
-    "lsls r0, r0, #4",
-    "ldr r1, [sp, #gs_gx + 4]",
-    conv_rb!("r1"),
-    "lsls r1, r1, #16",
-    "ldr r2, [sp, #gs_gx + 12]",
-    conv_rb!("r2"),
-    "adds r1, r1, r2",
-    "ldr r2, [sp, #gs_gx + 8]",
-    "lsls r2, r2, #6",
     "mov r3, r5",
-    "stm r7!, {{r0, r1, r2, r3}}",
-    "ldr r0, [sp, #gs_a0]",
+    "ldr r1, [sp, #gs_lsq]",
+    "muls r1, r0, r1",
+    "adds r1, r1, r3",
+    "lsls r1, r1, #4",
+    "str r1, [r7, #{inc}]",
+    "lsls r2, r0, #4",
+    "str r2, [r7, #{gx}]",
+    prestep!(),
+    "ldr r1, [sp, #gs_a0]",
+    "adds r0, r0, r1",
     "lsls r0, r0, #4",
-    "movs r4, #1",
-    "lsls r4, r4, #15",
-    "adds r0, r0, r4",
-    "ldr r1, [sp, #gs_a0 + 4]",
-    conv_rb!("r1"),
-    "lsls r1, r1, #16",
-    "ldr r2, [sp, #gs_a0 + 12]",
-    conv_rb!("r2"),
-    "adds r1, r1, r2",
-    "lsls r4, r6, #2",
-    "adds r1, r1, r4",
-    "lsls r4, r4, #16",
-    "adds r1, r1, r4",
-    "ldr r2, [sp, #gs_a0 + 8]",
-    "lsls r2, r2, #6",
-    "movs r4, #1",
-    "lsls r4, r4, #25",
-    "adds r2, r2, r4",
-    "mov r3, r5",
-    "stm r7!, {{r0, r1, r2, r3}}",
-    "ldr r0, [sp, #gs_c16]",
-    "lsls r0, r0, #4",
-    "ldr r1, [sp, #gs_c16 + 4]",
-    conv_rb!("r1"),
-    "lsls r1, r1, #16",
-    "ldr r2, [sp, #gs_c16 + 12]",
-    conv_rb!("r2"),
-    "adds r1, r1, r2",
-    "ldr r2, [sp, #gs_c16 + 8]",
-    "lsls r2, r2, #6",
-    "mov r3, r5",
-    "stm r7!, {{r0, r1, r2, r3}}",
+    "movs r1, #1",
+    "lsls r1, r1, #15",
+    "adds r0, r0, r1",
+    "str r0, [r7, #{row}]",
+    "movs r0, #0",
+    "str r0, [r7, #{gx} + 12]",
+    "str r0, [r7, #{row} + 12]",
+    "str r0, [r7, #{inc} + 12]",
+    // Blue, red, green: 10-bit channels with 5, 4, 5 fraction bits, to 20.
+    channel!(
+        "{vrgb} + 2", "16", "15", "",
+        pack_blue!("r2", "{gx} + 4", ""),
+        pack_blue!("r1", "{inc} + 4", ""),
+        pack_blue!("r0", "{row} + 4", "lsls r4, r6, #2\nadds r0, r0, r4\n")
+    ),
+    channel!(
+        "{vrgb}", "20", "15", "",
+        pack_red!("r2", "{gx} + 4", ""),
+        pack_red!("r1", "{inc} + 4", ""),
+        pack_red!("r0", "{row} + 4", "lsls r4, r6, #2\nadds r0, r0, r4\n")
+    ),
+    channel!(
+        "{vrgb} + 1", "18", "16", "subs r2, #1\n",
+        pack_green!("r2", "{gx} + 8"),
+        pack_green!("r1", "{inc} + 8"),
+        concat!("lsls r4, r6, #11\nadds r0, r0, r4\n", pack_green!("r0", "{row} + 8"))
+    ),
     "movs r0, #1",
     "add sp, #gs_frame",
     "pop {{r4, r5, r6, r7, pc}}",
@@ -2022,9 +2040,147 @@ core::arch::global_asm!(
     vrgb = const crate::project::RGB_HI_OFFSET,
     vfl = const crate::project::FLAGS_OFFSET,
     gx = const o::GX,
+    row = const o::ROW,
+    inc = const o::INC,
 );
 
-/// For [`scanline3d_setup565`]: the edge that [`scanline3d_edge_dda`] returned (r1 = w,
+/// `(n / d, n % d)` for `0 ≤ n < 2³¹`, `d ≥ 1` by shift and subtract, one step per quotient
+/// bit, as `raster::udiv_small`: `$q` = quotient, `$n` = remainder. Uses `$dd`, `$bit` and
+/// `$half`; labels 6–9.
+macro_rules! udiv_small {
+    ($n:literal, $d:literal, $q:literal, $dd:literal, $bit:literal, $half:literal) => {
+        concat!(
+            "movs ", $q, ", #0\n", "cmp ", $n, ", ", $d, "\n", "bcc 9f\n", "movs ", $bit, ", #1\n",
+            "mov ", $dd, ", ", $d, "\n", "lsrs ", $half, ", ", $n, ", #1\n",
+            // dd = d·bit ≤ n < 2·dd.
+            "8:\n", "cmp ", $dd, ", ", $half, "\n", "bhi 7f\n", "lsls ", $dd, ", ", $dd, ", #1\n",
+            "lsls ", $bit, ", ", $bit, ", #1\n", "b 8b\n", "7:\n", "cmp ", $n, ", ", $dd, "\n",
+            "bcc 6f\n", "subs ", $n, ", ", $n, ", ", $dd, "\n", "orrs ", $q, ", ", $bit, "\n",
+            "6:\n", "lsrs ", $dd, ", ", $dd, ", #1\n", "lsrs ", $bit, ", ", $bit, ", #1\n",
+            "bne 7b\n", "9:\n",
+        )
+    };
+}
+
+/// The steps of `raster::Edge::new_portable` for [`scanline3d_edge_new`] and the triangle
+/// setup's edges ([`edge_dda_inline`]): from r0 = xa | ya << 16, r1 = xb | yb << 16,
+/// r2 = row, with r4–r7 and lr saved, to `$q` with r0 = sq, r6 = sr, r7 = dy (r3 untouched so far), then to `$c`
+/// with r1 = c, r5 = e; a row outside 0 ≤ k ≤ dy + 16 (k = 16·row + 8 − ya) branches to
+/// label 2.
+macro_rules! edge_steps {
+    ($q:expr, $c:expr) => {
+        concat!(
+            "push {{r4, r5, r6, r7, lr}}\n",
+            edge_body!("bhi 2f\n", $q, $c)
+        )
+    };
+}
+
+/// The body of [`edge_steps`] (without saving registers; r12 and lr are free): `$out` is
+/// where a row outside the edge's goes, branching on `hi` after the row test.
+macro_rules! edge_body {
+    ($out:expr, $q:expr, $c:expr) => {
+        concat!(
+            "sxth r4, r0\n",
+            "asrs r5, r0, #16\n",
+            "sxth r6, r1\n",
+            "asrs r7, r1, #16\n",
+            // dy = max(1, yb − ya), dx = xb − xa.
+            "subs r7, r7, r5\n",
+            "bgt 1f\n",
+            "movs r7, #1\n",
+            "1:\n",
+            "subs r6, r6, r4\n",
+            // k = 16·row + 8 − ya, in 0..=dy + 16 (unsigned, so k < 0 fails too).
+            "lsls r2, r2, #4\n",
+            "adds r2, #8\n",
+            "subs r2, r2, r5\n",
+            "movs r5, r7\n",
+            "adds r5, #16\n",
+            "cmp r2, r5\n",
+            $out,
+            // r12 = k, lr = xa, r3 = the edge (no stack beyond the saved registers: this runs at
+            // the deepest point of a frame, which on a 16 KB part sets the largest frame size).
+            "mov r12, r2\n",
+            "mov lr, r4\n",
+            // (sq, sr) = floor division of dx by dy: for dx < 0 (mask r5 = −1) from !dx:
+            // sq = !q, sr = dy − 1 − r. Stored at once with dy.
+            "asrs r5, r6, #31\n",
+            "eors r6, r5\n",
+            udiv_small!("r6", "r7", "r0", "r1", "r2", "r4"),
+            "eors r0, r5\n",
+            "cmp r5, #0\n",
+            "beq 3f\n",
+            "subs r6, r7, r6\n",
+            "subs r6, #1\n",
+            "3:\n",
+            $q,
+            // lr = xa − 8 + k·sq; (qb, rb) = (k·sr) / dy.
+            "mov r1, r12\n",
+            "muls r0, r1\n",
+            "mov r2, lr\n",
+            "adds r0, r0, r2\n",
+            "subs r0, #8\n",
+            "mov lr, r0\n",
+            "mov r4, r12\n",
+            "muls r4, r6\n",
+            udiv_small!("r4", "r7", "r0", "r1", "r2", "r5"),
+            // t = xa − 8 + k·sq + qb; r = dy·(t & 15) + rb; q = t >> 4.
+            "mov r1, lr\n",
+            "adds r1, r1, r0\n",
+            "movs r2, #15\n",
+            "ands r2, r1\n",
+            "muls r2, r7\n",
+            "adds r2, r2, r4\n",
+            "asrs r1, r1, #4\n",
+            // r = 0: (c, e) = (q, 0); else (q + 1, (16·dy − r) >> 4).
+            "movs r5, #0\n",
+            "cmp r2, #0\n",
+            "beq 4f\n",
+            "adds r1, #1\n",
+            "lsls r5, r7, #4\n",
+            "subs r5, r5, r2\n",
+            "asrs r5, r5, #4\n",
+            "4:\n",
+            $c,
+        )
+    };
+}
+
+/// For [`edge_body`] in the row loops' form (`raster::Edge::dda`): r3 = s = sq − sr·2¹⁶.
+macro_rules! dda_q {
+    () => {
+        "lsls r3, r6, #16\nsubs r3, r0, r3\n"
+    };
+}
+
+/// For [`edge_body`] in the row loops' form (`raster::Edge::dda`): r1 = w = e·2¹⁶ + c + 2¹⁵, r2 = s,
+/// r3 = dy.
+macro_rules! dda_c {
+    () => {
+        concat!(
+            "lsls r5, r5, #16\n",
+            "adds r1, r1, r5\n",
+            "movs r2, #128\n",
+            "lsls r2, r2, #8\n",
+            "adds r1, r1, r2\n",
+            "mov r2, r3\n",
+            "mov r3, r7\n",
+        )
+    };
+}
+
+/// For [`scanline3d_setup565`]: [`scanline3d_edge_new`]'s steps in line, with the edge in the row
+/// loops' form (the setup has saved r4–r7 and lr and keeps nothing in r4–r7, r12 or lr across
+/// it; in line, it saves a call, a return and the saving of five registers per edge): from r0 = a, r1 = b, r2 = row to r1 = w,
+/// r2 = s, r3 = dy; a row outside the edge's declines (`.Lsu_decline`).
+macro_rules! edge_dda_inline {
+    () => {
+        edge_body!("bls 5f\nb .Lsu_decline\n5:\n", dda_q!(), dda_c!())
+    };
+}
+
+/// For [`scanline3d_setup565`]: the edge that [`edge_dda_inline`] computed (r1 = w,
 /// r2 = s, r3 = dy) into slot r6 (0 = left, 1 = right) of the record; the left edge's column
 /// (`(w & 0xffff) − 2¹⁵`) and step (`s` as an `i16`) also into the frame's `raster::Sorted`.
 /// Uses r4, r5, r7.
@@ -2133,7 +2289,7 @@ core::arch::global_asm!(
     // The vertex pointers (indices checked against the store's length).
     "lsls r0, r4, #16",
     "bpl 1f",
-    "b 8f",
+    "b .Lsu_decline",
     "1:",
     "lsrs r0, r0, #16",
     "lsrs r1, r4, #16",
@@ -2144,7 +2300,7 @@ core::arch::global_asm!(
     "cmp r5, r3",
     "blo 1f",
     "7:",
-    "b 8f",
+    "b .Lsu_decline",
     "1:",
     "movs r6, #12",
     "muls r0, r6, r0",
@@ -2177,7 +2333,7 @@ core::arch::global_asm!(
     "ldr r7, [sp, #su_row]",
     "cmp r7, r6",
     "blt 1f",
-    "b 6f",
+    "b .Lsu_empty",
     "1:",
     "str r6, [sp, #su_end]",
     first_pixel!("r6", "r1"),
@@ -2196,7 +2352,7 @@ core::arch::global_asm!(
     "muls r7, r1, r7",
     "subs r6, r6, r7",
     "bne 1f",
-    "b 6f",
+    "b .Lsu_empty",
     "1:",
     "str r6, [sp, #su_det]",
     // Fast only when (x_hi − x_lo) + (cy − ay) ≤ 1024 px.
@@ -2224,7 +2380,7 @@ core::arch::global_asm!(
     "lsls r0, r0, #14",
     "cmp r3, r0",
     "ble 1f",
-    "b 8f",
+    "b .Lsu_decline",
     "1:",
     // mid_left = det < 0: the long edge is the right one (slot 1), else the left (slot 0).
     "lsrs r6, r6, #31",
@@ -2232,11 +2388,7 @@ core::arch::global_asm!(
     "ldr r0, [sp, #su_a]",
     "ldr r1, [sp, #su_c]",
     "ldr r2, [sp, #su_row]",
-    "bl scanline3d_edge_dda",
-    "cmp r0, #0",
-    "bne 1f",
-    "b 8f",
-    "1:",
+    edge_dda_inline!(),
     "ldr r6, [sp, #su_left]",
     edge_to_record!(),
     // The short edge: a → b before row_mid, b → c from it; the other slot.
@@ -2251,11 +2403,7 @@ core::arch::global_asm!(
     "ldr r0, [sp, #su_b]",
     "ldr r1, [sp, #su_c]",
     "3:",
-    "bl scanline3d_edge_dda",
-    "cmp r0, #0",
-    "bne 1f",
-    "b 8f",
-    "1:",
+    edge_dda_inline!(),
     "ldr r6, [sp, #su_left]",
     "movs r0, #1",
     "eors r6, r0",
@@ -2267,30 +2415,26 @@ core::arch::global_asm!(
     "bl scanline3d_gouraud_setup",
     "cmp r0, #0",
     "bne 1f",
-    "b 8f",
+    "b .Lsu_decline",
     "1:",
     // The pending short edge b → c at row_mid, when row < row_mid < row_end
     // (`ActiveTri::set_pending`: w, s and dy in the fourth words of gx, row and inc).
     "ldr r2, [sp, #su_row]",
     "ldr r1, [sp, #su_mid]",
     "cmp r2, r1",
-    "bge 4f",
+    "bge .Lsu_nopend",
     "ldr r0, [sp, #su_end]",
     "cmp r1, r0",
-    "bge 4f",
+    "bge .Lsu_nopend",
     "ldr r0, [sp, #su_b]",
     "ldr r1, [sp, #su_c]",
     "ldr r2, [sp, #su_mid]",
-    "bl scanline3d_edge_dda",
-    "cmp r0, #0",
-    "bne 1f",
-    "b 8f",
-    "1:",
+    edge_dda_inline!(),
     "ldr r7, [sp, #su_rec]",
     "str r1, [r7, #{pend_w}]",
     "str r2, [r7, #{pend_s}]",
     "str r3, [r7, #{pend_dy}]",
-    "4:",
+    ".Lsu_nopend:",
     // bx, by and cx, cy as the packed words; row_mid and row_end.
     "ldr r7, [sp, #su_rec]",
     "ldr r0, [sp, #su_b]",
@@ -2333,13 +2477,13 @@ core::arch::global_asm!(
     "strb r4, [r7, #{flags}]",
     "strb r5, [r7, #{rows}]",
     "movs r0, #1",
-    "b 9f",
-    "6:",
+    "b .Lsu_done",
+    ".Lsu_empty:",
     "movs r0, #2",
-    "b 9f",
-    "8:",
+    "b .Lsu_done",
+    ".Lsu_decline:",
     "movs r0, #0",
-    "9:",
+    ".Lsu_done:",
     "add sp, #su_frame",
     "pop {{r4, r5, r6, r7, pc}}",
     ".size scanline3d_setup565, . - scanline3d_setup565",
@@ -2358,99 +2502,6 @@ core::arch::global_asm!(
     flags = const o::FLAGS,
     rows = const o::ROUTINE_ROWS,
 );
-
-/// `(n / d, n % d)` for `0 ≤ n < 2³¹`, `d ≥ 1` by shift and subtract, one step per quotient
-/// bit, as `raster::udiv_small`: `$q` = quotient, `$n` = remainder. Uses `$dd`, `$bit` and
-/// `$half`; labels 6–9.
-macro_rules! udiv_small {
-    ($n:literal, $d:literal, $q:literal, $dd:literal, $bit:literal, $half:literal) => {
-        concat!(
-            "movs ", $q, ", #0\n", "cmp ", $n, ", ", $d, "\n", "bcc 9f\n", "movs ", $bit, ", #1\n",
-            "mov ", $dd, ", ", $d, "\n", "lsrs ", $half, ", ", $n, ", #1\n",
-            // dd = d·bit ≤ n < 2·dd.
-            "8:\n", "cmp ", $dd, ", ", $half, "\n", "bhi 7f\n", "lsls ", $dd, ", ", $dd, ", #1\n",
-            "lsls ", $bit, ", ", $bit, ", #1\n", "b 8b\n", "7:\n", "cmp ", $n, ", ", $dd, "\n",
-            "bcc 6f\n", "subs ", $n, ", ", $n, ", ", $dd, "\n", "orrs ", $q, ", ", $bit, "\n",
-            "6:\n", "lsrs ", $dd, ", ", $dd, ", #1\n", "lsrs ", $bit, ", ", $bit, ", #1\n",
-            "bne 7b\n", "9:\n",
-        )
-    };
-}
-
-/// The steps of `raster::Edge::new_portable` for [`scanline3d_edge_new`] and
-/// [`scanline3d_edge_dda`]: from r0 = xa | ya << 16, r1 = xb | yb << 16, r2 = row, with r4–r7
-/// and lr saved, to `$q` with r0 = sq, r6 = sr, r7 = dy (r3 untouched so far), then to `$c`
-/// with r1 = c, r5 = e; a row outside 0 ≤ k ≤ dy + 16 (k = 16·row + 8 − ya) branches to
-/// label 2.
-macro_rules! edge_steps {
-    ($q:expr, $c:expr) => {
-        concat!(
-            "push {{r4, r5, r6, r7, lr}}\n",
-            "sxth r4, r0\n",
-            "asrs r5, r0, #16\n",
-            "sxth r6, r1\n",
-            "asrs r7, r1, #16\n",
-            // dy = max(1, yb − ya), dx = xb − xa.
-            "subs r7, r7, r5\n",
-            "bgt 1f\n",
-            "movs r7, #1\n",
-            "1:\n",
-            "subs r6, r6, r4\n",
-            // k = 16·row + 8 − ya, in 0..=dy + 16 (unsigned, so k < 0 fails too).
-            "lsls r2, r2, #4\n",
-            "adds r2, #8\n",
-            "subs r2, r2, r5\n",
-            "movs r5, r7\n",
-            "adds r5, #16\n",
-            "cmp r2, r5\n",
-            "bhi 2f\n",
-            // r12 = k, lr = xa, r3 = the edge (no stack beyond the saved registers: this runs at
-            // the deepest point of a frame, which on a 16 KB part sets the largest frame size).
-            "mov r12, r2\n",
-            "mov lr, r4\n",
-            // (sq, sr) = floor division of dx by dy: for dx < 0 (mask r5 = −1) from !dx:
-            // sq = !q, sr = dy − 1 − r. Stored at once with dy.
-            "asrs r5, r6, #31\n",
-            "eors r6, r5\n",
-            udiv_small!("r6", "r7", "r0", "r1", "r2", "r4"),
-            "eors r0, r5\n",
-            "cmp r5, #0\n",
-            "beq 3f\n",
-            "subs r6, r7, r6\n",
-            "subs r6, #1\n",
-            "3:\n",
-            $q,
-            // lr = xa − 8 + k·sq; (qb, rb) = (k·sr) / dy.
-            "mov r1, r12\n",
-            "muls r0, r1\n",
-            "mov r2, lr\n",
-            "adds r0, r0, r2\n",
-            "subs r0, #8\n",
-            "mov lr, r0\n",
-            "mov r4, r12\n",
-            "muls r4, r6\n",
-            udiv_small!("r4", "r7", "r0", "r1", "r2", "r5"),
-            // t = xa − 8 + k·sq + qb; r = dy·(t & 15) + rb; q = t >> 4.
-            "mov r1, lr\n",
-            "adds r1, r1, r0\n",
-            "movs r2, #15\n",
-            "ands r2, r1\n",
-            "muls r2, r7\n",
-            "adds r2, r2, r4\n",
-            "asrs r1, r1, #4\n",
-            // r = 0: (c, e) = (q, 0); else (q + 1, (16·dy − r) >> 4).
-            "movs r5, #0\n",
-            "cmp r2, #0\n",
-            "beq 4f\n",
-            "adds r1, #1\n",
-            "lsls r5, r7, #4\n",
-            "subs r5, r5, r2\n",
-            "asrs r5, r5, #4\n",
-            "4:\n",
-            $c,
-        )
-    };
-}
 
 core::arch::global_asm!(
     ".syntax unified",
@@ -2477,28 +2528,6 @@ core::arch::global_asm!(
     e = const o::EDGE_E,
     sr = const o::EDGE_SR,
     dy = const o::EDGE_DY,
-);
-
-core::arch::global_asm!(
-    ".syntax unified",
-    ".thumb",
-    ".section .text.scanline3d_edge_dda,\"ax\",%progbits",
-    ".global scanline3d_edge_dda",
-    ".type scanline3d_edge_dda,%function",
-    ".p2align 2",
-    ".thumb_func",
-    // For the assembly triangle setup: [`scanline3d_edge_new`] with the edge returned in the
-    // row loops' form (`raster::Edge::dda`): r0 = 1, r1 = w = e·2¹⁶ + c + 2¹⁵,
-    // r2 = s = sq − sr·2¹⁶, r3 = dy; or r0 = 0 for a row outside the edge's.
-    "scanline3d_edge_dda:",
-    edge_steps!(
-        "lsls r3, r6, #16\nsubs r3, r0, r3\n",
-        "lsls r5, r5, #16\nadds r1, r1, r5\nmovs r2, #128\nlsls r2, r2, #8\nadds r1, r1, r2\nmov r2, r3\nmov r3, r7\nmovs r0, #1\npop {{r4, r5, r6, r7, pc}}\n"
-    ),
-    "2:",
-    "movs r0, #0",
-    "pop {{r4, r5, r6, r7, pc}}",
-    ".size scanline3d_edge_dda, . - scanline3d_edge_dda",
 );
 
 /// `raster::Edge::new` for a row from the edge's first sample on (`0 ≤ k ≤ dy + 16`, the
@@ -2676,7 +2705,7 @@ pub(crate) fn setup565(
     // SAFETY: the routine reads the arguments, the three vertices whose indices it has checked
     // against the store's length (12-byte `repr(C)` records, x and y the first word, as
     // asserted above) and the seed table; it writes the record's fields at the offsets given
-    // to it (not `ord`), and calls `scanline3d_edge_new` and `scanline3d_gouraud_setup` with
+    // to it (not `ord`), and sets up its edges in line and calls `scanline3d_gouraud_setup` with
     // buffers in its own frame.
     match unsafe { scanline3d_setup565(rec, &args) } {
         1 => Some(true),
