@@ -119,9 +119,16 @@ pub fn pack_channels(rgb: [u16; 3], max: [u8; 3]) -> [u16; 3] {
         if max[k] == 0 {
             continue;
         }
-        let s = channel_bits(max[k]) - 2; // 8.8 → 10 − bits fraction bits
-        let limit = (max[k] as u32) << (10 - channel_bits(max[k]));
-        let v = (rgb[k] as u32 + (1 << s >> 1)) >> s;
+        let bits = channel_bits(max[k]);
+        let limit = (max[k] as u32) << (10 - bits);
+        // 8.8 → 10 − bits fraction bits: a right shift for 2 bits and more, a left shift for a
+        // 1-bit channel (BinaryColor), which keeps 9.
+        let v = if bits >= 2 {
+            let s = bits - 2;
+            (rgb[k] as u32 + (1 << s >> 1)) >> s
+        } else {
+            (rgb[k] as u32) << (2 - bits)
+        };
         out[k] = v.min(limit) as u16;
     }
     out

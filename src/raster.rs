@@ -748,6 +748,13 @@ impl SpanMode {
     }
 }
 
+/// `v >> s`, and 0 for `s ≥ 32` (a green word's channel bits for a colour type without green:
+/// `s` is a constant of the colour type, so this folds to one shift or to 0).
+#[inline(always)]
+fn shr_or_zero(v: u32, s: u32) -> u32 {
+    v.checked_shr(s).unwrap_or(0)
+}
+
 /// Whether red and blue of `C` fit the packed red-blue word (at most 6 bits each).
 #[inline(always)]
 fn packable<C: TargetColor>() -> bool {
@@ -1776,7 +1783,7 @@ fn span_packed<C: TargetColor, const T: u8>(
             *zb = z16;
             *cb = C::from_channels([
                 (rb >> (16 + fr)) as u8,
-                (g as u32 >> g_low) as u8,
+                shr_or_zero(g as u32, g_low) as u8,
                 ((rb & 0xffff) >> fb) as u8,
             ]);
             written += 1;
@@ -1837,7 +1844,7 @@ pub(crate) fn span_packed_dither_portable<C: TargetColor, const T: u8>(
             *zb = z16;
             *cb = C::from_channels([
                 (rbd >> (16 + fr)) as u8,
-                (gd >> g_low) as u8,
+                shr_or_zero(gd, g_low) as u8,
                 ((rbd & 0xffff) >> fb) as u8,
             ]);
             written += 1;
