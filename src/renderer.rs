@@ -461,7 +461,9 @@ impl<
     /// [`Renderer::render`] with `overlay` (text, a HUD, any embedded-graphics [`Drawable`])
     /// composed into every strip after the 3D content and before the strip is sent. The
     /// overlay is drawn once per strip, clipped to it, so its cost grows with the number of
-    /// strips: keep overlays small (a line of text) or use a taller strip.
+    /// strips: keep overlays small (a line of text) or use a taller strip. For a label on a
+    /// microcontroller, [`crate::overlay::Glyphs`] composed into [`Renderer::render_strip_into`]'s
+    /// lines does the font work once and touches only the strips the text crosses.
     pub fn render_overlaid<D, O, const L: usize>(
         &mut self,
         scene: &Scene<'_, S, L>,
