@@ -748,6 +748,19 @@ impl SpanMode {
     }
 }
 
+/// The pixel of a packed red-blue word and a packed green word ([`pack_zrgb`]): the whole bits
+/// of each field. The shifts are constants of the colour type (immediates, no registers), so
+/// [`span_packed`] and its dithered twin share this without cost.
+#[inline(always)]
+fn packed_color<C: TargetColor>(rb: u32, g: u32) -> C {
+    let (fr, fb) = packed_frac_bits::<C>();
+    C::from_channels([
+        (rb >> (16 + fr)) as u8,
+        shr_or_zero(g, 32 - channel_bits(C::CHANNEL_MAX[1])) as u8,
+        ((rb & 0xffff) >> fb) as u8,
+    ])
+}
+
 /// `v >> s`, and 0 for `s ≥ 32` (a green word's channel bits for a colour type without green:
 /// `s` is a constant of the colour type, so this folds to one shift or to 0).
 #[inline(always)]
@@ -1772,20 +1785,13 @@ fn span_packed<C: TargetColor, const T: u8>(
     if T == LESS && crate::span_thumb::rgb565_words::<C>() {
         return crate::span_thumb::span565_less(zs, cs, z, rb, g);
     }
-    // Compile-time constants of the colour type: shifts by immediates, two registers fewer.
-    let (fr, fb) = packed_frac_bits::<C>();
-    let g_low = 32 - channel_bits(C::CHANNEL_MAX[1]);
     let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
     let mut written = 0;
     for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
         let z16 = (z as u32 >> 16) as u16;
         if passes::<T>(z16, *zb) {
             *zb = z16;
-            *cb = C::from_channels([
-                (rb >> (16 + fr)) as u8,
-                shr_or_zero(g as u32, g_low) as u8,
-                ((rb & 0xffff) >> fb) as u8,
-            ]);
+            *cb = packed_color::<C>(rb, g as u32);
             written += 1;
         }
         z = z.wrapping_add(gz);
@@ -1831,8 +1837,6 @@ pub(crate) fn span_packed_dither_portable<C: TargetColor, const T: u8>(
     x0: usize,
     row: i32,
 ) -> u32 {
-    let (fr, fb) = packed_frac_bits::<C>();
-    let g_low = 32 - channel_bits(C::CHANNEL_MAX[1]);
     let offsets = dither_words::<C>(row);
     let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
     let mut written = 0;
@@ -1840,13 +1844,8 @@ pub(crate) fn span_packed_dither_portable<C: TargetColor, const T: u8>(
         let z16 = (z as u32 >> 16) as u16;
         if passes::<T>(z16, *zb) {
             let [drb, dg] = offsets[x & 3];
-            let (rbd, gd) = (rb.wrapping_add(drb), (g as u32).wrapping_add(dg));
             *zb = z16;
-            *cb = C::from_channels([
-                (rbd >> (16 + fr)) as u8,
-                shr_or_zero(gd, g_low) as u8,
-                ((rbd & 0xffff) >> fb) as u8,
-            ]);
+            *cb = packed_color::<C>(rb.wrapping_add(drb), (g as u32).wrapping_add(dg));
             written += 1;
         }
         z = z.wrapping_add(gz);

@@ -544,9 +544,9 @@ impl<
     /// `row` are set up at that row, so the strips from it on are those a whole frame has,
     /// within one step of a channel on a few pixels: a setup computes a triangle's colours at
     /// the seek row exactly, while the whole frame's row pass steps them down from the
-    /// triangle's first row with a rounding drift. For splitting a frame's rows between renderers or cores that share its
-    /// geometry (the Pico benchmark measures that split), or for redrawing part of the screen
-    /// from the same geometry, also after the frame was drawn.
+    /// triangle's first row with a rounding drift. For splitting a frame's rows between
+    /// renderers or cores that share its geometry (the Pico benchmark measures that split), or
+    /// for redrawing part of the screen from the same geometry, also after the frame was drawn.
     ///
     /// Costs a look at the lowest vertex of each stored triangle that starts above `row`, and
     /// one triangle setup for each of those that cross it.
