@@ -427,8 +427,9 @@ pub fn gouraud_setup_self_test(n: u32) -> Option<([[i32; 4]; 3], [i32; 3])> {
 /// Cortex-M0 only, for the benchmark firmware: the assembly triangle setup
 /// (`span_thumb::setup565`) against [`ActiveTri::setup_portable`] for RGB565 on `n`
 /// pseudo-random Gouraud triangles (small, tall and wide ones, equal ys, first rows before,
-/// at and after the middle vertex, short screens). Returns the first mismatch's vertices
-/// `[x, y]` and `[row, height]`.
+/// at and after the middle vertex, short screens), without and with the dither check. Returns
+/// the first mismatch's vertices `[x, y]` and `[row, height]` (height negated when the
+/// mismatch is with the check).
 #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
 #[doc(hidden)]
 pub fn triangle_setup_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
@@ -466,11 +467,80 @@ pub fn triangle_setup_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
         let mut want = ActiveTri::EMPTY;
         let kept = want.setup_portable::<Rgb565>(&t, &v, row, height, mode);
         let mut got = ActiveTri::EMPTY;
-        if let Some(k) = crate::span_thumb::setup565(&mut got, &t, &v, row, height) {
+        if let Some(k) = crate::span_thumb::setup565(&mut got, &t, &v, row, height, false) {
+            let k = k == crate::span_thumb::Setup565::Kept;
             if k != kept || (kept && !same(&got, &want)) {
                 return Some((v.map(|p| [p.x, p.y]), [row, height]));
             }
+            // With the dither check: `DITHER_OK` added to the same record, or the answer that
+            // the triangle needs the slow path, as the portable check decides.
+            use crate::span_thumb::Setup565;
+            let mut dithered = ActiveTri::EMPTY;
+            let d = crate::span_thumb::setup565(&mut dithered, &t, &v, row, height, true);
+            let expect = if !kept {
+                Setup565::Empty
+            } else if want.dither_fits::<Rgb565>([&v[0], &v[1], &v[2]], row) {
+                want.flags |= DITHER_OK;
+                Setup565::Kept
+            } else {
+                Setup565::NotDitherable
+            };
+            if d != Some(expect) || (expect == Setup565::Kept && !same(&dithered, &want)) {
+                return Some((v.map(|p| [p.x, p.y]), [row, -height]));
+            }
         }
+    }
+    None
+}
+
+/// ARMv6-M only, for the benchmark firmware: the assembly dither check
+/// (`span_thumb::dither_fits565`) against the portable [`ActiveTri::dither_fits`] for RGB565
+/// on `n` pseudo-random fast Gouraud triangles (small to the largest fast size, so that the
+/// packed rows drift; colours anywhere in half the cases and inside the RGB565 range in the
+/// other half, so that both answers occur; first rows at and below the first vertex). Returns
+/// the first mismatching triangle's vertices `[x, y]` and `[row, portable answer]`.
+#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+#[doc(hidden)]
+pub fn dither_fits_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    let mut next = xorshift32(0x510e_527fu32);
+    let mode = SpanMode::new::<Rgb565>(DepthTest::Less, true);
+    let (mut tested, mut fits) = (0u32, 0u32);
+    let mut i = 0u32;
+    while tested < n && i < 8 * n {
+        i += 1;
+        let size = [48u32, 400, 4000, 16000][(i % 4) as usize];
+        let mut v = [ScreenVertex::default(); 3];
+        for p in &mut v {
+            let r = next();
+            p.x = ((r % size) as i32 - size as i32 / 2 + 1920) as i16;
+            p.y = (((r >> 16) % size) as i32 - size as i32 / 2 + 1920) as i16;
+            random_depth_and_colour(p, &mut next);
+            if i % 2 == 0 {
+                let c = p.color();
+                p.set_color([c[0] % 993, c[1] % 1009, c[2] % 993]);
+            }
+        }
+        let t = TriRecord { v: [0, 1, 2] };
+        let y_min = v.iter().map(|p| p.y as i32).min().unwrap_or(0);
+        let row = (first_pixel(y_min) + (next() % 16) as i32 - 2).max(0);
+        let mut rec = ActiveTri::EMPTY;
+        if !rec.setup_portable::<Rgb565>(&t, &v, row, 1024, mode)
+            || rec.flags & (FAST | FLAT) != FAST
+        {
+            continue;
+        }
+        tested += 1;
+        let p = [&v[0], &v[1], &v[2]];
+        let want = rec.dither_fits::<Rgb565>(p, row);
+        fits += want as u32;
+        if crate::span_thumb::dither_fits565(&rec, p, row) != want {
+            return Some((v.map(|p| [p.x, p.y]), [row, want as i32]));
+        }
+    }
+    // Both answers must have been compared (and enough triangles found).
+    if tested < n || fits == 0 || fits == tested {
+        return Some(([[0; 2]; 3], [tested as i32, fits as i32]));
     }
     None
 }
@@ -947,6 +1017,14 @@ pub(crate) struct ActiveList<const N: usize> {
 }
 
 impl<const N: usize> ActiveList<N> {
+    /// Sets every active triangle's routine row count again for `row` (the next row to draw)
+    /// after dithering was switched to `dithered` between strips ([`ActiveTri::set_routine_rows`]).
+    pub(crate) fn refresh_routine_rows(&mut self, row: i32, dithered: bool) {
+        for t in &mut self.slots[..self.len] {
+            t.set_routine_rows(row, dithered);
+        }
+    }
+
     pub(crate) const fn new() -> Self {
         ActiveList {
             slots: Vec::new(),
@@ -1050,7 +1128,7 @@ pub(crate) mod offsets {
     pub const BX: usize = offset_of!(ActiveTri, bx);
     pub const CX: usize = offset_of!(ActiveTri, cx);
     pub const FAST: u8 = super::FAST;
-    pub const DITHER_OK_BIT: u32 = super::DITHER_OK.trailing_zeros();
+    pub const DITHER_OK: u8 = super::DITHER_OK;
     /// The pending short edge of a fast Gouraud triangle ([`ActiveTri::set_pending`]): its
     /// `w` word in the fourth `gx` word, `s` in the fourth `row` word, `dy` in the fourth
     /// `inc` word.
@@ -1264,14 +1342,25 @@ impl ActiveTri {
         height: i32,
         mode: SpanMode,
     ) -> bool {
-        if mode.dither {
-            return self.setup_dither::<C>(t, verts, row, height, mode);
-        }
+        // On ARMv6-M the assembly setup also makes the dither check of `setup_dither`.
         #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
         if mode.fast_gouraud && C::CHANNEL_MAX == [31, 63, 31] {
-            if let Some(kept) = crate::span_thumb::setup565(self, t, verts, row, height) {
-                return kept;
+            use crate::span_thumb::Setup565;
+            match crate::span_thumb::setup565(self, t, verts, row, height, mode.dither) {
+                Some(Setup565::Kept) => return true,
+                Some(Setup565::Empty) => return false,
+                Some(Setup565::NotDitherable) => {
+                    let slow = SpanMode {
+                        fast_gouraud: false,
+                        ..mode
+                    };
+                    return self.setup_portable::<C>(t, verts, row, height, slow);
+                }
+                None => {}
             }
+        }
+        if mode.dither {
+            return self.setup_dither::<C>(t, verts, row, height, mode);
         }
         self.setup_portable::<C>(t, verts, row, height, mode)
     }
@@ -1290,21 +1379,22 @@ impl ActiveTri {
         height: i32,
         mode: SpanMode,
     ) -> bool {
-        #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
-        let kept = match (mode.fast_gouraud && C::CHANNEL_MAX == [31, 63, 31])
-            .then(|| crate::span_thumb::setup565(self, t, verts, row, height))
-            .flatten()
-        {
-            Some(kept) => kept,
-            None => self.setup_portable::<C>(t, verts, row, height, mode),
-        };
-        #[cfg(not(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32"))))]
+        // (On ARMv6-M, `setup` came here only if the assembly setup declined.)
         let kept = self.setup_portable::<C>(t, verts, row, height, mode);
         if !kept || self.flags & (FAST | FLAT) != FAST {
             return kept;
         }
         let [i0, i1, i2] = t.indices();
-        if self.dither_fits::<C>([&verts[i0], &verts[i1], &verts[i2]], row) {
+        let p = [&verts[i0], &verts[i1], &verts[i2]];
+        #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+        let fits = if C::CHANNEL_MAX == [31, 63, 31] {
+            crate::span_thumb::dither_fits565(self, p, row)
+        } else {
+            self.dither_fits::<C>(p, row)
+        };
+        #[cfg(not(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32"))))]
+        let fits = self.dither_fits::<C>(p, row);
+        if fits {
             self.flags |= DITHER_OK;
             return true;
         }
@@ -1484,7 +1574,7 @@ impl ActiveTri {
         if fast && !flat && row < row_mid && row_mid < row_end {
             self.set_pending(Edge::new(bx, by, cx, cy, row_mid));
         }
-        self.set_routine_rows(row);
+        self.set_routine_rows(row, false);
         true
     }
 
@@ -1514,11 +1604,19 @@ impl ActiveTri {
     /// [`LAST_IN_ROUTINE`] when that one is the last row (`x + 1 = row_end`), or
     /// [`SWITCH_IN_ROUTINE`] when it is the row before the short edge's switch
     /// (`x + 1 = row_mid`), if the count reaches it.
+    ///
+    /// With `dithered` (the strip dithers its colour), a triangle without [`DITHER_OK`] gets
+    /// no routine rows: the dithered Cortex-M row routine draws only `DITHER_OK` triangles
+    /// and, so that it need not test the flag on every row, relies on this. A setup passes
+    /// false: a fast Gouraud triangle set up while dithering has `DITHER_OK` or is set up again
+    /// without the fast path ([`ActiveTri::setup_dither`]); a triangle set up while dithering
+    /// was off gets its count again when dithering is switched on
+    /// ([`ActiveList::refresh_routine_rows`]).
     #[inline(always)]
-    fn set_routine_rows(&mut self, row: i32) {
+    fn set_routine_rows(&mut self, row: i32, dithered: bool) {
         let mut k = 0;
         self.flags &= !(LAST_IN_ROUTINE | SWITCH_IN_ROUTINE);
-        if self.flags & (FAST | FLAT) == FAST {
+        if self.flags & (FAST | FLAT) == FAST && (!dithered || self.flags & DITHER_OK != 0) {
             let last = self.row_end as i32 - 1;
             let mid = self.row_mid as i32 - 1;
             let stop = if mid >= row && mid < last { mid } else { last };
@@ -1734,7 +1832,7 @@ impl ActiveTri {
             return (counts.0, counts.1, true);
         }
         self.advance(next);
-        self.set_routine_rows(next);
+        self.set_routine_rows(next, dither && C::can_dither());
         (counts.0, counts.1, false)
     }
 }
@@ -2157,6 +2255,40 @@ fn green_fits_wide(a: u32, gx: i32, gy: i32, dx: i32, dy: i32, c: u16, frac: u32
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The dithered Cortex-M row routine draws every triangle with routine rows; so in a
+    /// dithered strip only `DITHER_OK` ones may have them, including triangles set up before
+    /// dithering was switched on mid-frame (`ActiveList::refresh_routine_rows`).
+    #[test]
+    fn routine_rows_in_a_dithered_strip_need_dither_ok() {
+        use embedded_graphics_core::pixelcolor::Rgb565;
+        let mut v = [ScreenVertex::default(); 3];
+        for (p, (x, y)) in v.iter_mut().zip([(80, 16), (400, 300), (40, 600)]) {
+            (p.x, p.y) = (x, y);
+            p.set_color([400, 500, 300]);
+        }
+        let t = TriRecord { v: [0, 1, 2] };
+        let plain = SpanMode::new::<Rgb565>(DepthTest::Less, false);
+        let mut list = ActiveList::<4>::new();
+        assert!(list.push_with(|r| r.setup::<Rgb565>(&t, &v, 1, 240, plain)));
+        let rows = list.slots[0].routine_rows;
+        assert!(rows > 0 && list.slots[0].flags & (FAST | DITHER_OK) == FAST);
+        list.refresh_routine_rows(1, true);
+        assert_eq!(list.slots[0].routine_rows, 0);
+        assert_eq!(
+            list.slots[0].flags & (LAST_IN_ROUTINE | SWITCH_IN_ROUTINE),
+            0
+        );
+        list.refresh_routine_rows(1, false);
+        assert_eq!(list.slots[0].routine_rows, rows);
+        // Set up while dithering: checked, so it keeps its rows in a dithered strip.
+        let dithered = SpanMode::new::<Rgb565>(DepthTest::Less, true);
+        let mut list = ActiveList::<4>::new();
+        assert!(list.push_with(|r| r.setup::<Rgb565>(&t, &v, 1, 240, dithered)));
+        assert!(list.slots[0].flags & DITHER_OK != 0);
+        list.refresh_routine_rows(1, true);
+        assert_eq!(list.slots[0].routine_rows, rows);
+    }
 
     #[test]
     fn green_fits_equals_its_64_bit_specification() {

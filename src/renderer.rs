@@ -407,7 +407,7 @@ impl<
     /// than 8 bits per channel, such as RGB565).
     #[must_use]
     pub fn with_dither(mut self, on: bool) -> Self {
-        self.dither = on;
+        self.set_dither(on);
         self
     }
 
@@ -438,9 +438,15 @@ impl<
         self.depth_test = test;
     }
 
-    /// Enables or disables dithering in place.
+    /// Enables or disables dithering in place (between strips too: the triangles already set
+    /// up for the frame are drawn the new way from the next strip on).
     pub fn set_dither(&mut self, on: bool) {
-        self.dither = on;
+        if on != self.dither {
+            self.dither = on;
+            // The dithered row routine draws only triangles checked for it at setup.
+            self.active
+                .refresh_routine_rows(self.next_row as i32, on && C::can_dither());
+        }
     }
 
     /// Draws one frame of `scene` into `target`, at the target's origin, `W × H` pixels.

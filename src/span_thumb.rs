@@ -177,12 +177,13 @@ core::arch::global_asm!(
 
 /// One pixel of the dithered loop ([`dither_loop`]) for column phase `$p` (0..=3): as
 /// [`pixel_loop`], but the red-blue and green values get the phase's offsets (the frame words
-/// `{trb$p}` and `{tg$p}` above sp, `raster::dither_words`) before the channels are read; the
+/// `{$pre trb$p}` and `{$pre tg$p}` above sp, `raster::dither_words`; `$pre` tells the copies of
+/// the loop in one routine apart) before the channels are read; the
 /// accumulators themselves step as in the plain loop. A hidden pixel branches to `$hidden`;
 /// `$end` is the end test after the index step. 23 instructions per written pixel (the plain
 /// loop's 19 and two loads and two additions), 12 per hidden one.
 macro_rules! dither_pixel {
-    ($p:literal, $hidden:literal, $end:literal) => {
+    ($pre:literal, $p:literal, $hidden:literal, $end:literal) => {
         concat!(
             "ldrh r5, [r7, r0]\n",
             "lsrs r6, r2, #16\n",
@@ -191,7 +192,9 @@ macro_rules! dither_pixel {
             $hidden,
             "\n",
             "strh r6, [r7, r0]\n",
-            "ldr r6, [sp, #{trb",
+            "ldr r6, [sp, #{",
+            $pre,
+            "trb",
             $p,
             "}]\n",
             "adds r6, r6, r3\n",
@@ -200,7 +203,9 @@ macro_rules! dither_pixel {
             "lsls r6, r6, #16\n",
             "lsrs r6, r6, #27\n",
             "orrs r5, r6\n",
-            "ldr r6, [sp, #{tg",
+            "ldr r6, [sp, #{",
+            $pre,
+            "tg",
             $p,
             "}]\n",
             "adds r6, r6, r4\n",
@@ -236,12 +241,12 @@ macro_rules! dither_hidden {
 /// The pixel loop with 4×4 ordered dithering, unrolled over the four column phases so that
 /// each phase loads its offsets with an immediate sp offset. In: as [`pixel_loop`], and r5 =
 /// the first pixel's column times two (its bits 1 and 2 are the column phase); the offsets of
-/// the row's Bayer row in the frame words `{trb0}`, `{tg0}`, … `{tg3}` above sp. Hidden
+/// the row's Bayer row in the frame words `{$pre trb0}`, `{$pre tg0}`, … `{$pre tg3}` above sp. Hidden
 /// pixels are counted by `$count` (using r5). Ends at label 49, placed after the loop. The
 /// hidden paths come first, so that every branch is within the 256 bytes of Thumb-1's
 /// conditional branches.
 macro_rules! dither_loop {
-    ($count:expr) => {
+    ($pre:literal, $count:expr) => {
         concat!(
             // Phase = bits 1 (into N) and 2 (into C) of r5.
             "lsls r5, r5, #30\n",
@@ -260,13 +265,13 @@ macro_rules! dither_loop {
             "63:\n",
             dither_hidden!($count, "50f"),
             "50:\n",
-            dither_pixel!("0", "60b", "beq 49f"),
+            dither_pixel!($pre, "0", "60b", "beq 49f"),
             "51:\n",
-            dither_pixel!("1", "61b", "beq 49f"),
+            dither_pixel!($pre, "1", "61b", "beq 49f"),
             "52:\n",
-            dither_pixel!("2", "62b", "beq 49f"),
+            dither_pixel!($pre, "2", "62b", "beq 49f"),
             "53:\n",
-            dither_pixel!("3", "63b", "bne 50b"),
+            dither_pixel!($pre, "3", "63b", "bne 50b"),
             "49:\n",
         )
     };
@@ -308,7 +313,7 @@ core::arch::global_asm!(
     "ldr r4, [r3, #16]",
     "ldr r5, [r3, #28]",
     "ldr r3, [r3, #8]",
-    dither_loop!(count_in!("r11")),
+    dither_loop!("", count_in!("r11")),
     // Written = run length − hidden.
     "mov r0, r12",
     "negs r0, r0",
@@ -447,6 +452,45 @@ macro_rules! span_run_dither {
             "pop {{r6}}\n",
             "mov lr, r6\n",
             "5:\n",
+            "mov r0, r12\n",
+        )
+    };
+}
+
+/// [`row_span`] with [`span_run_dither`]'s run drawn by a copy of [`dither_loop`] in line,
+/// for the dithered row routine's common row (its frame words `{itrb0}` … `{itg3}` and the
+/// hidden count at [sp, #20], as the routine sees them). An empty span leaves through the stub
+/// at label 27 before the loop head (to label 37 here: the loop is too long for a conditional
+/// branch over it). Ends with r0 = r12 = the triangle.
+macro_rules! row_span_dither_inline {
+    () => {
+        concat!(
+            "mov r12, r3\n",
+            "lsls r4, r5, #1\n",
+            "lsrs r4, r4, #16\n",
+            "adds r3, #{gx0}\n",
+            "ldm r3!, {{r0, r1, r2}}\n",
+            "mov r8, r0\n",
+            "mov r9, r1\n",
+            "mov r10, r2\n",
+            "mov r3, r12\n",
+            "ldr r5, [r3, #{rw}]\n",
+            "lsls r5, r5, #17\n",
+            "lsrs r5, r5, #16\n",
+            clamp_right!(),
+            "subs r6, r5, r4\n",
+            "ble 27b\n",
+            "adds r3, #{row0}\n",
+            "ldm r3, {{r2, r3, r4}}\n",
+            "add lr, r6\n",
+            "ldr r1, [sp, #12]\n",
+            "adds r7, r1, r5\n",
+            "ldr r1, [sp, #16]\n",
+            "adds r1, r1, r5\n",
+            "negs r0, r6\n",
+            "subs r5, r5, r6\n",
+            dither_loop!("i", count_on_stack!()),
+            "37:\n",
             "mov r0, r12\n",
         )
     };
@@ -651,7 +695,7 @@ macro_rules! carry_attr {
 /// draws a span, `$frame` is the frame's size in bytes, `$tail` code after the routine (the
 /// dithered span's subroutine) and `$extra` more operands.
 macro_rules! rows565_routine {
-    ($name:literal, $table:expr, $qualify:expr, $run:ident, $frame:literal, $tail:expr,
+    ($name:literal, $table:expr, $main:expr, $run:ident, $stubs:expr, $frame:literal, $tail:expr,
      [$($extra:tt)*]) => {
 core::arch::global_asm!(
     ".syntax unified",
@@ -796,28 +840,32 @@ core::arch::global_asm!(
     "11:",
     "movs r0, #0",
     "b 13f",
+    // Ways out of the loop head below, within reach of its conditional branches (the main
+    // path falls through them untaken).
+    "19:",
+    "b 20b",
+    "28:",
+    "b 18f",
+    $stubs,
     "10:",
     "ldr r1, [sp, #8]",
     "15:",
     "ldr r2, [sp, #4]",
     "cmp r1, r2",
     "bhs 11b",
-    // Entry i's record is slot i (`ActiveList`).
+    // Entry i's record is slot i (`ActiveList`). Qualifies: rows left on the triangle's
+    // routine count (a fast Gouraud row that neither switches its short edge nor ends it;
+    // in a dithered strip only a `DITHER_OK` triangle has them, see
+    // `ActiveTri::set_routine_rows`); left.c < 0 goes to 18. The count goes down by one.
     "mov r3, r1",
-    $qualify,
-    // Qualifies: rows left on the triangle's routine count (a fast Gouraud row that neither
-    // switches its short edge nor ends it); left.c < 0 goes to 18. The count goes down by
-    // one.
     "ldrb r4, [r3, #{rrows}]",
     "subs r4, #1",
-    "bcc 19f",
+    "bcc 19b",
     "ldr r5, [r3, #{lw}]",
     "lsls r5, r5, #16",
-    "bmi 16f",
-    "b 18f",
-    "16:",
+    "bpl 28b",
     "strb r4, [r3, #{rrows}]",
-    row_span!($run),
+    $main,
     // Both edges step (as `edge_step!`), loaded and stored with one `ldm` and one `stm`
     // (r1, r2 = left w, s; r3, r4 = right w, s), and the packed rows with them: row += inc,
     // and + gx (still in r8–r10) when the left edge carried; one path for each.
@@ -838,8 +886,6 @@ core::arch::global_asm!(
     "adds r5, #{row_after_edges}",
     row_step_at!("r5", "r4", ""),
     next_triangle!(),
-    "19:",
-    "b 20b",
     "9:",
     "ldrh r6, [r0, #{ldy}]",
     "lsls r6, r6, #16",
@@ -938,12 +984,24 @@ core::arch::global_asm!(
     };
 }
 
-rows565_routine!("scanline3d_rows565", "", "", span_run, "28", "", []);
+rows565_routine!(
+    "scanline3d_rows565",
+    "",
+    row_span!(span_run),
+    span_run,
+    "",
+    "28",
+    "",
+    []
+);
 
 // The dithered row routine (r1 = the eight offsets of the row's Bayer row in
-// `raster::DITHER565`): before the context's six words, the offsets go on the stack ([sp, #28] to [sp, #60] in the routine; the
-// span subroutine sees them 4 bytes further, after the saved fragment count); a triangle
-// without `DITHER_OK` leaves for the portable row (`raster::span_packed_dither_clamped`).
+// `raster::DITHER565`): before the context's six words, the offsets go on the stack ([sp, #28]
+// to [sp, #56] in the routine, the `itrb`/`itg` words; the span subroutine of the rarer paths
+// sees them 4 bytes further, after the saved fragment count: the `strb`/`stg` words). The
+// common row draws its span with a copy of the dithered loop in line (no call). Only
+// `DITHER_OK` triangles have routine rows in a dithered strip (`ActiveTri::set_routine_rows`),
+// so the routine needs no test of its own for them.
 rows565_routine!(
     "scanline3d_rows565_dither",
     concat!(
@@ -954,31 +1012,32 @@ rows565_routine!(
         "ldm r1!, {{r2, r3, r4, r5}}\n",
         "push {{r2, r3, r4, r5}}\n",
     ),
-    concat!(
-        "ldrb r4, [r3, #{flags}]\n",
-        "lsls r4, r4, #{dither_ok_shift}\n",
-        "bmi 14f\n",
-        "movs r0, #1\n",
-        "b 13f\n",
-        "14:\n",
-    ),
+    row_span_dither_inline!(),
     span_run_dither,
+    "27:\nb 37f\n",
     "60",
     concat!(
         "40:\n",
-        dither_loop!("ldr r5, [sp, #24]\nadds r5, #1\nstr r5, [sp, #24]\n"),
+        dither_loop!("s", "ldr r5, [sp, #24]\nadds r5, #1\nstr r5, [sp, #24]\n"),
         "bx lr\n",
     ),
     [
-        dither_ok_shift = const 31 - o::DITHER_OK_BIT,
-        trb0 = const 32,
-        tg0 = const 36,
-        trb1 = const 40,
-        tg1 = const 44,
-        trb2 = const 48,
-        tg2 = const 52,
-        trb3 = const 56,
-        tg3 = const 60,
+        strb0 = const 32,
+        stg0 = const 36,
+        strb1 = const 40,
+        stg1 = const 44,
+        strb2 = const 48,
+        stg2 = const 52,
+        strb3 = const 56,
+        stg3 = const 60,
+        itrb0 = const 28,
+        itg0 = const 32,
+        itrb1 = const 36,
+        itg1 = const 40,
+        itrb2 = const 44,
+        itg2 = const 48,
+        itrb3 = const 52,
+        itg3 = const 56,
     ]
 );
 
@@ -2268,7 +2327,8 @@ core::arch::global_asm!(
     ".equ su_end, 52",
     ".equ su_seed, 56",
     ".equ su_left, 60",
-    ".equ su_frame, 64",
+    ".equ su_dither, 64",
+    ".equ su_frame, 68",
     // r0 = the record, r1 = the arguments (`SetupArgs`: the vertex store and its length, the
     // triangle's indices v0 | v1 << 16 and v2, the row, the screen height, the reciprocal
     // seed). `raster::ActiveTri::setup` for a Gouraud triangle (no `FLAT_BIT`) whose setup is
@@ -2286,6 +2346,8 @@ core::arch::global_asm!(
     "str r7, [sp, #su_h]",
     "ldr r6, [r1]",
     "str r6, [sp, #su_seed]",
+    "ldr r6, [r1, #4]",
+    "str r6, [sp, #su_dither]",
     // The vertex pointers (indices checked against the store's length).
     "lsls r0, r4, #16",
     "bpl 1f",
@@ -2476,7 +2538,25 @@ core::arch::global_asm!(
     "3:",
     "strb r4, [r7, #{flags}]",
     "strb r5, [r7, #{rows}]",
+    // While dithering: `raster::ActiveTri::dither_fits` (the sorted vertex pointers are the
+    // frame's first three words) sets `DITHER_OK`, or the result is 3. r4 and r7 survive the
+    // call.
+    "ldr r0, [sp, #su_dither]",
+    "cmp r0, #0",
+    "beq 6f",
+    "mov r0, r7",
+    "mov r1, sp",
+    "ldr r2, [sp, #su_row]",
+    "bl scanline3d_dither_fits565",
+    "cmp r0, #0",
+    "beq .Lsu_undithered",
+    "adds r4, #{dither_ok}",
+    "strb r4, [r7, #{flags}]",
+    "6:",
     "movs r0, #1",
+    "b .Lsu_done",
+    ".Lsu_undithered:",
+    "movs r0, #3",
     "b .Lsu_done",
     ".Lsu_empty:",
     "movs r0, #2",
@@ -2501,6 +2581,7 @@ core::arch::global_asm!(
     switch = const o::SWITCH,
     flags = const o::FLAGS,
     rows = const o::ROUTINE_ROWS,
+    dither_ok = const o::DITHER_OK,
 );
 
 core::arch::global_asm!(
@@ -2660,7 +2741,7 @@ pub(crate) fn gouraud_setup(rec: &mut ActiveTri, tri: &Sorted<'_>) -> bool {
     unsafe { scanline3d_gouraud_setup(tri as *const Sorted as *const u32, rec, seed.as_ptr()) != 0 }
 }
 
-/// The arguments of [`scanline3d_setup565`] (seven words).
+/// The arguments of [`scanline3d_setup565`] (eight words).
 #[cfg(not(target_has_atomic = "32"))]
 #[repr(C)]
 struct SetupArgs {
@@ -2671,11 +2752,27 @@ struct SetupArgs {
     row: i32,
     height: i32,
     seed: *const u16,
+    /// Nonzero while dithering: the routine checks the triangle for `DITHER_OK`.
+    dither: u32,
+}
+
+/// What [`setup565`] did.
+#[cfg(not(target_has_atomic = "32"))]
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Setup565 {
+    /// Set up and kept (while dithering: with `DITHER_OK`).
+    Kept,
+    /// No row to draw from the given row on.
+    Empty,
+    /// Set up, but while dithering its packed fields failed `ActiveTri::dither_fits`: the
+    /// triangle must be set up again without the fast path.
+    NotDitherable,
 }
 
 /// `raster::ActiveTri::setup` by [`scanline3d_setup565`] for a Gouraud triangle on a strip
-/// whose mode is fast Gouraud (`DepthTest::Less`) with RGB565 channels: `Some(kept)`, or
-/// `None` (the record unspecified) for what the portable setup handles.
+/// whose mode is fast Gouraud (`DepthTest::Less`) with RGB565 channels, and with `dither` the
+/// check of `raster::ActiveTri::setup_dither` too ([`scanline3d_dither_fits565`]): what it
+/// did, or `None` (the record unspecified) for what the portable setup handles.
 #[cfg(not(target_has_atomic = "32"))]
 #[inline(always)]
 pub(crate) fn setup565(
@@ -2684,7 +2781,8 @@ pub(crate) fn setup565(
     verts: &[ScreenVertex],
     row: i32,
     height: i32,
-) -> Option<bool> {
+    dither: bool,
+) -> Option<Setup565> {
     const {
         assert!(core::mem::offset_of!(ScreenVertex, x) == 0);
         assert!(core::mem::offset_of!(ScreenVertex, y) == 2);
@@ -2701,17 +2799,277 @@ pub(crate) fn setup565(
         row,
         height,
         seed: seed.as_ptr(),
+        dither: dither as u32,
     };
     // SAFETY: the routine reads the arguments, the three vertices whose indices it has checked
     // against the store's length (12-byte `repr(C)` records, x and y the first word, as
     // asserted above) and the seed table; it writes the record's fields at the offsets given
     // to it (not `ord`), and sets up its edges in line and calls `scanline3d_gouraud_setup` with
-    // buffers in its own frame.
+    // buffers in its own frame (and `scanline3d_dither_fits565` with the vertex pointers it
+    // checked and the record it wrote).
     match unsafe { scanline3d_setup565(rec, &args) } {
-        1 => Some(true),
-        2 => Some(false),
+        1 => Some(Setup565::Kept),
+        2 => Some(Setup565::Empty),
+        3 => Some(Setup565::NotDitherable),
         _ => None,
     }
+}
+
+/// For [`scanline3d_dither_fits565`]: vertex `$k` (its pointer at word `$k` of the array in
+/// frame word `df_vp`) passes the three field tests of `raster::ActiveTri::dither_fits`, or
+/// the routine leaves through `.Ldf_fail`. r4 = dx, r5 = dy (subpixels from the first pixel's
+/// centre), r6 = the vertex, r2 = its flags half (the low two bits of each 10-bit channel in
+/// bits 10–15), r0, r1, r3, r7 scratch.
+#[cfg(not(target_has_atomic = "32"))]
+macro_rules! dither_fits_vertex {
+    ($k:literal) => {
+        concat!(
+            "ldr r6, [sp, #df_vp]\n",
+            "ldr r6, [r6, #4 * ", $k, "]\n",
+            "ldr r0, [r6]\n",
+            "sxth r4, r0\n",
+            "asrs r5, r0, #16\n",
+            "ldr r1, [sp, #df_ox]\n",
+            "subs r4, r4, r1\n",
+            "ldr r1, [sp, #df_oy]\n",
+            "subs r5, r5, r1\n",
+            "ldrh r2, [r6, #{vfl}]\n",
+            // Blue, then red: U = K + gx·dx + gy·dy (= 16·F − 16·lo), in range when U < 16·(2¹⁶ −
+            // 2·lo); then U − 2¹⁰·c + 7168 ≤ 2¹⁴ (|16·F − 16·ideal| ≤ 16·e).
+            field16_fits_asm!("df_bx", "df_by", "df_kb", "2", "lsrs r1, r2, #14\n"),
+            field16_fits_asm!("df_rx", "df_ry", "df_kr", "0", "lsls r1, r2, #20\nlsrs r1, r1, #30\n"),
+            // Green: X = L0 + gxl·dx + gyl·dy (the low products, |X| < 2³¹), T' = T0' + gxh·dx +
+            // gyh·dy + (X >> 16) = ⌊16·F / 2¹⁶⌋ − 7680; in range when T' < 1 033 216; then u =
+            // T' + 3584 − 2¹⁰·c within 0..=8192, and 8192 only with X's low half 0.
+            "ldr r0, [sp, #df_gxl]\n",
+            "muls r0, r4, r0\n",
+            "ldr r1, [sp, #df_gyl]\n",
+            "muls r1, r5, r1\n",
+            "adds r0, r0, r1\n",
+            "ldr r1, [sp, #df_l0]\n",
+            "adds r0, r0, r1\n",
+            "ldr r1, [sp, #df_gxh]\n",
+            "muls r1, r4, r1\n",
+            "ldr r3, [sp, #df_gyh]\n",
+            "muls r3, r5, r3\n",
+            "adds r1, r1, r3\n",
+            "ldr r3, [sp, #df_t0]\n",
+            "adds r1, r1, r3\n",
+            "asrs r3, r0, #16\n",
+            "adds r1, r1, r3\n",
+            "ldr r3, =1033216\n",
+            "cmp r1, r3\n",
+            "bhs 9f\n",
+            "ldrb r3, [r6, #{vrgb} + 1]\n",
+            "lsls r3, r3, #12\n",
+            "lsls r7, r2, #18\n",
+            "lsrs r7, r7, #30\n",
+            "lsls r7, r7, #10\n",
+            "adds r3, r3, r7\n",
+            "subs r1, r1, r3\n",
+            "movs r3, #7\n",
+            "lsls r3, r3, #9\n",
+            "adds r1, r1, r3\n",
+            "movs r3, #1\n",
+            "lsls r3, r3, #13\n",
+            "cmp r1, r3\n",
+            "bhi 9f\n",
+            "bne 1f\n",
+            "lsls r0, r0, #16\n",
+            "bne 9f\n",
+            "1:\n",
+            // Out of reach of the conditional branches above: their way out.
+            "b 8f\n",
+            "9:\n",
+            "b .Ldf_fail\n",
+            "8:\n",
+        )
+    };
+}
+
+/// For [`dither_fits_vertex`]: one 16-bit field of the packed red-blue word (gradient halves in
+/// frame words `$gx`, `$gy`, the constant in `$k`; the vertex colour's high byte at
+/// `rgb_hi[$c]`, its low two bits from r2 by `$lo`, which leaves them in bits 0–1 of r1).
+#[cfg(not(target_has_atomic = "32"))]
+macro_rules! field16_fits_asm {
+    ($gx:literal, $gy:literal, $k:literal, $c:literal, $lo:expr) => {
+        concat!(
+            "ldr r0, [sp, #",
+            $gx,
+            "]\n",
+            "muls r0, r4, r0\n",
+            "ldr r1, [sp, #",
+            $gy,
+            "]\n",
+            "muls r1, r5, r1\n",
+            "adds r0, r0, r1\n",
+            "ldr r1, [sp, #",
+            $k,
+            "]\n",
+            "adds r0, r0, r1\n",
+            "ldr r1, =1017856\n",
+            "cmp r0, r1\n",
+            "bhs 9f\n",
+            "ldrb r3, [r6, #{vrgb} + ",
+            $c,
+            "]\n",
+            "lsls r3, r3, #12\n",
+            $lo,
+            "lsls r1, r1, #10\n",
+            "adds r3, r3, r1\n",
+            "subs r0, r0, r3\n",
+            "movs r1, #7\n",
+            "lsls r1, r1, #10\n",
+            "adds r0, r0, r1\n",
+            "movs r1, #1\n",
+            "lsls r1, r1, #14\n",
+            "cmp r0, r1\n",
+            "bhi 9f\n",
+        )
+    };
+}
+
+#[cfg(not(target_has_atomic = "32"))]
+core::arch::global_asm!(
+    ".syntax unified",
+    ".thumb",
+    ".section .text.scanline3d_dither_fits565,\"ax\",%progbits",
+    ".global scanline3d_dither_fits565",
+    ".type scanline3d_dither_fits565,%function",
+    ".p2align 2",
+    ".thumb_func",
+    ".equ df_vp, 0",
+    ".equ df_ox, 4",
+    ".equ df_oy, 8",
+    ".equ df_bx, 12",
+    ".equ df_by, 16",
+    ".equ df_kb, 20",
+    ".equ df_rx, 24",
+    ".equ df_ry, 28",
+    ".equ df_kr, 32",
+    ".equ df_gxl, 36",
+    ".equ df_gyl, 40",
+    ".equ df_gxh, 44",
+    ".equ df_gyh, 48",
+    ".equ df_l0, 52",
+    ".equ df_t0, 56",
+    ".equ df_frame, 60",
+    // r0 = the record of a fast Gouraud triangle just set up on row r2 with RGB565 channels,
+    // r1 = its three vertices (pointers). `raster::ActiveTri::dither_fits` for RGB565
+    // (red and blue with 11 fraction bits in the packed word, green with 26; vertex channels
+    // 5.5, 6.4, 5.5): returns 1 when every field fits at every vertex, else 0. The frame holds
+    // the per-triangle terms (the `df_` words), the vertex loop is unrolled.
+    "scanline3d_dither_fits565:",
+    "push {{r4, r5, r6, r7, lr}}",
+    "sub sp, #df_frame",
+    "str r1, [sp, #df_vp]",
+    // The first pixel's centre in subpixels: ox = 16·c + 8 (c = the left edge's biased
+    // column − 2¹⁵: the half's top bit flipped, then sign-extended), oy = 16·row + 8.
+    "lsls r2, r2, #4",
+    "adds r2, #8",
+    "str r2, [sp, #df_oy]",
+    "ldr r3, [r0, #{lw}]",
+    "lsls r3, r3, #16",
+    "movs r4, #1",
+    "lsls r4, r4, #31",
+    "eors r3, r4",
+    "asrs r3, r3, #12",
+    "adds r3, #8",
+    "str r3, [sp, #df_ox]",
+    // r5 = the left edge's sq; gy = inc − gx·sq for each word.
+    "ldr r5, [r0, #{ls}]",
+    "sxth r5, r5",
+    // Red and blue: gradient halves (blue the signed low half, red the rest) and
+    // K = 16·field − 15 360 of the start word's halves.
+    "ldr r1, [r0, #{gx1}]",
+    "ldr r2, [r0, #{inc1}]",
+    "mov r4, r1",
+    "muls r4, r5, r4",
+    "subs r2, r2, r4",
+    "sxth r3, r1",
+    "str r3, [sp, #df_bx]",
+    "subs r1, r1, r3",
+    "asrs r1, r1, #16",
+    "str r1, [sp, #df_rx]",
+    "sxth r3, r2",
+    "str r3, [sp, #df_by]",
+    "subs r2, r2, r3",
+    "asrs r2, r2, #16",
+    "str r2, [sp, #df_ry]",
+    "ldr r1, [r0, #{row1}]",
+    "uxth r2, r1",
+    "lsls r2, r2, #4",
+    "ldr r3, =15360",
+    "subs r2, r2, r3",
+    "str r2, [sp, #df_kb]",
+    "lsrs r1, r1, #16",
+    "lsls r1, r1, #4",
+    "subs r1, r1, r3",
+    "str r1, [sp, #df_kr]",
+    // Green: the gradients' low halves (unsigned) and high halves (signed), L0 = the low half
+    // of 16·a and T0' = (16·a >> 16) − 7680.
+    "ldr r1, [r0, #{gx2}]",
+    "ldr r2, [r0, #{inc2}]",
+    "mov r4, r1",
+    "muls r4, r5, r4",
+    "subs r2, r2, r4",
+    "uxth r3, r1",
+    "str r3, [sp, #df_gxl]",
+    "asrs r1, r1, #16",
+    "str r1, [sp, #df_gxh]",
+    "uxth r3, r2",
+    "str r3, [sp, #df_gyl]",
+    "asrs r2, r2, #16",
+    "str r2, [sp, #df_gyh]",
+    "ldr r1, [r0, #{row2}]",
+    "lsls r2, r1, #4",
+    "uxth r2, r2",
+    "str r2, [sp, #df_l0]",
+    "lsrs r1, r1, #12",
+    "ldr r3, =7680",
+    "subs r1, r1, r3",
+    "str r1, [sp, #df_t0]",
+    dither_fits_vertex!("0"),
+    dither_fits_vertex!("1"),
+    dither_fits_vertex!("2"),
+    "movs r0, #1",
+    "add sp, #df_frame",
+    "pop {{r4, r5, r6, r7, pc}}",
+    ".Ldf_fail:",
+    "movs r0, #0",
+    "add sp, #df_frame",
+    "pop {{r4, r5, r6, r7, pc}}",
+    ".ltorg",
+    ".size scanline3d_dither_fits565, . - scanline3d_dither_fits565",
+    lw = const o::LEFT + o::W,
+    ls = const o::LEFT + o::S,
+    gx1 = const o::GX + 4,
+    gx2 = const o::GX + 8,
+    row1 = const o::ROW + 4,
+    row2 = const o::ROW + 8,
+    inc1 = const o::INC + 4,
+    inc2 = const o::INC + 8,
+    vrgb = const crate::project::RGB_HI_OFFSET,
+    vfl = const crate::project::FLAGS_OFFSET,
+);
+
+/// `raster::ActiveTri::dither_fits` for RGB565 by [`scanline3d_dither_fits565`]: `rec` is a
+/// fast Gouraud triangle just set up on `row` from the vertices `p` (so its first pixel and
+/// every vertex are within the 1024-pixel box the fast path requires: the routine's sums stay
+/// within 32 bits).
+#[cfg(not(target_has_atomic = "32"))]
+#[inline(always)]
+pub(crate) fn dither_fits565(rec: &ActiveTri, p: [&ScreenVertex; 3], row: i32) -> bool {
+    const {
+        assert!(crate::project::FLAGS_OFFSET == 10 && crate::project::RGB_HI_OFFSET + 2 < 10);
+        assert!(o::INC + 8 <= 124 && o::LEFT + o::S <= 124);
+    };
+    let ptrs = p.map(|v| v as *const ScreenVertex);
+    // SAFETY: the routine reads the record's left edge, `gx`, `row` and `inc` words (at the
+    // offsets given to it) and the three vertices' first word, colour bytes and flags half
+    // (12-byte `repr(C)` records, offsets asserted above and by `setup565`); it writes only its
+    // own frame.
+    unsafe { scanline3d_dither_fits565(rec, ptrs.as_ptr(), row) != 0 }
 }
 
 extern "C" {
@@ -2721,6 +3079,12 @@ extern "C" {
     fn scanline3d_gouraud_setup(tri: *const u32, rec: *mut ActiveTri, seed: *const u16) -> u32;
     #[cfg(not(target_has_atomic = "32"))]
     fn scanline3d_setup565(rec: *mut ActiveTri, args: *const SetupArgs) -> u32;
+    #[cfg(not(target_has_atomic = "32"))]
+    fn scanline3d_dither_fits565(
+        rec: *const ActiveTri,
+        p: *const *const ScreenVertex,
+        row: i32,
+    ) -> u32;
     fn scanline3d_fill128(start: *mut [u32; 4], end: *mut [u32; 4], word: u32);
     fn scanline3d_rows565(ctx: *mut RowCtx) -> u32;
     fn scanline3d_span565_less(

@@ -547,7 +547,8 @@ fn transform_matches_rows() -> bool {
 /// the assembly dithered span the portable one on 20 000 pseudo-random spans and the
 /// dithered row routine the portable rows on 2 000 strips of four triangles, and
 /// the assembly triangle loop the portable one on 5 000 objects of 24 triangles, and on ARMv6-M
-/// (where they are used) the assembly triangle setup the portable one on 20 000 more and the
+/// (where they are used) the assembly triangle setup the portable one on 20 000 more, the
+/// assembly dither check the portable one on 20 000 fast triangles, and the
 /// assembly vertex loop the portable one on 5 000 objects of 16 positions (the
 /// benchmark scenes' hashes check them too, but only on the cases they have). Prints the first
 /// mismatch. Not inlined, so that its locals are not part of `main`'s frame during the
@@ -569,6 +570,11 @@ fn assembly_matches_portable() -> bool {
     #[cfg(not(target_has_atomic = "32"))]
     if let Some(e) = scanline3d::raster::triangle_setup_self_test(20_000) {
         hprintln!("TRIANGLE SETUP MISMATCH {:?}", e);
+        return false;
+    }
+    #[cfg(not(target_has_atomic = "32"))]
+    if let Some(e) = scanline3d::raster::dither_fits_self_test(20_000) {
+        hprintln!("DITHER CHECK MISMATCH {:?}", e);
         return false;
     }
     if let Some(e) = scanline3d::raster::dither_span_self_test(20_000) {
