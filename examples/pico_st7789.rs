@@ -11,8 +11,8 @@
 //! CPU runs ahead through cheap strips (empty rows) and through the next frame's geometry. The
 //! label is composed into the strips it crosses from glyphs rasterized once.
 //!
-//! Build: `cargo build --release --target thumbv6m-none-eabi --example pico_st7789`
-//! Flash: `cargo run --release --target thumbv6m-none-eabi --example pico_st7789` (BOOTSEL mode;
+//! Build: `cargo build --release --target thumbv6m-none-eabi --features rp2040 --example pico_st7789`
+//! Flash: `cargo run --release --target thumbv6m-none-eabi --features rp2040 --example pico_st7789` (BOOTSEL mode;
 //! the runner is elf2uf2-rs, see `.cargo/config.toml`).
 //!
 //! Checked in CI in the RP2040 emulator (`scripts/pico-emu`: boot, panel commands, every pixel
@@ -24,7 +24,7 @@
 fn main() {
     eprintln!(
         "pico_st7789 is firmware for the Raspberry Pi Pico: \
-         cargo build --release --target thumbv6m-none-eabi --example pico_st7789"
+         cargo build --release --target thumbv6m-none-eabi --features rp2040 --example pico_st7789"
     );
 }
 

@@ -501,6 +501,9 @@ pub mod board {
     pub const STRIP_LINES: usize = 8;
     /// Degrees the torus turns per frame.
     pub const SPIN_DEG_PER_FRAME: u32 = 3;
+    /// Frames per turn (the animation repeats after them).
+    pub const TURN_FRAMES: usize = (360 / SPIN_DEG_PER_FRAME) as usize;
+    const _: () = assert!(360 % SPIN_DEG_PER_FRAME == 0);
     /// Top-left corner of the frame-rate label, in pixels.
     pub const LABEL_AT: (i32, i32) = (4, 4);
     /// The characters the label uses (its glyphs are rasterized once, from `FONT_6X10`).
@@ -548,12 +551,17 @@ pub mod board {
     }
 
     /// The firmware's scene, built once: the default torus mesh ([`super::torus`], 18 KB for
-    /// `Fx<I16F16>`), the camera and the fixed part of the model transform.
+    /// `Fx<I16F16>`), the camera, the material and light, the fixed part of the model
+    /// transform and the sine and cosine of every frame's spin ([`TURN_FRAMES`] pairs, 960 B
+    /// for `Fx<I16F16>`: a frame then computes no sine, cosine or `f64` conversion).
     #[derive(Debug)]
     pub struct BoardScene<S: Scalar> {
         shape: super::TorusShape<S>,
         camera: crate::Camera<S>,
         tilt: crate::Mat4<S>,
+        material: crate::Material<S>,
+        lights: [crate::Light<S>; 1],
+        spins: [(S, S); TURN_FRAMES],
     }
 
     impl<S: Scalar> BoardScene<S> {
@@ -563,10 +571,17 @@ pub mod board {
         ///
         /// Never for the built-in parameters; a message naming the part that failed otherwise.
         pub fn new() -> Result<Self, &'static str> {
+            let mut spins = [(S::ZERO, S::ZERO); TURN_FRAMES];
+            for (k, sc) in spins.iter_mut().enumerate() {
+                *sc = super::deg::<S>(spin(k as u32)).sin_cos();
+            }
             Ok(BoardScene {
                 shape: super::torus().map_err(|_| "torus mesh")?,
                 camera: super::camera().map_err(|_| "camera")?,
                 tilt: super::torus_tilt(),
+                material: super::torus_material(),
+                lights: super::lights(),
+                spins,
             })
         }
 
@@ -574,8 +589,9 @@ pub mod board {
         /// [`spin`] (the same operations on the same values), with the fixed part computed once.
         #[must_use]
         pub fn transform(&self, frame: u32) -> crate::Mat4<S> {
-            self.tilt
-                .then(&crate::Mat4::rotate_y(super::deg(spin(frame))))
+            // spin(frame) = SPIN_DEG_PER_FRAME · (frame mod TURN_FRAMES).
+            let (s, c) = self.spins[frame as usize % TURN_FRAMES];
+            self.tilt.then(&crate::Mat4::rotate_y_sin_cos(s, c))
         }
 
         /// Prepares frame `frame` of the animation in `renderer` (geometry only; the strips
@@ -593,9 +609,9 @@ pub mod board {
             let objects = [Object {
                 mesh: self.shape.mesh(),
                 transform: self.transform(frame),
-                material: super::torus_material(),
+                material: self.material,
             }];
-            renderer.prepare(&Scene::new(&objects, self.camera, super::lights()))
+            renderer.prepare(&Scene::new(&objects, self.camera, self.lights))
         }
     }
 
