@@ -342,6 +342,11 @@ mod firmware {
         // The scene: the default torus, generated once into RAM (18 KB), and the renderer (its
         // RAM: `demo::board::BoardRenderer::RAM_BYTES`), on `main`'s stack; the strip buffers
         // are a static ring (`BUFFERS`).
+        // The dithered row routine with the interpolators (feature `rp2040`) against the
+        // portable rows on 25 random strips of four triangles: it can only run on an RP2040
+        // (the QEMU benchmark's Cortex-M0 has no SIO). A mismatch stops the firmware before
+        // its first frame.
+        assert!(scanline3d::raster::dither_rows_self_test(25).is_none());
         let scene = board::BoardScene::<Q>::new().unwrap();
         let glyphs = board::glyphs().unwrap();
         let mut renderer = board::renderer::<Q>();

@@ -73,8 +73,15 @@
 //!
 //! ## Crate features
 //!
-//! None: the number type is a type parameter, so fixed and float render side by side in one
-//! build.
+//! The number type is a type parameter, not a feature, so fixed and float render side by side
+//! in one build. One feature:
+//!
+//! - `rp2040` (off by default): on a Raspberry Pi Pico's RP2040 (`thumbv6m-none-eabi`), the
+//!   dithered RGB565 row routine uses the SIO interpolators of the core that renders (24
+//!   cycles per written pixel instead of 28). Only for an RP2040: other Cortex-M0 chips have
+//!   no SIO. The renderer sets both interpolators up whenever it draws a row and leaves them
+//!   changed; an interrupt handler that uses them must save and restore them. No effect on
+//!   other targets.
 
 #![no_std]
 #![deny(missing_docs)]

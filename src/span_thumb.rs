@@ -16,8 +16,17 @@
 //! pixel loop is unrolled over the four column phases so that each loads its two offsets with
 //! an immediate sp offset, and a written pixel adds them to copies of the red-blue and green
 //! words before reading the channels: 23 instructions per written pixel, 12 per hidden one.
-//! The row routine draws its dithered spans through a subroutine (one copy of the unrolled
-//! loop instead of four) and only triangles with `DITHER_OK`.
+//! The row routine draws its common row's span with a copy of the unrolled loop in line and
+//! the rarer rows' spans through a subroutine (two copies instead of five), and only
+//! triangles with `DITHER_OK` (the only ones with routine rows in a dithered strip). With the
+//! `rp2040` feature its twin `scanline3d_rows565_dither_interp` draws the same pixels with the
+//! RP2040's SIO interpolators (depth stepping and the red-blue placement: 19 instructions and
+//! 24 cycles per written pixel); the Pico firmware compares it with the portable rows at
+//! start-up, since the QEMU benchmark has no SIO.
+//!
+//! On ARMv6-M the triangle setup (`scanline3d_setup565`, with `scanline3d_gouraud_setup`) also
+//! makes the dither check of `raster::ActiveTri::dither_fits` (`scanline3d_dither_fits565`),
+//! compared with the portable check on random triangles by the benchmark firmware.
 //!
 //! The routines compute exactly what the portable code in [`crate::raster`] computes
 //! (`span_packed` for `DepthTest::Less` and 5-6-5 channels, `ActiveTri::draw_row` for a fast
@@ -651,7 +660,7 @@ macro_rules! clamp_right {
 }
 
 /// The packed attribute rows of the triangle in r0 step by one row: row += inc, then
-/// `$carry` (adds r1–r3 the steps in r8–r10 when the left edge carried). Uses r0–r6.
+/// `$carry` (adds r0–r2 the steps in r8–r10 when the left edge carried). Uses r0–r7.
 macro_rules! row_step {
     ($carry:literal) => {
         concat!(
@@ -662,34 +671,29 @@ macro_rules! row_step {
     };
 }
 
-/// [`row_step`] with the record's `row` address in `$p` (a low register; `$t` is another one,
-/// used as a temporary with r0–r3 and r6).
+/// [`row_step`] with the record's `row` address in `$p` (r4 or r5; `$t` is the other one):
+/// one `ldm` of the three rows, the pending edge's word between them and the increments
+/// (row in r0–r2, increments in `$t`, r6, r7), the sums, one `stm`.
 macro_rules! row_step_at {
     ($p:literal, $t:literal, $carry:literal) => {
         concat!(
             "ldm ",
             $p,
-            "!, {{r1, r2, r3}}\n",
-            "adds ",
-            $p,
-            ", #4\n",
-            "ldm ",
-            $p,
-            "!, {{r0, ",
+            "!, {{r0, r1, r2, r3, ",
             $t,
-            ", r6}}\n",
-            "adds r1, r1, r0\n",
-            "adds r2, r2, ",
+            ", r6, r7}}\n",
+            "adds r0, r0, ",
             $t,
             "\n",
-            "adds r3, r3, r6\n",
+            "adds r1, r1, r6\n",
+            "adds r2, r2, r7\n",
             $carry,
             "subs ",
             $p,
             ", #28\n",
             "stm ",
             $p,
-            "!, {{r1, r2, r3}}\n",
+            "!, {{r0, r1, r2}}\n",
         )
     };
 }
@@ -994,7 +998,7 @@ core::arch::global_asm!(
     "subs r5, #16",
     "stm r5!, {{r1, r2, r3, r4}}",
     "adds r5, #{row_after_edges}",
-    row_step_at!("r5", "r4", "add r1, r8\nadd r2, r9\nadd r3, r10\n"),
+    row_step_at!("r5", "r4", "add r0, r8\nadd r1, r9\nadd r2, r10\n"),
     next_triangle!(),
     // After the switch with the middle vertex right (the right edge is the new one, not
     // stepped): the left edge steps, and the rows with it.
@@ -1014,7 +1018,7 @@ core::arch::global_asm!(
     "adds r2, #1",
     "adds r1, r1, r2",
     "str r1, [r0, #{lw}]",
-    row_step!("add r1, r8\nadd r2, r9\nadd r3, r10\n"),
+    row_step!("add r0, r8\nadd r1, r9\nadd r2, r10\n"),
     next_triangle!(),
     // A counted row with left.c < 0 (a triangle across the left border): as `draw_row`, the
     // span starts at column 0 with the attributes moved by gx·(−left.c), then the row steps
@@ -3056,8 +3060,7 @@ macro_rules! dither_fits_vertex {
             "adds r1, r1, r3\n",
             "asrs r3, r0, #16\n",
             "adds r1, r1, r3\n",
-            "ldr r3, =1033216\n",
-            "cmp r1, r3\n",
+            "cmp r1, r9\n",
             "bhs 9f\n",
             "ldrb r3, [r6, #{vrgb} + 1]\n",
             "lsls r3, r3, #12\n",
@@ -3066,12 +3069,8 @@ macro_rules! dither_fits_vertex {
             "lsls r7, r7, #10\n",
             "adds r3, r3, r7\n",
             "subs r1, r1, r3\n",
-            "movs r3, #7\n",
-            "lsls r3, r3, #9\n",
-            "adds r1, r1, r3\n",
-            "movs r3, #1\n",
-            "lsls r3, r3, #13\n",
-            "cmp r1, r3\n",
+            "add r1, r12\n",
+            "cmp r1, lr\n",
             "bhi 9f\n",
             "bne 1f\n",
             "lsls r0, r0, #16\n",
@@ -3106,8 +3105,7 @@ macro_rules! field16_fits_asm {
             $k,
             "]\n",
             "adds r0, r0, r1\n",
-            "ldr r1, =1017856\n",
-            "cmp r0, r1\n",
+            "cmp r0, r8\n",
             "bhs 9f\n",
             "ldrb r3, [r6, #{vrgb} + ",
             $c,
@@ -3117,12 +3115,8 @@ macro_rules! field16_fits_asm {
             "lsls r1, r1, #10\n",
             "adds r3, r3, r1\n",
             "subs r0, r0, r3\n",
-            "movs r1, #7\n",
-            "lsls r1, r1, #10\n",
-            "adds r0, r0, r1\n",
-            "movs r1, #1\n",
-            "lsls r1, r1, #14\n",
-            "cmp r0, r1\n",
+            "add r0, r10\n",
+            "cmp r0, r11\n",
             "bhi 9f\n",
         )
     };
@@ -3159,7 +3153,24 @@ core::arch::global_asm!(
     // 5.5, 6.4, 5.5): returns 1 when every field fits at every vertex, else 0. The frame holds
     // the per-triangle terms (the `df_` words), the vertex loop is unrolled.
     "scanline3d_dither_fits565:",
-    "push {{r4, r5, r6, r7, lr}}",
+    save_registers!(),
+    // The tests' bounds in high registers: r8 = 16·(2¹⁶ − 2·lo) = 1 017 856 and r11 = 2¹⁴ (red
+    // and blue), r10 = 7168 (their distance bias), r9 = 1 033 216 (green's range), r12 = 3584
+    // (its distance bias) and lr = 8192 (its bound); the return address is on the stack.
+    "ldr r4, =1017856",
+    "mov r8, r4",
+    "ldr r4, =1033216",
+    "mov r9, r4",
+    "movs r4, #7",
+    "lsls r4, r4, #10",
+    "mov r10, r4",
+    "lsrs r4, r4, #1",
+    "mov r12, r4",
+    "movs r4, #1",
+    "lsls r4, r4, #14",
+    "mov r11, r4",
+    "lsrs r4, r4, #1",
+    "mov lr, r4",
     "sub sp, #df_frame",
     "str r1, [sp, #df_vp]",
     // The first pixel's centre in subpixels: ox = 16·c + 8 (c = the left edge's biased
@@ -3232,12 +3243,12 @@ core::arch::global_asm!(
     dither_fits_vertex!("1"),
     dither_fits_vertex!("2"),
     "movs r0, #1",
-    "add sp, #df_frame",
-    "pop {{r4, r5, r6, r7, pc}}",
+    "b .Ldf_out",
     ".Ldf_fail:",
     "movs r0, #0",
+    ".Ldf_out:",
     "add sp, #df_frame",
-    "pop {{r4, r5, r6, r7, pc}}",
+    restore_registers_and_return!(),
     ".ltorg",
     ".size scanline3d_dither_fits565, . - scanline3d_dither_fits565",
     lw = const o::LEFT + o::W,
