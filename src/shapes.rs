@@ -2,10 +2,27 @@
 //! height-field terrain grid.
 //!
 //! Shapes are generated in `f64` (libm, pure software, so bit-identical on every target) and
-//! rounded once to `S`. Their storage is sized at compile time: `V` vertices and `T` triangles;
-//! a shape that does not fit returns [`ShapeError`] with the counts it needs.
+//! rounded once to `S`. Their storage is sized at compile time: `V` vertices and `T` triangles.
+//!
+//! Every constructor checks its inputs before it generates anything, in this order, and returns
+//! the first [`ShapeError`] that applies:
+//!
+//! 1. [`ShapeError::BadParameter`]: a parameter no number type or capacity could make valid —
+//!    a NaN or infinite length, a length ≤ 0, a minor radius above the major one, fewer than 3
+//!    segments, 0 terrain cells, more than 4 icosphere subdivisions.
+//! 2. [`ShapeError::OutOfRange`]: the shape's extent (its largest coordinate; for the terrain,
+//!    the largest difference between coordinates) does not fit `S` (it would saturate a
+//!    fixed-point type, which the renderer then treats as invalid, or overflow `f32`) or rounds
+//!    to zero in `S` (every vertex would coincide).
+//! 3. [`ShapeError::Capacity`]: the shape needs more than `V` vertices or `T` triangles, or more
+//!    than the 65 536 vertices `u16` indices address. The counts are computed with checked
+//!    arithmetic and never wrap; a count beyond `usize::MAX` is reported as `None`.
+//!
+//! So a constructor never panics, never loops over more than the capacity it checked, and never
+//! returns `Ok` with a shape other than the one its documentation describes.
 
 use core::f64::consts::PI;
+use core::fmt;
 
 use heapless::Vec;
 
@@ -13,40 +30,217 @@ use crate::math::Vec3;
 use crate::mesh::{vertex_normals, Mesh};
 use crate::scalar::Scalar;
 
+/// The most vertices `u16` indices can address.
+const MAX_INDEXED: usize = 1 << 16;
+
 /// A generated mesh with its own storage: `V` vertices (positions and unit normals) and `T`
 /// triangles.
 #[derive(Clone, Debug)]
 pub struct Shape<S, const V: usize, const T: usize> {
-    /// Positions.
+    /// Positions. Every coordinate is at most the shape's extent in magnitude (the constructor
+    /// checked that the extent is a valid, non-zero value of `S`); rounded once from `f64`.
     pub positions: Vec<Vec3<S>, V>,
-    /// Unit vertex normals.
+    /// Unit vertex normals (rounded once from `f64`, or computed in `S` for the terrain).
     pub normals: Vec<Vec3<S>, V>,
-    /// Counter-clockwise triangles.
+    /// Counter-clockwise triangles; every index is below `positions.len()` (≤ 65 536).
     pub indices: Vec<[u16; 3], T>,
 }
 
-/// The shape does not fit its compile-time capacity (or its parameters are out of range).
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub struct ShapeError {
-    /// Vertices the shape needs.
-    pub vertices: usize,
-    /// Triangles the shape needs.
-    pub triangles: usize,
+/// Why a shape could not be built: a bad parameter, a shape the number type cannot hold, or too
+/// little storage. See the [module documentation](self) for the order of the checks.
+#[derive(Copy, Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ShapeError {
+    /// A parameter is outside the range the constructor accepts, whatever the number type and
+    /// the capacities.
+    BadParameter {
+        /// The parameter's name in the constructor's signature (`"h"`, `"big_r"`, `"nu"`, ...).
+        name: &'static str,
+        /// The value given.
+        value: ParamValue,
+        /// What the constructor accepts, in words (`"finite and > 0"`, `">= 3"`, ...).
+        expected: &'static str,
+    },
+    /// The parameters are valid, but the shape's extent — its largest coordinate in magnitude,
+    /// or for the terrain, whose normals are computed in `S`, the largest difference between two
+    /// vertices' coordinates — does not fit the number type `S`: it saturates or overflows
+    /// there (the renderer would skip every triangle touching such a vertex as invalid, or the
+    /// shape would be squashed), or, when `rounds_to_zero`, it rounds to 0 (every vertex would
+    /// coincide).
+    OutOfRange {
+        /// The shape's extent, computed in `f64` from the parameters (see each constructor).
+        extent: f64,
+        /// [`Scalar::NAME`] of the number type.
+        number_type: &'static str,
+        /// `true` when `extent` rounds to zero in `S`, `false` when it is too large for `S`.
+        rounds_to_zero: bool,
+    },
+    /// The parameters are valid but the shape does not fit its storage.
+    Capacity {
+        /// Vertices the shape needs; `None` when the count exceeds `usize::MAX`.
+        vertices: Option<usize>,
+        /// Triangles the shape needs; `None` when the count exceeds `usize::MAX`.
+        triangles: Option<usize>,
+        /// Vertices the shape can hold: `V`, or 65 536 (what `u16` indices address) if smaller.
+        vertex_capacity: usize,
+        /// Triangles the shape can hold: `T`.
+        triangle_capacity: usize,
+    },
+}
+
+/// The value of a rejected parameter ([`ShapeError::BadParameter`]).
+#[derive(Copy, Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ParamValue {
+    /// A length or amplitude, exactly as given (NaN and infinities included).
+    Real(f64),
+    /// A segment, cell or subdivision count, exactly as given.
+    Count(u64),
+}
+
+impl fmt::Display for ParamValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ParamValue::Real(v) => write!(f, "{v}"),
+            ParamValue::Count(n) => write!(f, "{n}"),
+        }
+    }
+}
+
+/// Writes a count, or that it exceeds `usize::MAX`.
+struct CountText(Option<usize>);
+
+impl fmt::Display for CountText {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            Some(n) => write!(f, "{n}"),
+            None => write!(f, "more than {}", usize::MAX),
+        }
+    }
+}
+
+impl fmt::Display for ShapeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            ShapeError::BadParameter {
+                name,
+                value,
+                expected,
+            } => write!(
+                f,
+                "bad shape parameter: {name} = {value}, expected {expected}"
+            ),
+            ShapeError::OutOfRange {
+                extent,
+                number_type,
+                rounds_to_zero: true,
+            } => write!(
+                f,
+                "shape too small for {number_type}: its extent {extent} rounds to 0"
+            ),
+            ShapeError::OutOfRange {
+                extent,
+                number_type,
+                rounds_to_zero: false,
+            } => write!(
+                f,
+                "shape too large for {number_type}: its extent {extent} is beyond the type's \
+                 valid range"
+            ),
+            ShapeError::Capacity {
+                vertices,
+                triangles,
+                vertex_capacity,
+                triangle_capacity,
+            } => write!(
+                f,
+                "shape capacity too small: it needs {} vertices and {} triangles, the shape \
+                 holds {vertex_capacity} vertices and {triangle_capacity} triangles",
+                CountText(vertices),
+                CountText(triangles),
+            ),
+        }
+    }
+}
+
+impl core::error::Error for ShapeError {}
+
+/// `Ok` when `v` is finite and positive, else [`ShapeError::BadParameter`] naming it.
+fn positive(name: &'static str, v: f64) -> Result<(), ShapeError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(ShapeError::BadParameter {
+            name,
+            value: ParamValue::Real(v),
+            expected: "finite and > 0",
+        })
+    }
+}
+
+/// `Ok` when the count `n` is at least `min`, else [`ShapeError::BadParameter`] naming it.
+fn at_least(
+    name: &'static str,
+    n: usize,
+    min: usize,
+    expected: &'static str,
+) -> Result<(), ShapeError> {
+    if n >= min {
+        Ok(())
+    } else {
+        Err(ShapeError::BadParameter {
+            name,
+            // usize is at most 64 bits on every Rust target; saturate rather than assume it.
+            value: ParamValue::Count(u64::try_from(n).unwrap_or(u64::MAX)),
+            expected,
+        })
+    }
 }
 
 impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
-    fn with_capacity_for(vertices: usize, triangles: usize) -> Result<Self, ShapeError> {
-        if vertices > V || triangles > T || vertices > 1 << 16 {
-            return Err(ShapeError {
-                vertices,
-                triangles,
+    /// Checks that the shape's largest coordinate in magnitude, `extent` (finite and > 0, from
+    /// already checked parameters), and its negation are valid values of `S` and that `extent`
+    /// does not round to zero.
+    fn check_extent(extent: f64) -> Result<(), ShapeError> {
+        let (hi, lo) = (S::from_f64(extent), S::from_f64(-extent));
+        if !(extent.is_finite() && hi.is_valid() && lo.is_valid()) {
+            return Err(ShapeError::OutOfRange {
+                extent,
+                number_type: S::NAME,
+                rounds_to_zero: false,
             });
         }
-        Ok(Shape {
-            positions: Vec::new(),
-            normals: Vec::new(),
-            indices: Vec::new(),
-        })
+        if hi <= S::ZERO {
+            return Err(ShapeError::OutOfRange {
+                extent,
+                number_type: S::NAME,
+                rounds_to_zero: true,
+            });
+        }
+        Ok(())
+    }
+
+    /// Empty storage for a shape of `vertices` vertices and `triangles` triangles (`None`: more
+    /// than `usize::MAX`), or [`ShapeError::Capacity`] if it does not fit `V`, `T` and `u16`
+    /// indices. After `Ok`, pushing that many vertices and triangles cannot fail.
+    fn with_capacity_for(
+        vertices: Option<usize>,
+        triangles: Option<usize>,
+    ) -> Result<Self, ShapeError> {
+        let vertex_capacity = V.min(MAX_INDEXED);
+        match (vertices, triangles) {
+            (Some(v), Some(t)) if v <= vertex_capacity && t <= T => Ok(Shape {
+                positions: Vec::new(),
+                normals: Vec::new(),
+                indices: Vec::new(),
+            }),
+            _ => Err(ShapeError::Capacity {
+                vertices,
+                triangles,
+                vertex_capacity,
+                triangle_capacity: T,
+            }),
+        }
     }
 
     fn vertex(&mut self, p: [f64; 3], n: [f64; 3]) {
@@ -56,6 +250,7 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
     }
 
     fn tri(&mut self, a: usize, b: usize, c: usize) {
+        // Indices are below the vertex count, checked ≤ 65 536 up front: `as u16` is exact.
         let _ = self.indices.push([a as u16, b as u16, c as u16]);
     }
 
@@ -68,8 +263,16 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
 
     /// An axis-aligned cube of half-size `h` centred at the origin: 24 vertices (4 per face, with
     /// the face's normal) and 12 triangles.
+    ///
+    /// # Errors
+    ///
+    /// [`ShapeError::BadParameter`] unless `h` is finite and > 0; [`ShapeError::OutOfRange`] if
+    /// ±`h` is not a valid value of `S` or `h` rounds to 0 there; [`ShapeError::Capacity`] if
+    /// `V < 24` or `T < 12`.
     pub fn cube(h: f64) -> Result<Self, ShapeError> {
-        let mut s = Self::with_capacity_for(24, 12)?;
+        positive("h", h)?;
+        Self::check_extent(h)?;
+        let mut s = Self::with_capacity_for(Some(24), Some(12))?;
         // For each face: normal and two in-plane axes (u, v) with u × v = normal.
         let faces: [([f64; 3], [f64; 3], [f64; 3]); 6] = [
             ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]),
@@ -98,14 +301,31 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
     /// `N = (cos v cos u, cos v sin u, sin v)`; each quad gives triangles
     /// `(i,j),(i+1,j),(i+1,j+1)` and `(i,j),(i+1,j+1),(i,j+1)` (indices wrap), counter-clockwise
     /// seen from outside: `nu·nv` vertices, `2·nu·nv` triangles.
+    ///
+    /// # Errors
+    ///
+    /// [`ShapeError::BadParameter`] unless `big_r` is finite and > 0, `r` is finite and in
+    /// (0, `big_r`] (a larger minor radius makes a self-intersecting spindle torus whose inner
+    /// triangles face inward), and `nu`, `nv` ≥ 3; [`ShapeError::OutOfRange`] if the extent
+    /// `big_r + r` is not a valid value of `S` or rounds to 0 there; [`ShapeError::Capacity`] if
+    /// `nu·nv` exceeds `V` or 65 536, or `2·nu·nv` exceeds `T`.
     pub fn torus(big_r: f64, r: f64, nu: usize, nv: usize) -> Result<Self, ShapeError> {
-        if nu < 3 || nv < 3 {
-            return Err(ShapeError {
-                vertices: nu * nv,
-                triangles: 2 * nu * nv,
+        positive("big_r", big_r)?;
+        positive("r", r)?;
+        if r > big_r {
+            return Err(ShapeError::BadParameter {
+                name: "r",
+                value: ParamValue::Real(r),
+                expected: "<= big_r",
             });
         }
-        let mut s = Self::with_capacity_for(nu * nv, 2 * nu * nv)?;
+        at_least("nu", nu, 3, ">= 3")?;
+        at_least("nv", nv, 3, ">= 3")?;
+        Self::check_extent(big_r + r)?;
+        let vertices = nu.checked_mul(nv);
+        let triangles = vertices.and_then(|n| n.checked_mul(2));
+        // After this, nu·nv ≤ 65 536: the loops below are bounded by the capacity.
+        let mut s = Self::with_capacity_for(vertices, triangles)?;
         for i in 0..nu {
             let (su, cu) = libm::sincos(2.0 * PI * i as f64 / nu as f64);
             for j in 0..nv {
@@ -128,16 +348,26 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
 
     /// A sphere of `radius` made by subdividing an icosahedron `subdivisions` times:
     /// `10·4ⁿ + 2` vertices and `20·4ⁿ` triangles (n = 0..=4).
+    ///
+    /// # Errors
+    ///
+    /// [`ShapeError::BadParameter`] unless `radius` is finite and > 0 and `subdivisions` ≤ 4;
+    /// [`ShapeError::OutOfRange`] if ±`radius` is not a valid value of `S` or rounds to 0
+    /// there; [`ShapeError::Capacity`] if `V` or `T` is below the counts above.
     pub fn icosphere(radius: f64, subdivisions: u32) -> Result<Self, ShapeError> {
-        let n4 = 1usize << (2 * subdivisions.min(8));
-        let (nv, nt) = (10 * n4 + 2, 20 * n4);
+        positive("radius", radius)?;
         if subdivisions > 4 {
-            return Err(ShapeError {
-                vertices: nv,
-                triangles: nt,
+            return Err(ShapeError::BadParameter {
+                name: "subdivisions",
+                value: ParamValue::Count(u64::from(subdivisions)),
+                expected: "0..=4",
             });
         }
-        let mut s = Self::with_capacity_for(nv, nt)?;
+        Self::check_extent(radius)?;
+        // 4ⁿ ≤ 256: the counts are at most 2 562 and 5 120.
+        let n4 = 1usize << (2 * subdivisions);
+        let (nv, nt) = (10 * n4 + 2, 20 * n4);
+        let mut s = Self::with_capacity_for(Some(nv), Some(nt))?;
         // Unit-sphere positions in f64 while subdividing; converted at the end.
         let mut pos: Vec<[f64; 3], 2562> = Vec::new();
         let mut tris: Vec<[u16; 3], 5120> = Vec::new();
@@ -226,15 +456,43 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
     /// `cells × cells` quads, height `amplitude · sin(2.1x)·cos(1.7z)`-style rolling hills
     /// (amplitude 0 gives a flat ground plane). Faces up (+Y); normals are face averages.
     /// `(cells+1)²` vertices, `2·cells²` triangles.
+    ///
+    /// # Errors
+    ///
+    /// [`ShapeError::BadParameter`] unless `size` is finite, > 0 and at most `f64::MAX / π`,
+    /// `cells` ≥ 1 and `amplitude` is finite (any sign; negative turns hills into valleys);
+    /// [`ShapeError::OutOfRange`] if the extent `max(size, 2·|amplitude|)` (the largest
+    /// difference between two vertices' coordinates, from which the normals are computed in
+    /// `S`) is not a valid value of `S` or rounds to 0 there; [`ShapeError::Capacity`] if
+    /// `(cells+1)²` exceeds `V` or 65 536, or `2·cells²` exceeds `T`.
     pub fn terrain(size: f64, cells: usize, amplitude: f64) -> Result<Self, ShapeError> {
-        let n = cells + 1;
-        if cells == 0 {
-            return Err(ShapeError {
-                vertices: 1,
-                triangles: 0,
+        positive("size", size)?;
+        at_least("cells", cells, 1, ">= 1")?;
+        if !amplitude.is_finite() {
+            return Err(ShapeError::BadParameter {
+                name: "amplitude",
+                value: ParamValue::Real(amplitude),
+                expected: "finite",
             });
         }
-        let mut s = Self::with_capacity_for(n * n, 2 * cells * cells)?;
+        // The hills' phase 2π·x/size, with |x| ≤ size/2, must not overflow f64.
+        if !(2.0 * PI * (size * 0.5)).is_finite() {
+            return Err(ShapeError::BadParameter {
+                name: "size",
+                value: ParamValue::Real(size),
+                expected: "finite, > 0 and at most f64::MAX / π",
+            });
+        }
+        // |x|, |z| ≤ size/2 and |y| ≤ |amplitude|·(0.6 + 0.4), so two vertices differ by at
+        // most size or 2·|amplitude| in a coordinate: the normals are computed in S from those
+        // differences, which must not saturate.
+        Self::check_extent(size.max(2.0 * amplitude.abs()))?;
+        let n = cells.checked_add(1);
+        let vertices = n.and_then(|n| n.checked_mul(n));
+        let triangles = cells.checked_mul(cells).and_then(|c| c.checked_mul(2));
+        // After this, (cells+1)² ≤ 65 536: the loops below are bounded by the capacity.
+        let mut s = Self::with_capacity_for(vertices, triangles)?;
+        let n = cells + 1;
         for i in 0..n {
             for k in 0..n {
                 let x = size * (i as f64 / cells as f64 - 0.5);
@@ -310,9 +568,11 @@ mod tests {
         let e = Shape::<f32, 100, 100>::torus(1.0, 0.4, 32, 16).unwrap_err();
         assert_eq!(
             e,
-            ShapeError {
-                vertices: 512,
-                triangles: 1024
+            ShapeError::Capacity {
+                vertices: Some(512),
+                triangles: Some(1024),
+                vertex_capacity: 100,
+                triangle_capacity: 100,
             }
         );
     }
