@@ -41,31 +41,239 @@ pub struct Camera<S> {
     pub eye: Vec3<S>,
 }
 
-/// Why a camera could not be built.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+/// Why a camera could not be built (or, from [`crate::Renderer::render`], why a camera whose
+/// public fields were changed is not drawn). Every variant names the parameter and its value.
+///
+/// Values are the parameter as the number type holds it, converted to `f64` (exact for every
+/// [`Scalar`]). Equality compares them bit for bit, so an error carrying NaN equals itself.
+#[derive(Copy, Clone, Debug)]
 #[non_exhaustive]
 pub enum CameraError {
-    /// `eye` equals `target`: no view direction.
+    /// `eye` equals `target` (in the number type): no view direction.
     EyeAtTarget,
     /// `up` is parallel to the view direction (or zero).
     UpParallelToView,
-    /// near/far/fov/height out of range (near ≤ 0 for perspective, far ≤ near, fov ∉ (0, π),
-    /// height ≤ 0) or not finite.
-    BadProjection,
+    /// A parameter is NaN or infinite (float types).
+    NotFinite {
+        /// The parameter, e.g. `"eye[0]"`, `"near"`.
+        param: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// A parameter, or a quantity the camera computes from it, is at the saturation rail of a
+    /// fixed-point type or overflows a float type: a value beyond the type's range (Q16.16:
+    /// ±32 768) — and, in fixed point, a NaN or ±∞ input, which [`Scalar::from_f64`]
+    /// saturates there.
+    OutOfRange {
+        /// The parameter or quantity, e.g. `"eye[2]"`, `"eye - target"`, `"view[2][3]"`.
+        param: &'static str,
+        /// Its value in the number type.
+        value: f64,
+        /// The number type ([`Scalar::NAME`]).
+        number_type: &'static str,
+    },
+    /// A projection parameter outside its valid range.
+    BadProjection {
+        /// `"fov_y"`, `"near"`, `"far"` or `"height"`.
+        param: &'static str,
+        /// Its value.
+        value: f64,
+        /// The valid range, e.g. `"0 < fov_y < π (radians)"`.
+        expected: &'static str,
+    },
+    /// A parameter that must be positive is zero in the number type — e.g. a perspective near
+    /// plane of 10⁻⁶ in Q16.16, whose smallest positive value is 2⁻¹⁶ ≈ 1.5·10⁻⁵.
+    RoundsToZero {
+        /// The parameter (`"near"`).
+        param: &'static str,
+        /// The number type ([`Scalar::NAME`]).
+        number_type: &'static str,
+        /// The type's smallest positive value ([`Scalar::MIN_POSITIVE`]); inputs below half
+        /// of it round to 0.
+        smallest: f64,
+    },
+    /// A perspective `far / near` above [`MAX_DEPTH_RATIO`]: the 16-bit depth buffer cannot
+    /// hold the scene. Stored depth is `65535·(1 − near/d)/(1 − near/far)` at distance `d`, so
+    /// everything farther than about `far / (1 + ratio/131 070)` rounds to the clear depth
+    /// (65 535) and fails the depth test: at the limit, geometry beyond a ninth of the far
+    /// distance would vanish, and with near 10⁻⁵, far 20 nothing beyond 1.3 units is drawn.
+    DepthPrecision {
+        /// `near` in the number type.
+        near: f64,
+        /// `far` in the number type.
+        far: f64,
+        /// `far / near`.
+        ratio: f64,
+        /// [`MAX_DEPTH_RATIO`].
+        limit: f64,
+    },
+}
+
+/// The largest perspective `far / near` a camera accepts: 2²⁰ = 1 048 576 (see
+/// [`CameraError::DepthPrecision`]). A larger ratio is an error, not a blank frame.
+pub const MAX_DEPTH_RATIO: f64 = (1u32 << 20) as f64;
+
+impl CameraError {
+    /// The variant and its fields in a form compared bit for bit.
+    fn key(&self) -> (u8, &'static str, &'static str, [u64; 4]) {
+        let b = |v: f64| v.to_bits();
+        match *self {
+            CameraError::EyeAtTarget => (0, "", "", [0; 4]),
+            CameraError::UpParallelToView => (1, "", "", [0; 4]),
+            CameraError::NotFinite { param, value } => (2, param, "", [b(value), 0, 0, 0]),
+            CameraError::OutOfRange {
+                param,
+                value,
+                number_type,
+            } => (3, param, number_type, [b(value), 0, 0, 0]),
+            CameraError::BadProjection {
+                param,
+                value,
+                expected,
+            } => (4, param, expected, [b(value), 0, 0, 0]),
+            CameraError::RoundsToZero {
+                param,
+                number_type,
+                smallest,
+            } => (5, param, number_type, [b(smallest), 0, 0, 0]),
+            CameraError::DepthPrecision {
+                near,
+                far,
+                ratio,
+                limit,
+            } => (6, "", "", [b(near), b(far), b(ratio), b(limit)]),
+        }
+    }
+}
+
+impl PartialEq for CameraError {
+    fn eq(&self, other: &Self) -> bool {
+        self.key() == other.key()
+    }
+}
+
+impl Eq for CameraError {}
+
+impl core::fmt::Display for CameraError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            CameraError::EyeAtTarget => write!(f, "camera eye equals target: no view direction"),
+            CameraError::UpParallelToView => {
+                write!(
+                    f,
+                    "camera up vector is zero or parallel to the view direction"
+                )
+            }
+            CameraError::NotFinite { param, value } => {
+                write!(f, "camera {param} is {value}: must be finite")
+            }
+            CameraError::OutOfRange {
+                param,
+                value,
+                number_type,
+            } => write!(
+                f,
+                "camera {param} = {value} is out of the range of {number_type} (a fixed-point \
+                 value at its saturation rail comes from an out-of-range, NaN or infinite input)"
+            ),
+            CameraError::BadProjection {
+                param,
+                value,
+                expected,
+            } => write!(f, "camera {param} = {value}: must be {expected}"),
+            CameraError::RoundsToZero {
+                param,
+                number_type,
+                smallest,
+            } => write!(
+                f,
+                "camera {param} is 0 in {number_type} (its smallest positive value is \
+                 {smallest:e}; smaller inputs round to 0): must be > 0"
+            ),
+            CameraError::DepthPrecision {
+                near,
+                far,
+                ratio,
+                limit,
+            } => write!(
+                f,
+                "camera far/near = {far}/{near} = {ratio:.0} exceeds the 16-bit depth buffer's \
+                 limit {limit:.0}: geometry beyond far/(1 + ratio/131070) would round to the \
+                 clear depth and vanish; raise near or lower far"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for CameraError {}
+
+/// `Err` naming `param` unless `v` is valid in `S`: [`CameraError::NotFinite`] for a float NaN
+/// or infinity, [`CameraError::OutOfRange`] for a finite value the type reports invalid (a
+/// fixed-point rail).
+fn finite<S: Scalar>(param: &'static str, v: S) -> Result<(), CameraError> {
+    if v.is_valid() {
+        return Ok(());
+    }
+    let value = v.to_f64();
+    Err(if value.is_finite() {
+        CameraError::OutOfRange {
+            param,
+            value,
+            number_type: S::NAME,
+        }
+    } else {
+        CameraError::NotFinite { param, value }
+    })
+}
+
+/// [`finite`] for each component of a vector, named `names[i]`.
+fn finite3<S: Scalar>(names: [&'static str; 3], v: Vec3<S>) -> Result<(), CameraError> {
+    for i in 0..3 {
+        finite(names[i], v[i])?;
+    }
+    Ok(())
 }
 
 impl<S: Scalar> Camera<S> {
     /// A camera at `eye` looking at `target` with `up` roughly up, using the U-V-N frame of the
     /// seeds: `n = normalize(eye − target)` (view +Z points away from what is seen),
     /// `u = normalize(up × n)` (screen right), `v = n × u` (screen up).
+    ///
+    /// # Errors
+    ///
+    /// A [`CameraError`] naming the parameter and its value: non-finite or out of the number
+    /// type's range (eye, target, up, `eye − target`, the view matrix), eye at target, up
+    /// parallel to the view, or a projection outside its valid range (see
+    /// [`Camera::validate`]).
     pub fn look_at(
         eye: Vec3<S>,
         target: Vec3<S>,
         up: Vec3<S>,
         projection: Projection<S>,
     ) -> Result<Self, CameraError> {
+        finite3(["eye[0]", "eye[1]", "eye[2]"], eye)?;
+        finite3(["target[0]", "target[1]", "target[2]"], target)?;
+        finite3(["up[0]", "up[1]", "up[2]"], up)?;
         let zero = [S::ZERO; 3];
-        let n = normalize(sub(eye, target));
+        let d = sub(eye, target);
+        // Finite inputs whose difference overflows the type.
+        finite3(
+            [
+                "eye[0] - target[0]",
+                "eye[1] - target[1]",
+                "eye[2] - target[2]",
+            ],
+            d,
+        )
+        .map_err(|e| match e {
+            CameraError::NotFinite { param, value } => CameraError::OutOfRange {
+                param,
+                value,
+                number_type: S::NAME,
+            },
+            e => e,
+        })?;
+        let n = normalize(d);
         if n == zero {
             return Err(CameraError::EyeAtTarget);
         }
@@ -83,35 +291,103 @@ impl<S: Scalar> Camera<S> {
                 [z, z, z, S::ONE],
             ],
         };
-        projection.check()?;
-        Ok(Camera {
+        let camera = Camera {
             view,
             projection,
             eye,
-        })
+        };
+        camera.validate()?;
+        Ok(camera)
+    }
+
+    /// Checks what [`Camera::look_at`] checks of a camera's public fields, for a camera built
+    /// or changed by hand ([`crate::Renderer::render`] calls it every frame; a few dozen
+    /// comparisons): every entry of `view` and `eye` valid in the number type, and the
+    /// projection in range ([`Projection::validate`]).
+    ///
+    /// # Errors
+    ///
+    /// The first problem found, naming the field and its value.
+    pub fn validate(&self) -> Result<(), CameraError> {
+        const VIEW: [[&str; 4]; 4] = [
+            ["view[0][0]", "view[0][1]", "view[0][2]", "view[0][3]"],
+            ["view[1][0]", "view[1][1]", "view[1][2]", "view[1][3]"],
+            ["view[2][0]", "view[2][1]", "view[2][2]", "view[2][3]"],
+            ["view[3][0]", "view[3][1]", "view[3][2]", "view[3][3]"],
+        ];
+        finite3(["eye[0]", "eye[1]", "eye[2]"], self.eye)?;
+        for i in 0..4 {
+            for j in 0..4 {
+                finite(VIEW[i][j], self.view.m[i][j])?;
+            }
+        }
+        self.projection.validate()
     }
 }
 
 impl<S: Scalar> Projection<S> {
-    fn check(&self) -> Result<(), CameraError> {
-        let ok = match *self {
+    /// Checks the projection's parameters: each finite and in the number type's range;
+    /// perspective `0 < fov_y < π`, `near > 0` (and not rounded to 0), `far > near` and
+    /// `far / near ≤` [`MAX_DEPTH_RATIO`]; orthographic `height > 0`, `far > near` and
+    /// `far − near` in range.
+    ///
+    /// # Errors
+    ///
+    /// The first problem found, naming the parameter and its value.
+    pub fn validate(&self) -> Result<(), CameraError> {
+        let bad = |param, value: S, expected| {
+            Err(CameraError::BadProjection {
+                param,
+                value: value.to_f64(),
+                expected,
+            })
+        };
+        match *self {
             Projection::Perspective { fov_y, near, far } => {
+                finite("fov_y", fov_y)?;
+                finite("near", near)?;
+                finite("far", far)?;
                 let pi = S::from_f64(core::f64::consts::PI);
-                [fov_y, near, far].iter().all(|v| v.is_valid())
-                    && fov_y > S::ZERO
-                    && fov_y < pi
-                    && near > S::ZERO
-                    && far > near
+                if !(fov_y > S::ZERO && fov_y < pi) {
+                    return bad("fov_y", fov_y, "0 < fov_y < π (radians)");
+                }
+                if near == S::ZERO {
+                    return Err(CameraError::RoundsToZero {
+                        param: "near",
+                        number_type: S::NAME,
+                        smallest: S::MIN_POSITIVE,
+                    });
+                }
+                if near < S::ZERO {
+                    return bad("near", near, "> 0 for a perspective projection");
+                }
+                if far <= near {
+                    return bad("far", far, "> near");
+                }
+                let (n, f) = (near.to_f64(), far.to_f64());
+                if f > n * MAX_DEPTH_RATIO {
+                    return Err(CameraError::DepthPrecision {
+                        near: n,
+                        far: f,
+                        ratio: f / n,
+                        limit: MAX_DEPTH_RATIO,
+                    });
+                }
             }
             Projection::Orthographic { height, near, far } => {
-                [height, near, far].iter().all(|v| v.is_valid()) && height > S::ZERO && far > near
+                finite("height", height)?;
+                finite("near", near)?;
+                finite("far", far)?;
+                if height <= S::ZERO {
+                    return bad("height", height, "> 0");
+                }
+                if far <= near {
+                    return bad("far", far, "> near");
+                }
+                finite("far - near", far - near)?;
             }
-        };
-        if ok {
-            Ok(())
-        } else {
-            Err(CameraError::BadProjection)
         }
+        Ok(())
     }
 
     /// The projection matrix for a viewport of `aspect` = width / height, mapping view space to
@@ -247,12 +523,16 @@ mod tests {
         );
         let bad = Projection::Perspective {
             fov_y: 0.8f32,
-            near: 0.0,
+            near: -1.0,
             far: 10.0,
         };
         assert_eq!(
             Camera::look_at([0.0, 0.0, 5.0], [0.0; 3], [0.0, 1.0, 0.0], bad),
-            Err(CameraError::BadProjection)
+            Err(CameraError::BadProjection {
+                param: "near",
+                value: -1.0,
+                expected: "> 0 for a perspective projection"
+            })
         );
     }
 }

@@ -143,12 +143,24 @@ pub struct BenchFrame {
 
 /// Why a benchmark frame failed.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum BenchError<E> {
     /// Building the scene failed (a shape or camera).
     Scene,
     /// Rendering failed.
     Render(crate::Error<E>),
 }
+
+impl<E: core::fmt::Display> core::fmt::Display for BenchError<E> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            BenchError::Scene => write!(f, "building the benchmark scene failed (shape or camera)"),
+            BenchError::Render(e) => write!(f, "rendering the benchmark scene failed: {e}"),
+        }
+    }
+}
+
+impl<E: core::fmt::Debug + core::fmt::Display> core::error::Error for BenchError<E> {}
 
 fn look<S: Scalar>(
     eye: [f64; 3],

@@ -216,10 +216,28 @@ impl<S: Scalar> Mat4<S> {
 
     /// The matrix that transforms normals for this matrix's upper 3×3 block `A`: the cofactor
     /// matrix (`det(A)·A⁻ᵀ`, which needs no division), scaled by a power of two so its largest
-    /// column has length in [1/2, 2), plus whether `A` is a similarity (rotation times uniform
-    /// scale), in which case normals stay unit length and need no renormalization.
+    /// column has length in [1/2, 2) — and negated when `det(A) < 0` (a mirror), so that it is
+    /// a positive multiple of `A⁻ᵀ` and outward normals stay outward — plus whether `A` is a
+    /// similarity (rotation times uniform scale), in which case normals stay unit length and
+    /// need no renormalization.
     #[must_use]
     pub fn normal_matrix(&self) -> (Self, bool) {
+        let (c, sim, _) = self.normal_matrix_mirrored();
+        (c, sim)
+    }
+
+    /// Whether the upper 3×3 block has a negative determinant (a mirror: it turns
+    /// counter-clockwise triangles clockwise, and the renderer then swaps their winding).
+    /// The sign is taken after scaling the block by a power of two, so tiny and huge scales
+    /// keep it in fixed point; a singular block is not mirrored.
+    #[must_use]
+    pub fn is_mirrored(&self) -> bool {
+        self.normal_matrix_mirrored().2
+    }
+
+    /// [`Mat4::normal_matrix`] and [`Mat4::is_mirrored`] from one cofactor computation.
+    #[must_use]
+    pub(crate) fn normal_matrix_mirrored(&self) -> (Self, bool, bool) {
         // First bring the 3×3 block's largest entry into [1/2, 2) by a power of two (exact), so
         // that the cofactors — products of two entries — keep their precision in fixed point
         // even for tiny or huge scales; the overall scale of a normal matrix does not matter.
@@ -251,6 +269,17 @@ impl<S: Scalar> Mat4<S> {
                 let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
                 let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
                 c.m[i][j] = a(i1, j1) * a(i2, j2) - a(i1, j2) * a(i2, j1);
+            }
+        }
+        // det(A) = Σ a₀ⱼ·C₀ⱼ, in the scaled block (entries below 2, cofactors below 8: no
+        // saturation in any format).
+        let det = a(0, 0) * c.m[0][0] + a(0, 1) * c.m[0][1] + a(0, 2) * c.m[0][2];
+        let mirrored = det < S::ZERO;
+        if mirrored {
+            for row in c.m.iter_mut().take(3) {
+                for e in row.iter_mut().take(3) {
+                    *e = -*e;
+                }
             }
         }
         let col = |c: &Self, j: usize| [c.m[0][j], c.m[1][j], c.m[2][j]];
@@ -287,7 +316,7 @@ impl<S: Scalar> Mat4<S> {
                 sim &= dot(col(&c, j), col(&c, k)).abs() <= tol;
             }
         }
-        (c, sim)
+        (c, sim, mirrored)
     }
 
     /// Converts every entry to another scalar type (through `f64`).

@@ -13,6 +13,15 @@ pub struct Mesh<'a, S> {
     positions: &'a [Vec3<S>],
     indices: &'a [[u16; 3]],
     normals: Option<&'a [Vec3<S>]>,
+    /// Whether a position has a coordinate that is not valid in `S` ([`Scalar::is_valid`]:
+    /// NaN, infinite, or a fixed-point rail, where a NaN input lands): found once when the
+    /// mesh is built, so that the renderer checks positions one by one only for such a mesh.
+    bad_positions: bool,
+}
+
+/// Whether any coordinate of `positions` is not valid in `S`.
+fn any_invalid<S: Scalar>(positions: &[Vec3<S>]) -> bool {
+    positions.iter().any(|p| !p.iter().all(|v| v.is_valid()))
 }
 
 /// Why a mesh could not be built.
@@ -60,6 +69,7 @@ impl<'a, S: Scalar> Mesh<'a, S> {
             positions,
             indices,
             normals: None,
+            bad_positions: any_invalid(positions),
         })
     }
 
@@ -72,6 +82,7 @@ impl<'a, S: Scalar> Mesh<'a, S> {
             positions,
             indices,
             normals,
+            bad_positions: any_invalid(positions),
         }
     }
 
@@ -105,6 +116,15 @@ impl<'a, S: Scalar> Mesh<'a, S> {
         self.normals
     }
 
+    /// Whether a position has a coordinate that is NaN, infinite or (fixed point) at a
+    /// saturation rail — where [`Scalar::from_f64`] puts NaN, ±∞ and out-of-range inputs. The
+    /// renderer skips the triangles that use such a vertex and counts them in
+    /// [`crate::Stats::invalid`], for every number type. Checked once, when the mesh is built.
+    #[must_use]
+    pub fn has_invalid_positions(&self) -> bool {
+        self.bad_positions
+    }
+
     /// Checks every index against the number of positions.
     pub fn validate(&self) -> Result<(), MeshError> {
         for (t, tri) in self.indices.iter().enumerate() {
@@ -120,6 +140,30 @@ impl<'a, S: Scalar> Mesh<'a, S> {
         Ok(())
     }
 }
+
+impl core::fmt::Display for MeshError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            MeshError::TooManyVertices { count } => write!(
+                f,
+                "mesh has {count} positions; u16 indices address at most 65536"
+            ),
+            MeshError::NormalCount { positions, normals } => write!(
+                f,
+                "mesh has {positions} positions but {normals} normals (one per position needed)"
+            ),
+            MeshError::IndexOutOfRange { triangle, index } => write!(
+                f,
+                "mesh triangle {triangle} refers to vertex {index}, which does not exist"
+            ),
+            MeshError::BufferTooSmall { needed } => {
+                write!(f, "output buffer too small: {needed} entries needed")
+            }
+        }
+    }
+}
+
+impl core::error::Error for MeshError {}
 
 /// The unit normal of the counter-clockwise triangle `a, b, c` (zero for a degenerate one).
 ///

@@ -49,6 +49,24 @@ pub enum GlyphError {
     },
 }
 
+impl core::fmt::Display for GlyphError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            GlyphError::FontTooLarge { width, height } => write!(
+                f,
+                "font characters are {width} × {height} px; at most {MAX_GLYPH} × {MAX_GLYPH} \
+                 are supported"
+            ),
+            GlyphError::TooManyChars { capacity } => write!(
+                f,
+                "more distinct characters than the glyph set's capacity {capacity}"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for GlyphError {}
+
 /// Up to `N` characters of a monospaced font, each rasterized once into a 1-bit mask.
 ///
 /// Stored per glyph: the character, and one `u16` per glyph row whose bit `i` is set where

@@ -106,6 +106,48 @@ pub enum Error<E> {
         /// Index of the object in the scene.
         object: usize,
     },
+    /// The scene's camera fails [`crate::Camera::validate`] (its fields are public and may
+    /// have been changed after [`crate::Camera::look_at`]). Nothing was drawn.
+    Camera(crate::CameraError),
+}
+
+impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Error::Target(e) => write!(f, "draw target error: {e}"),
+            Error::Capacity {
+                what,
+                capacity,
+                needed,
+            } => {
+                let (name, what) = match what {
+                    Capacity::Vertices => ("VERTS", "vertices"),
+                    Capacity::Triangles => ("TRIS", "triangles"),
+                    Capacity::ActiveTriangles => ("ACTIVE", "triangles active on one row"),
+                };
+                write!(
+                    f,
+                    "scene needs {needed} {what} but the renderer's {name} capacity is \
+                     {capacity}; nothing was drawn"
+                )
+            }
+            Error::MissingNormals { object } => write!(
+                f,
+                "object {object} is Gouraud-shaded but its mesh has no vertex normals; nothing \
+                 was drawn"
+            ),
+            Error::Camera(e) => write!(f, "{e}; nothing was drawn"),
+        }
+    }
+}
+
+impl<E: core::fmt::Debug + core::fmt::Display> core::error::Error for Error<E> {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        match self {
+            Error::Camera(e) => Some(e),
+            _ => None,
+        }
+    }
 }
 
 /// A pipeline stage, as reported to a [`Probe`].
@@ -169,12 +211,18 @@ impl Probe for NoProbe {
 /// What happened to the triangles and pixels of a frame.
 ///
 /// `repr(C)`: on Cortex-M0 the triangle loop's assembly counts into it by field offset.
+/// `#[non_exhaustive]`: more counts may be added; start from `Stats::default()`.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 #[repr(C)]
+#[non_exhaustive]
 pub struct Stats {
     /// Triangles in the scene's meshes.
     pub triangles_in: u32,
-    /// Skipped: an index out of range, or a vertex that is NaN, infinite or overflowed.
+    /// Skipped: an index out of range, or a vertex that is NaN, infinite or overflowed (a
+    /// fixed-point position at a saturation rail, where NaN and ±∞ inputs land, included);
+    /// and every triangle of an object whose transform, material coefficients or scene light
+    /// directions are not valid in the number type (NaN, infinite, or a fixed-point rail).
+    /// The same for every number type.
     pub invalid: u32,
     /// Rejected: entirely outside the view volume or the screen, or clipped away.
     pub outside: u32,
@@ -276,6 +324,9 @@ struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
     /// Gouraud shading (so no face normals, which are in world space), a normal matrix that
     /// is a rotation (`similar`) and no specular term (which would need the eye direction).
     in_object: bool,
+    /// The transform mirrors (negative determinant): the triangle loop swaps each triangle's
+    /// winding, so the outside stays the front.
+    mirrored: bool,
     eye: Vec3<S>,
     base: usize,
 }
@@ -342,8 +393,11 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
     }
 
     /// Lit colour of a face, in the target's channel units (8.8).
+    /// `tri` in screen winding (swapped for a mirrored object, whose mesh order is restored
+    /// here for the face normal).
     fn face_color<C: TargetColor>(&self, tri: [u16; 3]) -> [u16; 3] {
         let [a, b, c] = tri.map(|i| self.obj.mesh.positions()[i as usize]);
+        let (b, c) = if self.mirrored { (c, b) } else { (b, c) };
         let n = self.world_normal(face_normal(a, b, c), true);
         let k = S::from_f64(1.0 / 3.0);
         let centroid = [0, 1, 2].map(|j| (a[j] + b[j] + c[j]) * k);
@@ -616,14 +670,31 @@ impl<
             height: self.vh as u32,
         };
         let g = S::from_i32(vp.guard_band());
+        // The camera's fields are public: checked every frame (a few dozen comparisons).
+        scene.camera.validate().map_err(Error::Camera)?;
         let pv = scene
             .camera
             .projection
             .matrix(vp.aspect())
             .mul(&scene.camera.view);
         let mut need = (0usize, 0usize);
+        // NaN, infinite or (fixed point) saturated inputs are skipped and counted per object,
+        // the same for every number type (a float NaN would poison every vertex).
+        let ok = |v: &S| v.is_valid();
+        let lights_ok = scene.lights.iter().all(|l| l.direction.iter().all(ok));
         for obj in scene.objects {
-            let (normal_matrix, similar) = obj.transform.normal_matrix();
+            let m = &obj.material;
+            if !(lights_ok
+                && obj.transform.m.iter().all(|r| r.iter().all(ok))
+                && [m.ambient, m.diffuse, m.specular].iter().all(ok))
+            {
+                let n = obj.mesh.indices().len() as u32;
+                need.0 += obj.mesh.positions().len();
+                stats.triangles_in = stats.triangles_in.wrapping_add(n);
+                stats.invalid += n;
+                continue;
+            }
+            let (normal_matrix, similar, mirrored) = obj.transform.normal_matrix_mirrored();
             let in_object = similar
                 && obj.material.shading == Shading::Gouraud
                 && obj.material.specular <= S::ZERO;
@@ -642,6 +713,7 @@ impl<
                 similar,
                 lights: &lights,
                 in_object,
+                mirrored,
                 eye: scene.camera.eye,
                 base: self.verts.len(),
             };
@@ -762,7 +834,7 @@ impl<
             return;
         }
         probe.enter(Stage::Vertices);
-        if S::PROJECT_RUN {
+        if S::PROJECT_RUN && !mesh.has_invalid_positions() {
             let (sx, sy) = (8 * vp.width, 8 * vp.height);
             let mut i = 0;
             loop {
@@ -785,9 +857,20 @@ impl<
                 i += 1;
                 self.push_vertex(o, vp, g, p, stats, probe);
             }
-        } else {
+        } else if !mesh.has_invalid_positions() {
             for &p in positions {
                 self.push_vertex(o, vp, g, p, stats, probe);
+            }
+        } else {
+            // A position NaN, infinite or at a fixed-point rail (known when the mesh was
+            // built): its record is invalid, as a float NaN's clip coordinates make it.
+            for &p in positions {
+                self.push_vertex(o, vp, g, p, stats, probe);
+                if !p.iter().all(|v| v.is_valid()) {
+                    if let Some(v) = self.verts.last_mut() {
+                        v.flags |= INVALID;
+                    }
+                }
             }
         }
         let flat = o.obj.material.shading == Shading::Flat;
@@ -802,7 +885,7 @@ impl<
         // count and bucket; vertices of stored front faces are marked for lighting), which
         // stops at a triangle that needs this loop's full path; flat ones and triangle ids
         // take the full path throughout.
-        let fast = !flat && C::triangle_id(0).is_none();
+        let fast = !flat && C::triangle_id(0).is_none() && !o.mirrored;
         let mut k = 0;
         loop {
             if fast {
@@ -823,8 +906,14 @@ impl<
                     break;
                 }
             }
-            let Some(tri) = tris.get(k) else {
+            let Some(&tri) = tris.get(k) else {
                 break;
+            };
+            // A mirrored object's triangles in screen winding.
+            let tri = &if o.mirrored {
+                [tri[0], tri[2], tri[1]]
+            } else {
+                tri
             };
             let id = first_id.wrapping_add(k as u32) as u16;
             k += 1;

@@ -66,9 +66,24 @@ pub trait Scalar:
     /// The reciprocal of a positive w, in whatever form keeps [`Scalar::ndc`] precise.
     type Recip: Copy + Debug;
 
-    /// Converts from `f64`, rounding to nearest; saturating for fixed-point types (NaN → 0).
+    /// The smallest positive value, as `f64`: 2⁻¹⁶ for Q16.16 (2⁻ᶠ for `f` fraction bits), the
+    /// smallest subnormal for floats (`f32`: ≈1.4·10⁻⁴⁵, `f64`: ≈4.9·10⁻³²⁴). A positive input
+    /// below half of it converts to zero.
+    const MIN_POSITIVE: f64;
+
+    /// Converts from `f64`, rounding to nearest; saturating for fixed-point types. A fixed-point
+    /// type maps NaN to its negative rail (the most negative value), ±∞ and out-of-range values
+    /// to the nearer rail, and [`Scalar::is_valid`] reports every rail invalid: a non-finite
+    /// input is counted and skipped like a float NaN, never drawn as 0.
     #[must_use]
     fn from_f64(v: f64) -> Self;
+    /// A literal: [`Scalar::from_f64`] under a short name, for generic code over every number
+    /// type (`S::lit(0.5)`).
+    #[must_use]
+    #[inline]
+    fn lit(v: f64) -> Self {
+        Self::from_f64(v)
+    }
     /// Converts to `f64` (exact for every implemented type except `f64` → itself).
     #[must_use]
     fn to_f64(self) -> f64;
@@ -172,7 +187,7 @@ pub trait Scalar:
         mul_q32(if negate { -n } else { n }, k)
     }
     /// `self` as a signed integer with `frac` fraction bits, rounded to nearest, saturated to
-    /// `i32` (NaN → 0).
+    /// `i32` (a float NaN → 0).
     #[must_use]
     fn to_fixed_i32(self, frac: u32) -> i32;
     /// A lit channel: `self · k` clamped to 0..=255 and rounded to 8.8 fixed point
@@ -540,6 +555,7 @@ impl Scalar for f64 {
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
     const NAME: &'static str = "f64";
+    const MIN_POSITIVE: f64 = f64::from_bits(1);
     type Recip = f64;
     fn from_f64(v: f64) -> Self {
         v
@@ -579,6 +595,7 @@ impl Scalar for f32 {
     const ZERO: Self = 0.0;
     const ONE: Self = 1.0;
     const NAME: &'static str = "f32";
+    const MIN_POSITIVE: f64 = f32::from_bits(1) as f64;
     type Recip = f32;
     fn from_f64(v: f64) -> Self {
         v as f32
@@ -623,6 +640,7 @@ impl Scalar for micromath::F32 {
     const ZERO: Self = micromath::F32(0.0);
     const ONE: Self = micromath::F32(1.0);
     const NAME: &'static str = "micromath-f32";
+    const MIN_POSITIVE: f64 = f32::from_bits(1) as f64;
     type Recip = f32;
     fn from_f64(v: f64) -> Self {
         micromath::F32(v as f32)
@@ -674,7 +692,8 @@ pub struct FxRecip {
 macro_rules! impl_fx {
     ($t:ident, $frac:expr, $name:expr $(, $thumb_transform:path, $thumb_dir:path, $thumb_project:path, $thumb_run:path, $thumb_light:path)?) => {
         impl Fx<$t> {
-            /// Builds a value from a float literal (rounds to nearest, saturates).
+            /// Builds a value from a float literal (rounds to nearest, saturates; NaN → the
+            /// negative rail): [`Scalar::lit`], callable without the trait in scope.
             #[must_use]
             pub fn lit(v: f64) -> Self {
                 <Self as Scalar>::from_f64(v)
@@ -733,9 +752,14 @@ macro_rules! impl_fx {
             const ZERO: Self = Fx($t::ZERO);
             const ONE: Self = Fx($t::ONE);
             const NAME: &'static str = $name;
+            const MIN_POSITIVE: f64 = 1.0 / (1u64 << $frac) as f64;
             type Recip = FxRecip;
             fn from_f64(v: f64) -> Self {
-                // Round to nearest in f64, then saturate.
+                if v.is_nan() {
+                    // The negative rail, which `is_valid` rejects (as a float NaN).
+                    return Fx($t::MIN);
+                }
+                // Round to nearest in f64, then saturate (±∞ to the rails).
                 Fx($t::from_bits(
                     f64_to_i64(v * (1u64 << $frac) as f64).clamp(i32::MIN as i64, i32::MAX as i64)
                         as i32,
@@ -1095,7 +1119,8 @@ mod tests {
         // 2^-17 is half a step: rounds away from zero in f64's round().
         assert_eq!(Q::lit(1.0 / 131072.0).to_bits(), 1);
         assert_eq!(Q::lit(0.4 / 65536.0).to_bits(), 0);
-        assert_eq!(Q::lit(f64::NAN).to_bits(), 0);
+        // NaN lands on the negative rail, which `is_valid` rejects (it used to become 0).
+        assert_eq!(Q::lit(f64::NAN).to_bits(), i32::MIN);
         assert_eq!(Q::lit(1e30).to_bits(), i32::MAX);
     }
 

@@ -167,10 +167,18 @@ fn camera_inside_a_cube<S: Scalar>() {
     let cube = Shape::<S, 24, 12>::cube(1.0).unwrap();
     let mut m = unlit([255, 255, 255], Shading::Flat);
     m.diffuse = S::from_f64(0.5);
-    // Turn the cube inside out so the faces around the eye face it.
+    // Turn the cube inside out (reversed winding) so the faces around the eye face it. (A
+    // mirroring transform no longer does that: the renderer keeps a mirrored object's outside
+    // in front, issue #21.)
+    let inside_out: Vec<[u16; 3]> = cube
+        .mesh()
+        .indices()
+        .iter()
+        .map(|t| [t[0], t[2], t[1]])
+        .collect();
     let objects = [Object {
-        mesh: cube.mesh(),
-        transform: Mat4::scale([-S::ONE, S::ONE, S::ONE]),
+        mesh: Mesh::new(cube.mesh().positions(), &inside_out).unwrap(),
+        transform: Mat4::identity(),
         material: m,
     }];
     let cam = Camera::look_at(
