@@ -131,7 +131,7 @@ pub use renderer::{
 pub use scalar::{Fx, Scalar};
 pub use scene::{Object, Scene};
 pub use shade::{Light, Material, Shading};
-pub use shapes::{Shape, ShapeError};
+pub use shapes::{ParamValue, Shape, ShapeError};
 
 #[doc(inline)]
 pub use embedded_graphics_core::draw_target::DrawTarget;

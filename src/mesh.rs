@@ -73,16 +73,20 @@ impl<'a, S: Scalar> Mesh<'a, S> {
         })
     }
 
-    pub(crate) fn from_parts(
+    /// A mesh of positions already known to be valid in `S` (a [`crate::Shape`]'s: its
+    /// constructors refuse a shape whose coordinates are not), so that building it — once per
+    /// frame in a firmware's loop — does not scan them again.
+    pub(crate) fn from_valid_parts(
         positions: &'a [Vec3<S>],
         indices: &'a [[u16; 3]],
         normals: Option<&'a [Vec3<S>]>,
     ) -> Self {
+        debug_assert!(!any_invalid(positions));
         Mesh {
             positions,
             indices,
             normals,
-            bad_positions: any_invalid(positions),
+            bad_positions: false,
         }
     }
 

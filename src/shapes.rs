@@ -257,8 +257,9 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
     /// The mesh, with normals.
     #[must_use]
     pub fn mesh(&self) -> Mesh<'_, S> {
-        // At most 65 536 vertices (checked on creation) and one normal per position.
-        Mesh::from_parts(&self.positions, &self.indices, Some(&self.normals))
+        // At most 65 536 vertices, every coordinate valid in `S` (both checked on creation),
+        // and one normal per position.
+        Mesh::from_valid_parts(&self.positions, &self.indices, Some(&self.normals))
     }
 
     /// An axis-aligned cube of half-size `h` centred at the origin: 24 vertices (4 per face, with
