@@ -458,11 +458,13 @@ fn run<S: Scalar, C: TargetColor>(
         scene.background = args.background;
         let mut f = Frame::new(w as u32, h as u32, C::from_channels([0; 3]));
         let stats = r.render(&scene, &mut f).map_err(|e| match e {
-            Error::Capacity {
-                what,
-                capacity,
-                needed,
-            } => capacity_message(m, what, capacity, needed),
+            Error::Shortfall(s) => s
+                .iter()
+                .map(|(what, needed, capacity)| {
+                    capacity_message(m, what, capacity, needed, s.exact)
+                })
+                .collect::<Vec<_>>()
+                .join("\n"),
             other => format!("{}: {other:?}", m.name),
         })?;
         for _ in 0..timed_runs {
@@ -480,7 +482,13 @@ fn run<S: Scalar, C: TargetColor>(
 }
 
 /// A capacity error, with what to do about it.
-fn capacity_message(m: &Model, what: Capacity, capacity: usize, needed: usize) -> String {
+fn capacity_message(
+    m: &Model,
+    what: Capacity,
+    capacity: usize,
+    needed: usize,
+    exact: bool,
+) -> String {
     let name = &m.name;
     let what_name = capacity_name(what);
     match what {
@@ -493,7 +501,7 @@ fn capacity_message(m: &Model, what: Capacity, capacity: usize, needed: usize) -
                  ({capacity}, the library's limit): simplify the model, e.g. preview it with \
                  `--max-triangles {n}`, or bake a smaller mesh with \
                  `cargo run --release --example bake -- {name} --max-triangles {n} --obj-out smaller.obj`",
-                if what == Capacity::Triangles { "at least " } else { "" },
+                if exact { "" } else { "about " },
             )
         }
         _ => format!(

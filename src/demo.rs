@@ -189,7 +189,7 @@ fn persp<S: Scalar>(fov_deg: f64, near: f64, far: f64) -> Projection<S> {
 /// left: `scripts/mcu-bench` measures the stack's high-water mark at this size and says what
 /// the next multiple of 8 would need (BENCHMARKS.md, "Smallest part"): 120 is the largest
 /// that fits. The capacities cover what this frame needs (a smaller one fails the render with
-/// [`crate::Error::Capacity`]).
+/// [`crate::Error::Shortfall`]).
 pub const SMALL_PART_TORUS: (usize, usize, usize) = (120, 456, 58);
 
 /// The default torus frame (spin 0) at `W × W` pixels from a given copy of the torus mesh

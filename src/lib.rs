@@ -60,6 +60,16 @@
 //! capacities that frame needs — under 16 KB, against 230 KB for a 240 × 240 RGB565
 //! framebuffer plus a 16-bit depth buffer.
 //!
+//! ## Capacities and placement
+//!
+//! A frame that needs more than `VERTS`, `TRIS` or `ACTIVE` fails with [`Error::Shortfall`],
+//! which names every capacity that is short, before anything is drawn; or, with
+//! [`OverflowPolicy::DrawWhatFits`], is drawn without what does not fit
+//! ([`Renderer::shortfall`] counts it). [`Renderer::needs`] measures a frame on the host and
+//! [`Needs::max`] accumulates an animation's frames, to size the device's renderer. A renderer
+//! can be a `static` ([`Renderer::const_new`] is a `const fn`); the target must contain the
+//! `W × H` viewport ([`Error::TargetTooSmall`]).
+//!
 //! ## Number formats per stage
 //!
 //! | stage | format | why |
@@ -126,7 +136,8 @@ pub use math::{Mat4, Vec3};
 pub use mesh::{Mesh, MeshError};
 pub use raster::DepthTest;
 pub use renderer::{
-    Capacity, Error, NoProbe, Probe, Renderer, Stage, Stats, StripBufferTooSmall, StripCanvas,
+    Capacity, Error, Needs, NoProbe, OverflowPolicy, Probe, Renderer, Shortfall, Stage, Stats,
+    StripBufferTooSmall, StripCanvas,
 };
 pub use scalar::{Fx, Scalar};
 pub use scene::{Object, Scene};
@@ -139,8 +150,8 @@ pub use embedded_graphics_core::draw_target::DrawTarget;
 /// The types and traits a typical user needs.
 pub mod prelude {
     pub use crate::{
-        Camera, DepthTest, Fx, Light, Mat4, Material, Mesh, Object, Projection, Renderer, Scalar,
-        Scene, Shading, Shape, TargetColor,
+        Camera, DepthTest, Fx, Light, Mat4, Material, Mesh, Needs, Object, OverflowPolicy,
+        Projection, Renderer, Scalar, Scene, Shading, Shape, TargetColor,
     };
 }
 

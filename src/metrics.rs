@@ -16,6 +16,7 @@ use crate::color::TriangleId;
 
 /// Accumulated differences between a tested image and a reference image.
 #[derive(Copy, Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
 pub struct Metrics {
     /// Largest per-channel absolute difference, in the colour type's own units (LSB).
     pub max_lsb: [u8; 3],

@@ -3,7 +3,7 @@
 use core::marker::PhantomData;
 
 use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
+use embedded_graphics_core::geometry::{Dimensions, OriginDimensions, Point, Size};
 use embedded_graphics_core::pixelcolor::raw::ToBytes;
 use embedded_graphics_core::pixelcolor::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
@@ -72,7 +72,7 @@ impl<C: PixelColor, const W: usize> DrawTarget for StripCanvas<'_, C, W> {
     }
 }
 
-/// Which compile-time capacity a scene exceeded.
+/// One of the renderer's three compile-time capacities (see [`Needs`]).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Capacity {
@@ -91,7 +91,9 @@ pub enum Capacity {
 pub enum Error<E> {
     /// The draw target returned an error; the frame is drawn up to the failing strip.
     Target(E),
-    /// The scene needs more room than the renderer was given. Nothing was drawn.
+    /// The scene needs more room than the renderer was given in one capacity. No longer
+    /// returned by the renderer: [`Error::Shortfall`] reports every capacity that is short at
+    /// once.
     Capacity {
         /// The capacity.
         what: Capacity,
@@ -109,6 +111,23 @@ pub enum Error<E> {
     /// The scene's camera fails [`crate::Camera::validate`] (its fields are public and may
     /// have been changed after [`crate::Camera::look_at`]). Nothing was drawn.
     Camera(crate::CameraError),
+    /// The frame needs more room than the renderer has, in one or more of its capacities:
+    /// every capacity that is short, with what the frame needed, is in the [`Shortfall`]
+    /// ([`Shortfall::iter`]). Returned under [`OverflowPolicy::Error`] (the default); nothing
+    /// was drawn. This replaces [`Error::Capacity`], which the renderer no longer returns.
+    Shortfall(Shortfall),
+    /// The draw target does not contain the viewport: the renderer draws `viewport` pixels at
+    /// the target's origin (`W × H` unless changed by [`Renderer::set_viewport`]) and the
+    /// target's bounding box is `target`. Checked before anything is drawn (by
+    /// [`Renderer::render`] and its variants once per frame, by [`Renderer::render_strip`] at
+    /// each call); a larger target is fine (the rest of it is left as it was). Set the
+    /// viewport to the target's size to draw into a smaller one.
+    TargetTooSmall {
+        /// The viewport, in pixels.
+        viewport: Size,
+        /// The target's bounding box.
+        target: Rectangle,
+    },
 }
 
 impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
@@ -137,6 +156,138 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
                  was drawn"
             ),
             Error::Camera(e) => write!(f, "{e}; nothing was drawn"),
+            Error::Shortfall(s) => {
+                write!(f, "frame does not fit the renderer: {s}; nothing was drawn")
+            }
+            Error::TargetTooSmall { viewport, target } => write!(
+                f,
+                "the draw target ({} × {} px at ({}, {})) does not contain the {} × {} px \
+                 viewport; nothing was drawn",
+                target.size.width,
+                target.size.height,
+                target.top_left.x,
+                target.top_left.y,
+                viewport.width,
+                viewport.height
+            ),
+        }
+    }
+}
+
+/// What a frame needs of the renderer's three capacities, or (as [`Renderer::CAPACITY`]) what
+/// a renderer has.
+///
+/// | field | capacity | [`Stats`] field of a frame that fit |
+/// |---|---|---|
+/// | `vertices` | `VERTS` | [`Stats::vertices`] |
+/// | `triangles` | `TRIS` | [`Stats::drawn`] |
+/// | `active` | `ACTIVE` | [`Stats::max_active`] |
+///
+/// To size a renderer for an animation built in code, measure every frame on the host with a
+/// renderer of generous capacities ([`Renderer::needs`]) and keep the largest figures
+/// ([`Needs::max`]); then check the device's renderer with [`Needs::fits`]:
+///
+/// ```
+/// # use embedded_graphics::pixelcolor::Rgb565;
+/// # use scanline3d::prelude::*;
+/// # use scanline3d::Needs;
+/// # type Q = Fx<scanline3d::fixed::types::I16F16>;
+/// let torus = scanline3d::demo::torus::<Q>().unwrap();
+/// // The host's measuring renderer: the device's size, large capacities (in a `Box` or a
+/// // `static`, see `Renderer::const_new`, when they are large).
+/// let mut measure = Box::new(Renderer::<Q, Rgb565, 240, 240, 2048, 2048, 256>::new());
+/// let mut worst = Needs::default();
+/// for frame in 0..12 {
+///     let objects = [Object {
+///         mesh: torus.mesh(),
+///         transform: Mat4::rotate_y(Q::lit(0.5 * frame as f64)),
+///         material: scanline3d::demo::torus_material(),
+///     }];
+///     let scene = Scene::new(&objects, scanline3d::demo::camera().unwrap(), scanline3d::demo::lights());
+///     worst = worst.max(measure.needs(&scene).unwrap());
+/// }
+/// type Device = Renderer<Q, Rgb565, 240, 240, 512, 480, 64>;
+/// assert!(worst.fits(&Device::CAPACITY), "{worst:?}");
+/// ```
+///
+/// `Needs`, [`Stats`] and [`Shortfall`] are `#[non_exhaustive]`: they may gain fields, so
+/// outside this crate they are read, and built only by their functions ([`Needs::new`],
+/// `Default`), not by struct expressions:
+///
+/// ```compile_fail
+/// let n = scanline3d::Needs { vertices: 512, triangles: 480, active: 64 };
+/// ```
+///
+/// ```compile_fail
+/// let s = scanline3d::Stats { drawn: 1, ..Default::default() };
+/// ```
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub struct Needs {
+    /// Vertices (`VERTS`): mesh vertices of every object, vertices made by clipping, and one
+    /// face-colour vertex per drawn flat-shaded triangle.
+    pub vertices: usize,
+    /// Triangles stored for the row pass (`TRIS`): those that survive culling and clipping
+    /// and cover a pixel (a clipped triangle may become up to seven).
+    pub triangles: usize,
+    /// Triangles crossing one pixel row at once, at the busiest row (`ACTIVE`).
+    pub active: usize,
+}
+
+impl Needs {
+    /// Needs (or capacities) of `vertices`, `triangles` and `active` triangles.
+    #[must_use]
+    pub const fn new(vertices: usize, triangles: usize, active: usize) -> Self {
+        Needs {
+            vertices,
+            triangles,
+            active,
+        }
+    }
+
+    /// The needs of a frame that fit, from its statistics ([`Stats::vertices`],
+    /// [`Stats::drawn`], [`Stats::max_active`]).
+    #[must_use]
+    pub const fn from_stats(stats: &Stats) -> Self {
+        Needs {
+            vertices: stats.vertices as usize,
+            triangles: stats.drawn as usize,
+            active: stats.max_active as usize,
+        }
+    }
+
+    /// The larger of each figure: accumulates the needs of an animation's frames.
+    #[must_use]
+    pub const fn max(self, other: Needs) -> Self {
+        const fn m(a: usize, b: usize) -> usize {
+            if a > b {
+                a
+            } else {
+                b
+            }
+        }
+        Needs {
+            vertices: m(self.vertices, other.vertices),
+            triangles: m(self.triangles, other.triangles),
+            active: m(self.active, other.active),
+        }
+    }
+
+    /// Whether these needs fit `capacity` (e.g. a renderer's [`Renderer::CAPACITY`]).
+    #[must_use]
+    pub const fn fits(&self, capacity: &Needs) -> bool {
+        self.vertices <= capacity.vertices
+            && self.triangles <= capacity.triangles
+            && self.active <= capacity.active
+    }
+
+    /// The figure for one capacity.
+    #[must_use]
+    pub const fn get(&self, what: Capacity) -> usize {
+        match what {
+            Capacity::Vertices => self.vertices,
+            Capacity::Triangles => self.triangles,
+            Capacity::ActiveTriangles => self.active,
         }
     }
 }
@@ -148,6 +299,90 @@ impl<E: core::fmt::Debug + core::fmt::Display> core::error::Error for Error<E> {
             _ => None,
         }
     }
+}
+
+/// A frame that did not fit the renderer: what it needed against what the renderer has, for
+/// all three capacities at once ([`Error::Shortfall`], or [`Renderer::shortfall`] under
+/// [`OverflowPolicy::DrawWhatFits`]).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub struct Shortfall {
+    /// What the frame needed (see `exact`).
+    pub needed: Needs,
+    /// The renderer's capacities ([`Renderer::CAPACITY`]).
+    pub capacity: Needs,
+    /// Whether `needed` is exact. It is not when the vertex or the triangle store overflowed:
+    /// the objects whose vertices did not fit are neither culled nor clipped, so all of their
+    /// triangles count as needed and none of them toward `active`, and the triangles that did
+    /// not fit the store do not count toward `active` either. Measure with larger capacities
+    /// ([`Renderer::needs`]) for exact figures.
+    pub exact: bool,
+    /// Under [`OverflowPolicy::DrawWhatFits`], the triangles left out of the frame for lack of
+    /// room (complete once the frame is drawn): the triangles counted in `needed.triangles`
+    /// that were not stored (for an object whose vertices did not fit: all of its triangles),
+    /// and each stored triangle dropped because the active list was full on its first row.
+    /// 0 in an [`Error::Shortfall`] (nothing is drawn).
+    pub skipped: usize,
+}
+
+impl Shortfall {
+    /// Whether the frame needed more than `what`'s capacity.
+    #[must_use]
+    pub const fn is_short(&self, what: Capacity) -> bool {
+        self.needed.get(what) > self.capacity.get(what)
+    }
+
+    /// Every capacity that is short: `(capacity, needed, available)`, in the order vertices,
+    /// triangles, active triangles.
+    pub fn iter(&self) -> impl Iterator<Item = (Capacity, usize, usize)> + '_ {
+        [
+            Capacity::Vertices,
+            Capacity::Triangles,
+            Capacity::ActiveTriangles,
+        ]
+        .into_iter()
+        .filter(|&c| self.is_short(c))
+        .map(|c| (c, self.needed.get(c), self.capacity.get(c)))
+    }
+}
+
+impl core::fmt::Display for Shortfall {
+    /// `vertices: needs 530, has 512; triangles active on one row: needs 66, has 64`, with
+    /// `at least` before figures that are not exact.
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        for (k, (what, needed, capacity)) in self.iter().enumerate() {
+            let name = match what {
+                Capacity::Vertices => "vertices (VERTS)",
+                Capacity::Triangles => "triangles (TRIS)",
+                Capacity::ActiveTriangles => "triangles active on one row (ACTIVE)",
+            };
+            let sep = if k > 0 { "; " } else { "" };
+            let about = if self.exact { "" } else { "about " };
+            write!(f, "{sep}{name}: needs {about}{needed}, has {capacity}")?;
+        }
+        if self.skipped > 0 {
+            write!(f, "; {} triangles skipped", self.skipped)?;
+        }
+        Ok(())
+    }
+}
+
+/// What the renderer does with a frame that does not fit its capacities
+/// ([`Renderer::with_overflow`]).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum OverflowPolicy {
+    /// The frame fails with [`Error::Shortfall`] before anything is drawn (the default): on a
+    /// display without a framebuffer the previous image stays on the panel.
+    #[default]
+    Error,
+    /// The frame is drawn without what does not fit, and [`Renderer::shortfall`] says what was
+    /// needed and how many triangles were left out: objects whose vertices do not fit the
+    /// vertex store (in scene order, the later ones), triangles that do not fit the triangle
+    /// store (the later ones), and triangles that start on a row where the active list is
+    /// full (each dropped as a whole, never drawn in part). The frame is never an error for
+    /// its capacities and never panics; the image has holes where triangles were left out.
+    DrawWhatFits,
 }
 
 /// A pipeline stage, as reported to a [`Probe`].
@@ -261,12 +496,57 @@ impl Stats {
 ///
 /// * `S` — the number type of the geometry pipeline ([`crate::Fx`]`<I16F16>`, `f32`, `f64`).
 /// * `C` — the target's pixel colour.
-/// * `W`, `H` — the screen size in pixels (1..=1024), drawn at the target's origin.
-/// * `VERTS` — vertex store (≤ 32 768): all mesh vertices of a frame, those made by clipping,
-///   and one per drawn flat-shaded triangle (a copy of a vertex carrying the face colour).
-/// * `TRIS` — triangles a frame can keep after culling (≤ 32 767).
-/// * `ACTIVE` — triangles that may cross one row at once.
+/// * `W`, `H` — the screen size in pixels (1..=1024), drawn at the target's origin; the
+///   target must contain it ([`Error::TargetTooSmall`] otherwise).
+/// * `VERTS` — vertex store (1..=32 768): all mesh vertices of a frame, those made by
+///   clipping, and one per drawn flat-shaded triangle (a copy of a vertex carrying the face
+///   colour). A frame's figure is [`Stats::vertices`].
+/// * `TRIS` — triangles a frame can keep after culling (1..=32 767); [`Stats::drawn`].
+/// * `ACTIVE` — triangles that may cross one row at once (1..=32 768); [`Stats::max_active`].
 /// * `LINES` — rows per strip (default 1).
+///
+/// # Capacities
+///
+/// The limits above are checked at compile time, when [`Renderer::new`] or
+/// [`Renderer::const_new`] is instantiated (a `cargo build`, not a `cargo check`): zero
+/// capacities, for instance, do not compile.
+///
+/// ```compile_fail
+/// # use embedded_graphics::pixelcolor::Rgb565;
+/// # use scanline3d::Renderer;
+/// // VERTS = 0: "VERTS must be 1..=32768"
+/// let r = Renderer::<f32, Rgb565, 64, 64, 0, 16, 16>::new();
+/// ```
+///
+/// A frame that needs more than the capacities fails with [`Error::Shortfall`], which names
+/// every capacity that is short and what the frame needed, before anything is drawn; with
+/// [`OverflowPolicy::DrawWhatFits`] ([`Renderer::with_overflow`]) it is drawn without what
+/// does not fit instead, and [`Renderer::shortfall`] reports it. [`Renderer::needs`] measures
+/// a frame's needs on the host, for sizing the device's renderer ([`Needs`] has an example).
+///
+/// # Placement
+///
+/// A renderer is large (its capacities are arrays inside it), so build it where it lives:
+/// [`Renderer::const_new`] is a `const fn`, for a `static` (in firmware, e.g. behind a
+/// critical-section mutex, a `StaticCell`, or `cortex_m::singleton!`):
+///
+/// ```
+/// # use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// # use scanline3d::prelude::*;
+/// # type Q = Fx<scanline3d::fixed::types::I16F16>;
+/// use std::sync::Mutex; // on a device: critical_section::Mutex<RefCell<..>>, StaticCell, ...
+/// type Big = Renderer<Q, Rgb565, 240, 240, 4096, 4096, 512>;
+/// static RENDERER: Mutex<Big> = Mutex::new(Big::const_new(Rgb565::BLACK));
+///
+/// let mut renderer = RENDERER.lock().unwrap();
+/// renderer.set_dither(true);
+/// # let _ = renderer.viewport();
+/// ```
+///
+/// `Renderer::new()` returns the renderer by value, which may go through the stack first (a
+/// `Box::new(Renderer::new())` does in a debug build): fine for small renderers, not for one
+/// near the stack's size. A `static` with a non-zero initial value is in `.data`: its initial
+/// image ([`Renderer::RAM_BYTES`]) is also in flash.
 ///
 /// # RAM
 ///
@@ -305,6 +585,12 @@ pub struct Renderer<
     vh: usize,
     background: C,
     stats: Stats,
+    overflow: OverflowPolicy,
+    /// Of the prepared frame, under [`OverflowPolicy::DrawWhatFits`]: the triangles needed but
+    /// not stored (the frame needed `stats.drawn + store_skipped` triangles; its other needs
+    /// are in `stats`), and those dropped from a full active list so far.
+    store_skipped: u32,
+    active_skipped: u32,
     _s: PhantomData<S>,
 }
 
@@ -420,40 +706,167 @@ impl<
     /// Exact RAM of this renderer in bytes.
     pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
 
+    /// This renderer's capacities (`VERTS`, `TRIS`, `ACTIVE`), to compare a frame's
+    /// [`Needs`] with.
+    pub const CAPACITY: Needs = Needs::new(VERTS, TRIS, ACTIVE);
+
     const CHECK: () = {
         assert!(W >= 1 && W <= MAX_SCREEN, "W must be 1..=1024");
         assert!(H >= 1 && H <= MAX_SCREEN, "H must be 1..=1024");
         assert!(LINES >= 1, "LINES must be at least 1");
-        assert!(TRIS <= i16::MAX as usize, "TRIS must be at most 32767");
-        assert!(VERTS <= FLAT_BIT as usize, "VERTS must be at most 32768");
         assert!(
-            ACTIVE <= ActiveList::<ACTIVE>::MAX,
-            "ACTIVE must be at most 32768"
+            VERTS >= 1 && VERTS <= FLAT_BIT as usize,
+            "VERTS must be 1..=32768"
+        );
+        assert!(
+            TRIS >= 1 && TRIS <= i16::MAX as usize,
+            "TRIS must be 1..=32767"
+        );
+        assert!(
+            ACTIVE >= 1 && ACTIVE <= ActiveList::<ACTIVE>::MAX,
+            "ACTIVE must be 1..=32768"
         );
     };
 
-    /// A renderer with the default options (depth test [`DepthTest::Less`], no dithering).
+    /// A renderer with the default options (depth test [`DepthTest::Less`], no dithering,
+    /// [`OverflowPolicy::Error`]). Returned by value: for a large renderer, see
+    /// [`Renderer::const_new`] (the type's docs, "Placement").
     #[must_use]
     pub fn new() -> Self {
+        Self::const_new(C::from_channels([0; 3]))
+    }
+
+    /// [`Renderer::new`] as a `const fn`, for a `static` renderer (see the type's docs,
+    /// "Placement"). `fill` is the colour the strip lines hold until the first frame (each line
+    /// is cleared to the scene's background before it is drawn, so any colour does; a trait
+    /// method cannot give a colour in a `const fn`): e.g. `Rgb565::BLACK`.
+    #[must_use]
+    pub const fn const_new(fill: C) -> Self {
         #[allow(clippy::let_unit_value)]
         let () = Self::CHECK;
-        let black = C::from_channels([0; 3]);
         Renderer {
             verts: Vec::new(),
             tris: Vec::new(),
             active: ActiveList::new(),
             heads: [0; H],
             starts: [0; H],
-            color: [[black; W]; LINES],
+            color: [[fill; W]; LINES],
             depth: [[u16::MAX; W]; LINES],
             depth_test: DepthTest::Less,
             dither: false,
             next_row: H,
             vw: W,
             vh: H,
-            background: black,
-            stats: Stats::default(),
+            background: fill,
+            stats: Stats {
+                triangles_in: 0,
+                invalid: 0,
+                outside: 0,
+                culled: 0,
+                degenerate: 0,
+                clipped: 0,
+                empty: 0,
+                drawn: 0,
+                vertices: 0,
+                color_vertices: 0,
+                fragments: 0,
+                pixels_written: 0,
+                max_active: 0,
+            },
+            overflow: OverflowPolicy::Error,
+            store_skipped: 0,
+            active_skipped: 0,
             _s: PhantomData,
+        }
+    }
+
+    /// Sets what happens to a frame that does not fit the capacities ([`OverflowPolicy`];
+    /// default [`OverflowPolicy::Error`]).
+    #[must_use]
+    pub fn with_overflow(mut self, policy: OverflowPolicy) -> Self {
+        self.overflow = policy;
+        self
+    }
+
+    /// Sets the overflow policy in place.
+    pub fn set_overflow(&mut self, policy: OverflowPolicy) {
+        self.overflow = policy;
+    }
+
+    /// The overflow policy.
+    #[must_use]
+    pub fn overflow(&self) -> OverflowPolicy {
+        self.overflow
+    }
+
+    /// What the last prepared frame (the one being drawn, or drawn last) needed beyond the
+    /// capacities, or `None` when it fit. Under [`OverflowPolicy::DrawWhatFits`] this is how a
+    /// frame drawn in part says so: [`Shortfall::skipped`] counts the triangles left out
+    /// (complete once the frame is drawn). A frame that failed with [`Error::Shortfall`] was
+    /// not prepared: the error carries its shortfall.
+    #[must_use]
+    pub fn shortfall(&self) -> Option<Shortfall> {
+        let s = &self.stats;
+        let needed = Needs::new(
+            s.vertices as usize,
+            s.drawn as usize + self.store_skipped as usize,
+            s.max_active as usize,
+        );
+        if needed.fits(&Self::CAPACITY) {
+            return None;
+        }
+        Some(Shortfall {
+            needed,
+            capacity: Self::CAPACITY,
+            exact: needed.vertices <= VERTS && needed.triangles <= TRIS,
+            skipped: self.store_skipped as usize + self.active_skipped as usize,
+        })
+    }
+
+    /// Measures what a frame of `scene` needs of each capacity ([`Needs`]): runs the geometry
+    /// stage (as [`Renderer::prepare`] does, whatever the overflow policy) and leaves no frame
+    /// prepared. For sizing a device's renderer on the host, with a renderer of the device's
+    /// `W × H` (or viewport) and generous capacities; accumulate an animation's frames with
+    /// [`Needs::max`].
+    ///
+    /// # Errors
+    ///
+    /// [`Error::MissingNormals`] as for a frame; [`Error::Shortfall`] when this renderer's
+    /// vertex or triangle store is too small to measure the frame exactly (its figures are
+    /// then estimates, [`Shortfall::exact`] is false). A frame whose only shortfall is the
+    /// active list is measured exactly: `Ok`.
+    pub fn needs<const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+    ) -> Result<Needs, Error<core::convert::Infallible>> {
+        let policy = self.overflow;
+        self.overflow = OverflowPolicy::DrawWhatFits;
+        let result = self.geometry(scene, &mut NoProbe);
+        self.overflow = policy;
+        self.next_row = self.vh;
+        let stats = result?;
+        match self.shortfall() {
+            None => Ok(Needs::from_stats(&stats)),
+            Some(s) if s.exact => Ok(s.needed),
+            Some(mut s) => {
+                s.skipped = 0;
+                Err(Error::Shortfall(s))
+            }
+        }
+    }
+
+    /// [`Error::TargetTooSmall`] unless `target` contains the viewport at its origin.
+    fn check_target<D: Dimensions, E>(&self, target: &D) -> Result<(), Error<E>> {
+        let bb = target.bounding_box();
+        let (x0, y0) = (bb.top_left.x as i64, bb.top_left.y as i64);
+        let (x1, y1) = (x0 + bb.size.width as i64, y0 + bb.size.height as i64);
+        if x0 <= 0 && y0 <= 0 && x1 >= self.vw as i64 && y1 >= self.vh as i64 {
+            Ok(())
+        } else {
+            Err(Error::TargetTooSmall {
+                viewport: Size::new(self.vw as u32, self.vh as u32),
+                target: bb,
+            })
         }
     }
 
@@ -503,10 +916,13 @@ impl<
         }
     }
 
-    /// Draws one frame of `scene` into `target`, at the target's origin, `W × H` pixels.
+    /// Draws one frame of `scene` into `target`, at the target's origin, `W × H` pixels (the
+    /// viewport).
     ///
-    /// Capacity errors and missing normals are found before anything is drawn. A target error
-    /// stops the frame at the failing strip and is returned.
+    /// A target that does not contain the viewport ([`Error::TargetTooSmall`]), capacity
+    /// shortfalls ([`Error::Shortfall`], unless the policy is
+    /// [`OverflowPolicy::DrawWhatFits`]) and missing normals are found before anything is
+    /// drawn. A target error stops the frame at the failing strip and is returned.
     pub fn render<D, const L: usize>(
         &mut self,
         scene: &Scene<'_, S, L>,
@@ -535,6 +951,7 @@ impl<
         O: Drawable<Color = C>,
     {
         let mut probe = NoProbe;
+        self.check_target(target)?;
         self.geometry(scene, &mut probe)?;
         while self
             .strip(target, &mut probe, |canvas| {
@@ -557,11 +974,14 @@ impl<
         P: Probe,
     {
         probe.frame_start();
-        let result = self.geometry(scene, probe).and_then(|_| {
-            probe.enter(Stage::Raster);
-            while self.render_strip_probed(target, probe)?.is_some() {}
-            Ok(self.stats)
-        });
+        let result = self
+            .check_target(target)
+            .and_then(|_| self.geometry(scene, probe))
+            .and_then(|_| {
+                probe.enter(Stage::Raster);
+                while self.strip(target, probe, |_| {})?.is_some() {}
+                Ok(self.stats)
+            });
         probe.enter(Stage::Done);
         probe.frame_end();
         result
@@ -588,7 +1008,9 @@ impl<
     }
 
     /// Draws the next strip of the prepared frame into `target` and returns its rows, or
-    /// `None` when the frame is complete (or nothing was prepared).
+    /// `None` when the frame is complete (or nothing was prepared). A target that does not
+    /// contain the viewport is [`Error::TargetTooSmall`] and nothing is drawn (the frame stays
+    /// prepared).
     pub fn render_strip<D>(
         &mut self,
         target: &mut D,
@@ -628,10 +1050,15 @@ impl<
             if first_pixel(y_max as i32) <= row as i32 {
                 continue;
             }
-            // Cannot be full: the largest number of triangles crossing one row was checked
-            // when the frame was prepared.
-            self.active
-                .push_with(|a| a.setup::<C>(rec, verts, row as i32, vh as i32, mode));
+            // Full only under `OverflowPolicy::DrawWhatFits` (the largest number of triangles
+            // crossing one row was checked when the frame was prepared): the triangle is left
+            // out and counted.
+            if !self
+                .active
+                .push_with(|a| a.setup::<C>(rec, verts, row as i32, vh as i32, mode))
+            {
+                self.active_skipped = self.active_skipped.saturating_add(1);
+            }
         }
     }
 
@@ -720,20 +1147,6 @@ impl<
             self.object(&setup, &vp, g, &mut stats, &mut need, probe);
         }
         stats.vertices = need.0 as u32;
-        if need.0 > VERTS {
-            return Err(Error::Capacity {
-                what: Capacity::Vertices,
-                capacity: VERTS,
-                needed: need.0,
-            });
-        }
-        if need.1 > TRIS {
-            return Err(Error::Capacity {
-                what: Capacity::Triangles,
-                capacity: TRIS,
-                needed: need.1,
-            });
-        }
         let mut cur = 0i32;
         let mut max = 0i32;
         for &s in self.starts.iter() {
@@ -741,13 +1154,22 @@ impl<
             max = max.max(cur);
         }
         stats.max_active = max as u32;
-        if max as usize > ACTIVE {
-            return Err(Error::Capacity {
-                what: Capacity::ActiveTriangles,
-                capacity: ACTIVE,
-                needed: max as usize,
-            });
+        // Triangles needed but not stored (only when the store or the vertices overflowed).
+        let store_skipped = need.1.saturating_sub(self.tris.len());
+        if need.0 > VERTS || need.1 > TRIS || max as usize > ACTIVE {
+            // Every capacity at once: what the frame needed against all three.
+            let needed = Needs::new(need.0, need.1, max as usize);
+            if self.overflow == OverflowPolicy::Error {
+                return Err(Error::Shortfall(Shortfall {
+                    needed,
+                    capacity: Self::CAPACITY,
+                    exact: need.0 <= VERTS && need.1 <= TRIS,
+                    skipped: 0,
+                }));
+            }
         }
+        self.store_skipped = store_skipped.min(u32::MAX as usize) as u32;
+        self.active_skipped = 0;
         self.sort_buckets();
         self.background = crate::color::quantize::<C>(scene.background);
         self.next_row = 0;
@@ -1205,6 +1627,10 @@ impl<
         D: DrawTarget<Color = C>,
         P: Probe,
     {
+        if self.next_row >= self.vh {
+            return Ok(None);
+        }
+        self.check_target(target)?;
         self.strip(target, probe, |_| {})
     }
 
@@ -1342,6 +1768,7 @@ impl<
             dither,
             background,
             stats,
+            active_skipped: skipped,
             ..
         } = self;
         let color: &mut [[C; W]] = match ext {
@@ -1375,8 +1802,11 @@ impl<
             for t in bucket {
                 let rec = tris[t];
                 let (verts, h) = (&*verts, vh as i32);
-                // Cannot be full: the largest number of rows' overlaps was checked.
-                active.push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, mode));
+                // Full only under `OverflowPolicy::DrawWhatFits` (the largest number of rows'
+                // overlaps was checked): the triangle is left out and counted.
+                if !active.push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, mode)) {
+                    *skipped = skipped.saturating_add(1);
+                }
             }
             probe.enter(Stage::Raster);
             let mut i = 0;

@@ -222,36 +222,39 @@ fn capacity_errors_name_the_capacity_and_draw_nothing() {
         scanline3d::demo::camera().unwrap(),
         scanline3d::demo::lights(),
     );
-    // Too few vertices.
+    // Too few vertices: the one error names every capacity that is short.
     let mut r: Box<Renderer<Q, Rgb565, 64, 64, 100, 2000, 200>> = Box::default();
     let mut d = MockDisplay::<Rgb565>::new();
-    assert_eq!(
-        r.render(&scene, &mut d),
-        Err(Error::Capacity {
-            what: Capacity::Vertices,
-            capacity: 100,
-            needed: 512
-        })
-    );
+    match r.render(&scene, &mut d) {
+        Err(Error::Shortfall(s)) => {
+            assert_eq!(s.needed.vertices, 512);
+            assert_eq!(s.capacity.vertices, 100);
+            assert!(s.is_short(Capacity::Vertices) && !s.exact);
+            assert_eq!(s.iter().next(), Some((Capacity::Vertices, 512, 100)));
+        }
+        other => panic!("{other:?}"),
+    }
     assert_eq!(d, MockDisplay::new(), "nothing drawn");
     // Too few triangles.
     let mut r: Box<Renderer<Q, Rgb565, 64, 64, 512, 100, 200>> = Box::default();
     match r.render(&scene, &mut d) {
-        Err(Error::Capacity {
-            what: Capacity::Triangles,
-            capacity: 100,
-            needed,
-        }) => assert!(needed > 400, "{needed}"),
+        Err(Error::Shortfall(s)) => {
+            assert!(s.is_short(Capacity::Triangles) && !s.is_short(Capacity::Vertices));
+            assert_eq!(s.capacity.triangles, 100);
+            assert!(s.needed.triangles > 400, "{s:?}");
+        }
         other => panic!("{other:?}"),
     }
     // Too few active triangles.
     let mut r: Box<Renderer<Q, Rgb565, 64, 64, 512, 600, 4>> = Box::default();
     match r.render(&scene, &mut d) {
-        Err(Error::Capacity {
-            what: Capacity::ActiveTriangles,
-            capacity: 4,
-            needed,
-        }) => assert!(needed > 4),
+        Err(Error::Shortfall(s)) => {
+            assert_eq!(
+                s.iter().map(|(c, _, _)| c).collect::<Vec<_>>(),
+                [Capacity::ActiveTriangles]
+            );
+            assert!(s.needed.active > 4 && s.exact);
+        }
         other => panic!("{other:?}"),
     }
     assert_eq!(d, MockDisplay::new(), "nothing drawn");
