@@ -251,6 +251,22 @@ impl<S: Scalar> Camera<S> {
         up: Vec3<S>,
         projection: Projection<S>,
     ) -> Result<Self, CameraError> {
+        // The checks, the frame and the validation in functions of their own, so that the
+        // deepest of them, not their sum, adds to the caller's stack (on a 16 KB part the
+        // renderer's frame is most of the RAM).
+        let camera = Self::look_at_unvalidated(eye, target, up, projection)?;
+        camera.validate()?;
+        Ok(camera)
+    }
+
+    /// [`Camera::look_at`] without the final [`Camera::validate`].
+    #[inline(never)]
+    fn look_at_unvalidated(
+        eye: Vec3<S>,
+        target: Vec3<S>,
+        up: Vec3<S>,
+        projection: Projection<S>,
+    ) -> Result<Self, CameraError> {
         finite3(["eye[0]", "eye[1]", "eye[2]"], eye)?;
         finite3(["target[0]", "target[1]", "target[2]"], target)?;
         finite3(["up[0]", "up[1]", "up[2]"], up)?;
@@ -291,13 +307,11 @@ impl<S: Scalar> Camera<S> {
                 [z, z, z, S::ONE],
             ],
         };
-        let camera = Camera {
+        Ok(Camera {
             view,
             projection,
             eye,
-        };
-        camera.validate()?;
-        Ok(camera)
+        })
     }
 
     /// Checks what [`Camera::look_at`] checks of a camera's public fields, for a camera built

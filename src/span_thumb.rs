@@ -2530,8 +2530,7 @@ core::arch::global_asm!(
     ".equ su_end, 52",
     ".equ su_seed, 56",
     ".equ su_left, 60",
-    ".equ su_dither, 64",
-    ".equ su_frame, 68",
+    ".equ su_frame, 64",
     // r0 = the record, r1 = the arguments (`SetupArgs`: the vertex store and its length, the
     // triangle's indices v0 | v1 << 16 and v2, the row, the screen height, the reciprocal
     // seed). `raster::ActiveTri::setup` for a Gouraud triangle (no `FLAT_BIT`) whose setup is
@@ -2547,10 +2546,9 @@ core::arch::global_asm!(
     "ldm r1!, {{r2, r3, r4, r5, r6, r7}}",
     "str r6, [sp, #su_row]",
     "str r7, [sp, #su_h]",
+    // The seed table's address with the dither flag in bit 0 (the table is 2-aligned).
     "ldr r6, [r1]",
     "str r6, [sp, #su_seed]",
-    "ldr r6, [r1, #4]",
-    "str r6, [sp, #su_dither]",
     // The vertex pointers (indices checked against the store's length).
     "lsls r0, r4, #16",
     "bpl 1f",
@@ -2677,6 +2675,8 @@ core::arch::global_asm!(
     "mov r0, sp",
     "ldr r1, [sp, #su_rec]",
     "ldr r2, [sp, #su_seed]",
+    "lsrs r2, r2, #1",
+    "lsls r2, r2, #1",
     "bl scanline3d_gouraud_setup",
     "cmp r0, #0",
     "bne 1f",
@@ -2744,8 +2744,8 @@ core::arch::global_asm!(
     // While dithering: `raster::ActiveTri::dither_fits` (the sorted vertex pointers are the
     // frame's first three words) sets `DITHER_OK`, or the result is 3. r4 and r7 survive the
     // call.
-    "ldr r0, [sp, #su_dither]",
-    "cmp r0, #0",
+    "ldr r0, [sp, #su_seed]",
+    "lsls r0, r0, #31",
     "beq 6f",
     "mov r0, r7",
     "mov r1, sp",
@@ -2944,7 +2944,7 @@ pub(crate) fn gouraud_setup(rec: &mut ActiveTri, tri: &Sorted<'_>) -> bool {
     unsafe { scanline3d_gouraud_setup(tri as *const Sorted as *const u32, rec, seed.as_ptr()) != 0 }
 }
 
-/// The arguments of [`scanline3d_setup565`] (eight words).
+/// The arguments of [`scanline3d_setup565`] (seven words).
 #[cfg(not(target_has_atomic = "32"))]
 #[repr(C)]
 struct SetupArgs {
@@ -2954,9 +2954,9 @@ struct SetupArgs {
     v2: u32,
     row: i32,
     height: i32,
-    seed: *const u16,
-    /// Nonzero while dithering: the routine checks the triangle for `DITHER_OK`.
-    dither: u32,
+    /// The reciprocal seed table's address, plus 1 while dithering (the routine then checks
+    /// the triangle for `DITHER_OK`): the table is 2-aligned, so bit 0 is free.
+    seed_dither: usize,
 }
 
 /// What [`setup565`] did.
@@ -3001,8 +3001,7 @@ pub(crate) fn setup565(
         v2: t.v[2] as u32,
         row,
         height,
-        seed: seed.as_ptr(),
-        dither: dither as u32,
+        seed_dither: seed.as_ptr() as usize | dither as usize,
     };
     // SAFETY: the routine reads the arguments, the three vertices whose indices it has checked
     // against the store's length (12-byte `repr(C)` records, x and y the first word, as

@@ -90,3 +90,35 @@ fn a_taller_strip_gives_the_same_torus() {
         );
     }
 }
+
+/// The 16 KB part's capacities (`demo::SMALL_PART_TORUS`) are exactly what its frame needs:
+/// its stack has no room for more, and one less of either fails the frame.
+#[test]
+fn small_part_capacities_are_exactly_the_frame_s_needs() {
+    use scanline3d::demo::{render_torus_sized, SMALL_PART_TORUS};
+    use scanline3d::Error;
+    const W: usize = SMALL_PART_TORUS.0;
+    const T: usize = SMALL_PART_TORUS.1;
+    const A: usize = SMALL_PART_TORUS.2;
+    let shape = scanline3d::demo::torus::<Q>().unwrap();
+    let mut t = HashTarget::<Rgb565>::new(W as u32, W as u32);
+    let f =
+        render_torus_sized::<Q, Rgb565, _, _, W, T, A>(shape.mesh(), &mut t, &mut NoProbe).unwrap();
+    assert_eq!(
+        (f.stats.drawn as usize, f.stats.max_active as usize),
+        (T, A)
+    );
+    let short = |r: Result<_, scanline3d::demo::BenchError<_>>| {
+        matches!(
+            r,
+            Err(scanline3d::demo::BenchError::Render(Error::Shortfall(_)))
+        )
+    };
+    let mut t = HashTarget::<Rgb565>::new(W as u32, W as u32);
+    assert!(short(
+        render_torus_sized::<Q, Rgb565, _, _, W, { T - 1 }, A>(shape.mesh(), &mut t, &mut NoProbe)
+    ));
+    assert!(short(
+        render_torus_sized::<Q, Rgb565, _, _, W, T, { A - 1 }>(shape.mesh(), &mut t, &mut NoProbe)
+    ));
+}
