@@ -30,6 +30,17 @@ const MAX_H: usize = 1024;
 type Big<S, C> = Renderer<S, C, MAX_W, MAX_H, 32768, 32767, 8192>;
 /// Lights the tool supports (unused ones are zero vectors, which light nothing).
 const LIGHTS: usize = 4;
+/// Most frames one run renders. Every frame is kept in memory twice (the tested number type
+/// and the f64 reference) until the animated image is written, and each is rendered up to
+/// three times (timing): 1 000 frames is 40 s of animation at the image's 25 frames/s, a full
+/// turn even at a 0.36° `--spin`, and about 230 MB and a few seconds (release) at 240x240.
+const MAX_FRAMES: usize = 1000;
+/// Most pixels over all frames (frames × width × height, 64 Mi): bounds the memory of a large
+/// animation (about 400 MB in Rgb888 for both copies) — 1 000 frames at 240x240, 64 at 1024x1024.
+const MAX_FRAME_PIXELS: usize = 1 << 26;
+/// Largest material coefficient: with a material channel ≥ 1 (of 255), a coefficient of 255
+/// already saturates the channel, so larger ones change nothing but the fixed-point headroom.
+const MAX_COEFFICIENT: f64 = 255.0;
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
 enum SceneArg {
@@ -134,38 +145,38 @@ struct Args {
     /// Camera up direction
     #[arg(long, allow_hyphen_values = true, value_parser = v3, default_value = "0,1,0")]
     up: [f64; 3],
-    /// Vertical field of view, degrees
-    #[arg(long = "fov-y", default_value_t = 45.0)]
+    /// Vertical field of view, degrees, in (0, 180)
+    #[arg(long = "fov-y", allow_hyphen_values = true, default_value_t = 45.0)]
     fov_y: f64,
-    /// Near plane distance, world units
-    #[arg(long, default_value_t = 0.1)]
+    /// Near plane distance, world units, > 0
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.1)]
     near: f64,
-    /// Far plane distance, world units
-    #[arg(long, default_value_t = 10.0)]
+    /// Far plane distance, world units, > --near
+    #[arg(long, allow_hyphen_values = true, default_value_t = 10.0)]
     far: f64,
-    /// Parallel projection with this view height (world units) instead of perspective
-    #[arg(long, value_name = "HEIGHT")]
+    /// Parallel projection with this view height (world units, > 0) instead of perspective
+    #[arg(long, value_name = "HEIGHT", allow_hyphen_values = true)]
     ortho: Option<f64>,
     /// Model rotation about X, degrees (applied first)
-    #[arg(long = "rotate-x", default_value_t = 30.0)]
+    #[arg(long = "rotate-x", allow_hyphen_values = true, default_value_t = 30.0)]
     rotate_x: f64,
     /// Model rotation about Y, degrees (applied second)
-    #[arg(long = "rotate-y", default_value_t = 20.0)]
+    #[arg(long = "rotate-y", allow_hyphen_values = true, default_value_t = 20.0)]
     rotate_y: f64,
     /// Model rotation about Z, degrees (applied third)
-    #[arg(long = "rotate-z", default_value_t = 0.0)]
+    #[arg(long = "rotate-z", allow_hyphen_values = true, default_value_t = 0.0)]
     rotate_z: f64,
-    /// Direction toward a light, world space; repeat for up to 4 lights [default: -1,1,1]
+    /// Direction toward a light, world space (not 0,0,0); repeat for up to 4 lights [default: -1,1,1]
     #[arg(long, allow_hyphen_values = true, value_parser = v3)]
     light: Vec<[f64; 3]>,
-    /// Ambient coefficient
-    #[arg(long, default_value_t = 0.15)]
+    /// Ambient coefficient, 0-255
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.15)]
     ambient: f64,
-    /// Diffuse coefficient
-    #[arg(long, default_value_t = 0.85)]
+    /// Diffuse coefficient, 0-255
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.85)]
     diffuse: f64,
-    /// Specular coefficient (0 = none)
-    #[arg(long, default_value_t = 0.0)]
+    /// Specular coefficient, 0-255 (0 = none)
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
     specular: f64,
     /// Phong exponent (1-255)
     #[arg(long, default_value_t = 16)]
@@ -191,17 +202,19 @@ struct Args {
     /// 4×4 ordered dithering of Gouraud gradients
     #[arg(long, value_enum, default_value = "off")]
     dither: OnOff,
-    /// Lines per strip for the RAM figures (the image is the same for every strip height)
+    /// Lines per strip for the RAM figures, 1 to the image height (the image is the same for
+    /// every strip height)
     #[arg(long, value_name = "LINES", default_value_t = 1)]
     strip: usize,
     /// Output image (.png; with --frames > 1 an animated .png or .gif)
     #[arg(long, value_name = "FILE", default_value = "scanline3d.png")]
     out: PathBuf,
-    /// Number of frames (an animation about the Y axis)
+    /// Number of frames (an animation about the Y axis), 1-1000, and at most 64 Mi pixels over
+    /// all frames (e.g. 64 frames at 1024x1024)
     #[arg(long, default_value_t = 1)]
     frames: usize,
     /// Rotation about Y between frames, degrees
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, allow_hyphen_values = true, default_value_t = 10.0)]
     spin: f64,
     /// Report what the scene needs (capacities, fixed-point headroom, RAM) over every frame,
     /// print the renderer type for firmware, and fail if a format or capacity overflows
@@ -279,7 +292,7 @@ fn model(args: &Args) -> Result<Model, String> {
             simplified: None,
         }
     }
-    let e = |e: scanline3d::ShapeError| format!("shape: {e:?}");
+    let e = |e: scanline3d::ShapeError| format!("shape: {e}");
     Ok(match args.scene.unwrap_or(SceneArg::Torus) {
         SceneArg::Torus => from_shape("torus", demo::torus::<f64>().map_err(e)?, args),
         SceneArg::Cube => from_shape("cube", Shape::<f64, 24, 12>::cube(1.0).map_err(e)?, args),
@@ -360,17 +373,22 @@ fn setup(args: &Args, m: &Model) -> Result<Setup, String> {
             },
         };
     }
-    Camera::look_at(s.eye, s.target, s.up, s.projection).map_err(|e| format!("camera: {e:?}"))?;
+    Camera::look_at(s.eye, s.target, s.up, s.projection).map_err(|e| {
+        format!("{e} (check --eye, --target, --up, --fov-y, --near, --far, --ortho)")
+    })?;
     Ok(s)
 }
 
+/// The model transform of `frame`. Angles are reduced modulo 360° first (exact for floats, and
+/// a no-op below 360°), so a large `--rotate-*` or `--spin` × frame stays within the
+/// fixed-point range instead of saturating.
 fn transform<S: Scalar>(args: &Args, s: &Setup, frame: usize) -> Mat4<S> {
     let c = s.centre.map(|v| S::from_f64(-v));
     Mat4::translate(c)
-        .then(&Mat4::rotate_x(deg(args.rotate_x)))
-        .then(&Mat4::rotate_y(deg(args.rotate_y)))
-        .then(&Mat4::rotate_z(deg(args.rotate_z)))
-        .then(&Mat4::rotate_y(deg(args.spin * frame as f64)))
+        .then(&Mat4::rotate_x(deg(args.rotate_x % 360.0)))
+        .then(&Mat4::rotate_y(deg(args.rotate_y % 360.0)))
+        .then(&Mat4::rotate_z(deg(args.rotate_z % 360.0)))
+        .then(&Mat4::rotate_y(deg((args.spin * frame as f64) % 360.0)))
 }
 
 fn lights<S: Scalar>(args: &Args) -> [Light<S>; LIGHTS] {
@@ -404,10 +422,10 @@ fn run<S: Scalar, C: TargetColor>(
     let (w, h) = args.size;
     let pos: Vec<[S; 3]> = m.positions.iter().map(|p| p.map(S::from_f64)).collect();
     let nor: Vec<[S; 3]> = m.normals.iter().map(|p| p.map(S::from_f64)).collect();
-    let mesh = Mesh::new(&pos, &m.indices).map_err(|e| format!("{}: {e:?}", m.name))?;
+    let mesh = Mesh::new(&pos, &m.indices).map_err(|e| format!("{}: {e}", m.name))?;
     let mesh = mesh
         .with_normals(&nor)
-        .map_err(|e| format!("{}: {e:?}", m.name))?;
+        .map_err(|e| format!("{}: {e}", m.name))?;
     let projection = match s.projection {
         Projection::Perspective { fov_y, near, far } => Projection::Perspective {
             fov_y: S::from_f64(fov_y),
@@ -426,13 +444,18 @@ fn run<S: Scalar, C: TargetColor>(
         s.up.map(S::from_f64),
         projection,
     )
-    .map_err(|e| format!("camera in {}: {e:?}", S::NAME))?;
+    .map_err(|e| {
+        format!(
+            "in {}: {e} (the flags are valid in f64 but not in this number type: try --number f32 or f64)",
+            S::NAME
+        )
+    })?;
     let material = Material {
         color: args.color,
         ambient: S::from_f64(args.ambient),
         diffuse: S::from_f64(args.diffuse),
         specular: S::from_f64(args.specular),
-        shininess: args.shininess.max(1),
+        shininess: args.shininess,
         shading: if args.shading == ShadingArg::Flat {
             Shading::Flat
         } else {
@@ -448,7 +471,7 @@ fn run<S: Scalar, C: TargetColor>(
         ns_per_frame: 0.0,
     };
     let mut times = Vec::new();
-    for k in 0..args.frames.max(1) {
+    for k in 0..args.frames {
         let objects = [Object {
             mesh,
             transform: transform::<S>(args, s, k),
@@ -465,7 +488,7 @@ fn run<S: Scalar, C: TargetColor>(
                 })
                 .collect::<Vec<_>>()
                 .join("\n"),
-            other => format!("{}: {other:?}", m.name),
+            other => format!("{}: {other}", m.name),
         })?;
         for _ in 0..timed_runs {
             let mut t = Timer::default();
@@ -610,18 +633,113 @@ fn main() {
 }
 
 fn main2(args: Args) -> Result<(), (String, i32)> {
-    if !(1..=LIGHTS).contains(&args.light.len().max(1)) {
-        return Err((format!("at most {LIGHTS} --light flags"), 2));
-    }
-    if args.strip == 0 {
-        return Err(("--strip must be at least 1".into(), 2));
-    }
+    check_flags(&args).map_err(|e| (e, 2))?;
     let m = model(&args).map_err(|e| (e, 2))?;
     let s = setup(&args, &m).map_err(|e| (e, 2))?;
     match args.format {
         FormatArg::Rgb565 => go::<Rgb565>(&args, &m, &s),
         FormatArg::Rgb888 => go::<Rgb888>(&args, &m, &s),
     }
+}
+
+/// Every numeric flag against its valid range, named as the user typed it (usage errors: exit
+/// status 2, like clap's). `--size`, `--eye`, `--target`, `--up`, `--light`, `--color` and
+/// `--background` are checked by their parsers (finite, in range); the camera as a whole (eye
+/// at the target, up along the view, depth precision) by `Camera::look_at` in [`setup`].
+fn check_flags(args: &Args) -> Result<(), String> {
+    let (w, h) = args.size;
+    let finite = |flag: &str, v: f64| {
+        if v.is_finite() {
+            Ok(())
+        } else {
+            Err(format!("{flag} must be a finite number, got {v}"))
+        }
+    };
+    finite("--fov-y", args.fov_y)?;
+    if !(args.fov_y > 0.0 && args.fov_y < 180.0) {
+        return Err(format!(
+            "--fov-y must be in (0, 180) degrees, got {}",
+            args.fov_y
+        ));
+    }
+    finite("--near", args.near)?;
+    if args.near <= 0.0 {
+        return Err(format!(
+            "--near must be greater than 0 (world units), got {}",
+            args.near
+        ));
+    }
+    finite("--far", args.far)?;
+    if args.far <= args.near {
+        return Err(format!(
+            "--far must be greater than --near ({}), got {}",
+            args.near, args.far
+        ));
+    }
+    if let Some(height) = args.ortho {
+        finite("--ortho", height)?;
+        if height <= 0.0 {
+            return Err(format!(
+                "--ortho (the view height) must be greater than 0 (world units), got {height}"
+            ));
+        }
+    }
+    for (flag, v) in [
+        ("--rotate-x", args.rotate_x),
+        ("--rotate-y", args.rotate_y),
+        ("--rotate-z", args.rotate_z),
+        ("--spin", args.spin),
+    ] {
+        finite(flag, v)?;
+    }
+    if args.light.len() > LIGHTS {
+        return Err(format!(
+            "at most {LIGHTS} --light flags, got {}",
+            args.light.len()
+        ));
+    }
+    if let Some(l) = args.light.iter().find(|l| **l == [0.0; 3]) {
+        return Err(format!(
+            "--light {},{},{} is a zero vector: a light needs a direction",
+            l[0], l[1], l[2]
+        ));
+    }
+    for (flag, v) in [
+        ("--ambient", args.ambient),
+        ("--diffuse", args.diffuse),
+        ("--specular", args.specular),
+    ] {
+        finite(flag, v)?;
+        if !(0.0..=MAX_COEFFICIENT).contains(&v) {
+            return Err(format!("{flag} must be in [0, {MAX_COEFFICIENT}], got {v}"));
+        }
+    }
+    if args.shininess == 0 {
+        return Err("--shininess must be in [1, 255], got 0".into());
+    }
+    if !(1..=h).contains(&args.strip) {
+        return Err(format!(
+            "--strip must be in [1, {h}] lines (the image height), got {}",
+            args.strip
+        ));
+    }
+    if !(1..=MAX_FRAMES).contains(&args.frames) {
+        return Err(format!(
+            "--frames must be in [1, {MAX_FRAMES}], got {} (every frame is kept in memory \
+             until the animation is written)",
+            args.frames
+        ));
+    }
+    let pixels = args.frames.saturating_mul(w * h);
+    if pixels > MAX_FRAME_PIXELS {
+        return Err(format!(
+            "--frames {} at {w}x{h} is {pixels} pixels, more than the {MAX_FRAME_PIXELS} \
+             (frames × width × height) kept in memory: at most {} frames at this --size",
+            args.frames,
+            MAX_FRAME_PIXELS / (w * h)
+        ));
+    }
+    Ok(())
 }
 
 fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
@@ -632,7 +750,7 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
     let timed = if args.budget {
         0
     } else {
-        21.min(2 + 60 / args.frames.max(1))
+        21.min(2 + 60 / args.frames)
     };
     let t0 = Instant::now();
     let tested = match args.number {
@@ -671,8 +789,16 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
         need(|s| s.drawn),
         need(|s| s.max_active),
     );
+    // Triangles skipped as invalid (a vertex out of the number type's range, NaN or infinite):
+    // frame 0's count, as the other counts, and the largest of any frame when it differs.
+    let invalid_max = need(|s| s.invalid);
+    let invalid = if invalid_max > st.invalid as usize {
+        format!("{} (up to {invalid_max} in a frame)", st.invalid)
+    } else {
+        st.invalid.to_string()
+    };
     println!(
-        "{}: {w}x{h} {name} {}{} | triangles in {} / culled {} / clipped {} / drawn {} | pixels written {} | {:.3} ms/frame (host, median) | vs f64: max LSB r{} g{} b{}, PSNR {}, {} coverage mismatches | renderer RAM {} B for this scene ({} lines) | {:.1} s",
+        "{}: {w}x{h} {name} {}{} | triangles in {} / culled {} / clipped {} / drawn {} / invalid {invalid} | pixels written {} | {:.3} ms/frame (host, median) | vs f64: max LSB r{} g{} b{}, PSNR {}, {} coverage mismatches | renderer RAM {} B for this scene ({} lines) | {:.1} s",
         args.out.display(),
         m.name,
         if tested.frames.len() > 1 { format!(", {} frames", tested.frames.len()) } else { String::new() },
@@ -691,6 +817,15 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
         args.strip,
         t0.elapsed().as_secs_f64(),
     );
+    if invalid_max > 0 {
+        eprintln!(
+            "render: warning: {}: {invalid_max} triangle(s) skipped as invalid in {name}: a vertex \
+             NaN, infinite or out of the number type's range{}; see `--budget` for the margins, \
+             scale the model down (--fit) or use --number f32",
+            m.name,
+            if args.number == NumberArg::Fixed { " (Q16.16 holds ±32768)" } else { "" }
+        );
+    }
     Ok(())
 }
 
@@ -708,10 +843,10 @@ fn budget<C: TargetColor>(
     let invalid = max(|s| s.invalid);
     // Fixed-point headroom: the largest magnitudes each stage reaches, in f64, against Q16.16.
     let cam = Camera::look_at(s.eye, s.target, s.up, s.projection)
-        .map_err(|e| (format!("camera: {e:?}"), 2))?;
+        .map_err(|e| (format!("camera: {e}"), 2))?;
     let pv = cam.projection.matrix(w as f64 / h as f64).mul(&cam.view);
     let (mut model_max, mut world_max, mut clip_max) = (0.0f64, 0.0f64, 0.0f64);
-    for k in 0..args.frames.max(1) {
+    for k in 0..args.frames {
         let t = transform::<f64>(args, s, k);
         let mvp = pv.mul(&t);
         for p in &m.positions {

@@ -326,3 +326,195 @@ fn bad_inputs_are_clear_errors() {
         bad(tool, &nan, &[":3:", "finite"]);
     }
 }
+
+/// A bad flag: exit status 2 (a usage error, as clap's own), no panic, every `expect` part in
+/// the message, no image written.
+fn bad_flags(args: &[&str], expect: &[&str]) {
+    let out = tmp("bad_flag.png");
+    let _ = std::fs::remove_file(&out);
+    let mut all = args.to_vec();
+    all.extend(["--out", out.to_str().unwrap()]);
+    let (code, stdout, stderr) = run("render", &all);
+    assert_eq!(code, 2, "render {args:?}: {stdout}{stderr}");
+    assert!(!stderr.contains("panicked"), "render {args:?}: {stderr}");
+    for e in expect {
+        assert!(
+            stderr.contains(e),
+            "render {args:?}: {stderr:?} lacks {e:?}"
+        );
+    }
+    assert!(!out.exists(), "render {args:?}: image written");
+}
+
+#[test]
+fn camera_flags_name_the_flag_and_its_range() {
+    // Main printed only "camera: BadProjection { … }" (or `RoundsToZero` for --near 0), in the
+    // library's parameter names (fov_y in radians, height), never the flag.
+    bad_flags(
+        &["--fov-y", "0"],
+        &["--fov-y must be in (0, 180) degrees, got 0"],
+    );
+    bad_flags(
+        &["--fov-y", "180"],
+        &["--fov-y must be in (0, 180) degrees, got 180"],
+    );
+    bad_flags(
+        &["--near", "5", "--far", "1"],
+        &["--far must be greater than --near (5), got 1"],
+    );
+    bad_flags(
+        &["--near", "0"],
+        &["--near must be greater than 0", "got 0"],
+    );
+    bad_flags(&["--ortho", "0"], &["--ortho", "greater than 0", "got 0"]);
+    // Main: clap's "unexpected argument '-1'" (no negative numbers accepted at all).
+    bad_flags(
+        &["--near", "-1"],
+        &["--near must be greater than 0", "got -1"],
+    );
+    // Main: `camera: EyeAtTarget` (Debug); now the library's Display and the flags to check.
+    bad_flags(&["--eye", "0,0,0"], &["eye equals target", "--eye"]);
+}
+
+#[test]
+fn non_finite_and_zero_flags_are_refused() {
+    // Main accepted each of these and exited 0: --light 0,0,0 lit nothing, --frames 0 rendered
+    // one frame, --spin/--rotate-* NaN drew a different image in fixed point than in f64, and
+    // NaN/∞ material coefficients drew nothing (every triangle invalid).
+    bad_flags(&["--light", "0,0,0"], &["--light 0,0,0", "zero vector"]);
+    bad_flags(
+        &["--frames", "0"],
+        &["--frames must be in [1, 1000], got 0"],
+    );
+    bad_flags(&["--spin", "nan"], &["--spin must be a finite number"]);
+    bad_flags(
+        &["--ambient", "nan"],
+        &["--ambient must be a finite number"],
+    );
+    bad_flags(
+        &["--diffuse", "inf"],
+        &["--diffuse must be a finite number"],
+    );
+    bad_flags(
+        &["--specular", "nan"],
+        &["--specular must be a finite number"],
+    );
+    for axis in ["x", "y", "z"] {
+        let flag = format!("--rotate-{axis}");
+        bad_flags(
+            &[&flag, "nan"],
+            &[&format!("{flag} must be a finite number")],
+        );
+    }
+    bad_flags(&["--fov-y", "nan"], &["--fov-y must be a finite number"]);
+    bad_flags(&["--far", "inf"], &["--far must be a finite number"]);
+    bad_flags(&["--ortho", "nan"], &["--ortho must be a finite number"]);
+}
+
+#[test]
+fn other_numeric_flags_are_checked_against_their_range() {
+    // Main: negative coefficients were a clap error ("unexpected argument"), or with `=`
+    // accepted; --shininess 0 silently became 1; --strip beyond the image height was accepted
+    // and `--strip 18446744073709551615` panicked (multiply overflow, exit 3) in debug.
+    bad_flags(
+        &["--specular=-1"],
+        &["--specular must be in [0, 255], got -1"],
+    );
+    bad_flags(
+        &["--ambient", "300"],
+        &["--ambient must be in [0, 255], got 300"],
+    );
+    bad_flags(
+        &["--shininess", "0"],
+        &["--shininess must be in [1, 255], got 0"],
+    );
+    bad_flags(
+        &["--strip", "241"],
+        &["--strip must be in [1, 240]", "got 241"],
+    );
+    bad_flags(
+        &["--strip", "18446744073709551615"],
+        &["--strip must be in [1, 240]"],
+    );
+    // Negative angles are valid (main refused `--rotate-y -30` as an unexpected argument).
+    let out = tmp("negative_rotation.png");
+    let (code, _, stderr) = run(
+        "render",
+        &["--rotate-y", "-30", "--out", out.to_str().unwrap()],
+    );
+    assert_eq!(code, 0, "{stderr}");
+}
+
+#[test]
+fn frames_are_bounded() {
+    // Main rendered all of them, keeping every frame in memory: unbounded time and memory.
+    bad_flags(
+        &["--frames", "1000000"],
+        &["--frames must be in [1, 1000], got 1000000"],
+    );
+    // Also bounded in pixels over all frames (main: 100 frames of 1024x1024 in memory twice).
+    bad_flags(
+        &["--frames", "100", "--size", "1024x1024"],
+        &["--frames 100 at 1024x1024", "at most 64 frames"],
+    );
+}
+
+#[test]
+fn obj_vertices_beyond_f32_or_with_a_nan_w_are_refused() {
+    // Main: tobj reads coordinates as f32, so `1e39` became +∞, and a NaN fourth value (w)
+    // made the triangle invalid: both rendered an empty image with exit status 0.
+    let file = |name: &str, text: &str| {
+        let p = tmp(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    };
+    let big = file("beyond_f32.obj", "v 0 0 0\nv 1 0 0\nv 0 1e39 0\nf 1 2 3\n");
+    let w_nan = file("w_nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0 nan\nf 1 2 3\n");
+    for tool in ["render", "bake"] {
+        bad(tool, &big, &[":3:", "finite", "f32"]);
+        bad(tool, &w_nan, &[":3:", "finite"]);
+    }
+}
+
+#[test]
+fn the_summary_counts_triangles_skipped_as_invalid() {
+    // A triangle with a vertex beyond Q16.16 (±32768) is skipped. Main's summary said only
+    // "triangles in 2 / … / drawn 1", with no count and no warning.
+    let obj = tmp("beyond_q16.obj");
+    std::fs::write(
+        &obj,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 40000 0\nv 1 40000 0\nf 1 2 3\nf 1 4 5\n",
+    )
+    .unwrap();
+    let out = tmp("beyond_q16.png");
+    let (code, stdout, stderr) = run(
+        "render",
+        &[
+            "--obj",
+            obj.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("drawn 1 / invalid 1 |"), "{stdout}");
+    assert!(
+        stderr.contains("1 triangle(s) skipped as invalid") && stderr.contains("Q16.16"),
+        "{stderr}"
+    );
+    // In f64 the same triangle is valid: nothing skipped, no warning.
+    let (code, stdout, stderr) = run(
+        "render",
+        &[
+            "--obj",
+            obj.to_str().unwrap(),
+            "--number",
+            "f64",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("/ invalid 0 |"), "{stdout}");
+    assert!(!stderr.contains("skipped"), "{stderr}");
+}

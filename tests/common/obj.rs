@@ -272,16 +272,25 @@ pub fn scan(text: &str) -> Scan {
         let mut words = line.split_whitespace();
         let Some(kind) = words.next() else { continue };
         let rest: Vec<&str> = words.collect();
-        let floats = |need: usize| {
-            rest.len() >= need
-                && rest
-                    .iter()
-                    .take(need)
-                    .all(|w| w.parse::<f64>().is_ok_and(f64::is_finite))
+        // tobj reads coordinates as f32: a value beyond its range (±3.4e38) is infinite there.
+        let finite = |w: &&str| w.parse::<f32>().is_ok_and(f32::is_finite);
+        let floats = |need: usize| rest.len() >= need && rest.iter().take(need).all(finite);
+        // Words after x y z (w, or a vertex colour) that are numbers must be finite too: tobj
+        // reads them, and a NaN there made the triangle invalid without a word.
+        let extras_finite = || {
+            rest.iter()
+                .skip(3)
+                .all(|w| w.parse::<f64>().is_err() || finite(w))
         };
         let bad = match kind {
-            "v" if !floats(3) => Some("a vertex needs three numbers, all finite".to_string()),
-            "vn" if !floats(3) => Some("a normal needs three numbers, all finite".to_string()),
+            "v" if !floats(3) || !extras_finite() => Some(
+                "a vertex needs three numbers, all finite (and within ±3.4e38, the f32 range \
+                 the OBJ is read in); so must any w or colour after them"
+                    .to_string(),
+            ),
+            "vn" if !floats(3) => {
+                Some("a normal needs three numbers, all finite (and within ±3.4e38)".to_string())
+            }
             "vt" if !floats(1) => Some("a texture coordinate needs numbers".to_string()),
             "f" => {
                 if rest.len() < 3 {
