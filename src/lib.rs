@@ -149,6 +149,7 @@ pub use embedded_graphics_core::draw_target::DrawTarget;
 
 /// The types and traits a typical user needs.
 pub mod prelude {
+    pub use crate::mesh::vertex_normals;
     pub use crate::{
         Camera, DepthTest, Fx, Light, Mat4, Material, Mesh, Needs, Object, OverflowPolicy,
         Projection, Renderer, Scalar, Scene, Shading, Shape, TargetColor,

@@ -184,7 +184,7 @@ impl<S: Scalar> Mat4<S> {
         Mat4 { m: r }
     }
 
-    /// `self` first, then `next`: the product `next · self`.
+    /// `self` first, then `next`: the product `next · self` (the same as `next * self`).
     #[must_use]
     pub fn then(&self, next: &Self) -> Self {
         next.mul(self)
@@ -332,6 +332,25 @@ impl<S: Scalar> Mat4<S> {
     }
 }
 
+/// The matrix product `a · b`, the same as [`Mat4::mul`]`(&a, &b)`: with column vectors, `b`
+/// acts first and `a` second, so `a * b` is `b.then(&a)`. A model transform that scales, then
+/// rotates, then translates is `translate * rotate * scale`, or
+/// `scale.then(&rotate).then(&translate)`:
+///
+/// ```
+/// # use scanline3d::prelude::*;
+/// let (s, r) = (Mat4::scale([2.0f32; 3]), Mat4::rotate_y(0.5f32));
+/// let t = Mat4::translate([1.0f32, 0.0, 0.0]);
+/// assert_eq!(t * r * s, s.then(&r).then(&t));
+/// ```
+impl<S: Scalar> core::ops::Mul for Mat4<S> {
+    type Output = Self;
+
+    fn mul(self, rhs: Self) -> Self {
+        Mat4::mul(&self, &rhs)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -357,6 +376,27 @@ mod tests {
         rotation_is_counter_clockwise::<f64>(1e-12);
         rotation_is_counter_clockwise::<f32>(1e-6);
         rotation_is_counter_clockwise::<Fx<I16F16>>(4.0 / 65536.0);
+    }
+
+    #[test]
+    fn mul_operator_is_the_matrix_product_and_then_reversed() {
+        fn check<S: Scalar>() {
+            let a = Mat4::<S>::rotate_x(S::from_f64(0.7))
+                .then(&Mat4::translate([1.5, -0.25, 3.0].map(S::from_f64)));
+            let b = Mat4::<S>::scale([2.0, 0.5, 1.25].map(S::from_f64))
+                .then(&Mat4::rotate_z(S::from_f64(-1.1)));
+            assert_eq!(a * b, a.mul(&b));
+            assert_eq!(a * b, b.then(&a));
+            assert_eq!(a * Mat4::identity(), a);
+            // `b` acts first: translate by x = 1, then scale by 2 → x = 2.
+            let t = Mat4::<S>::translate([S::ONE, S::ZERO, S::ZERO]);
+            let s = Mat4::<S>::scale([S::from_f64(2.0); 3]);
+            let p = (s * t).transform_point([S::ZERO; 3]);
+            assert_eq!(p, [S::from_f64(2.0), S::ZERO, S::ZERO, S::ONE]);
+        }
+        check::<f64>();
+        check::<f32>();
+        check::<Fx<I16F16>>();
     }
 
     #[test]

@@ -36,11 +36,41 @@ pub struct Light<S> {
 impl<S: Scalar> Light<S> {
     /// A white light toward `direction`.
     #[must_use]
-    pub fn white(direction: Vec3<S>) -> Self {
+    pub const fn white(direction: Vec3<S>) -> Self {
         Light {
             direction,
             color: [255; 3],
         }
+    }
+
+    /// A light that is switched off: black, with a zero direction. It lights nothing, so a
+    /// scene keeps its number of lights `L` (a type parameter) while a light is off: a frame
+    /// with `[sun, Light::off()]` has exactly the pixels of a frame with `[sun]` alone, for
+    /// every number type. It costs what a lit light costs per lit vertex or face (a dot
+    /// product; the per-pixel work does not depend on the lights). To switch off a light but
+    /// keep its direction, use [`Light::switched_off`].
+    #[must_use]
+    pub const fn off() -> Self {
+        Light {
+            direction: [S::ZERO; 3],
+            color: [0; 3],
+        }
+    }
+
+    /// This light with its colour set to black, which switches it off (see [`Light::off`]);
+    /// its direction is kept. Switch it back on by setting [`Light::color`] again.
+    #[must_use]
+    pub const fn switched_off(self) -> Self {
+        Light {
+            direction: self.direction,
+            color: [0; 3],
+        }
+    }
+
+    /// Whether the light is off (black): it contributes nothing to any colour.
+    #[must_use]
+    pub const fn is_off(&self) -> bool {
+        matches!(self.color, [0, 0, 0])
     }
 }
 
@@ -61,10 +91,29 @@ pub struct Material<S> {
     pub shading: Shading,
 }
 
+/// Building a material: start from [`Material::matte`] and chain the builder methods, e.g.
+///
+/// ```
+/// # use scanline3d::prelude::*;
+/// # type Q = Fx<scanline3d::fixed::types::I16F16>;
+/// let shiny = Material::matte([90, 160, 255], Q::lit(0.1), Q::lit(0.7))
+///     .flat()
+///     .specular(Q::lit(0.5), 16);
+/// assert_eq!(shiny.shading, Shading::Flat);
+/// assert_eq!((shiny.specular, shiny.shininess), (Q::lit(0.5), 16));
+/// ```
+///
+/// The builder methods are `const fn`, so a material can be a `const` or a `static`:
+///
+/// ```
+/// # use scanline3d::prelude::*;
+/// const RED: Material<f32> = Material::matte([255, 0, 0], 0.2, 0.8).specular(0.4, 8);
+/// # assert_eq!(RED.shading, Shading::Gouraud);
+/// ```
 impl<S: Scalar> Material<S> {
     /// A matte material: the given colour, ambient and diffuse, no specular, Gouraud.
     #[must_use]
-    pub fn matte(color: [u8; 3], ambient: S, diffuse: S) -> Self {
+    pub const fn matte(color: [u8; 3], ambient: S, diffuse: S) -> Self {
         Material {
             color,
             ambient,
@@ -72,6 +121,35 @@ impl<S: Scalar> Material<S> {
             specular: S::ZERO,
             shininess: 1,
             shading: Shading::Gouraud,
+        }
+    }
+
+    /// This material with [`Shading::Flat`]: one colour per face.
+    #[must_use]
+    pub const fn flat(self) -> Self {
+        self.shading(Shading::Flat)
+    }
+
+    /// This material with [`Shading::Gouraud`] (the default of [`Material::matte`]).
+    #[must_use]
+    pub const fn gouraud(self) -> Self {
+        self.shading(Shading::Gouraud)
+    }
+
+    /// This material with the given shading mode.
+    #[must_use]
+    pub const fn shading(self, shading: Shading) -> Self {
+        Material { shading, ..self }
+    }
+
+    /// This material with a Phong specular term: coefficient `k` (zero, or below, removes the
+    /// term and its per-vertex cost) and exponent `shininess`.
+    #[must_use]
+    pub const fn specular(self, k: S, shininess: u8) -> Self {
+        Material {
+            specular: k,
+            shininess,
+            ..self
         }
     }
 }
@@ -316,6 +394,62 @@ mod tests {
         let c = lit_color(&m, &l, n, v);
         // 50 + 255·(0.7071^8 = 0.0625) = 65.94
         assert_eq!((c[0] + 128) >> 8, 66);
+    }
+
+    #[test]
+    fn material_builder_sets_the_fields_it_names() {
+        type Q = Fx<I16F16>;
+        let m = Material::matte([10, 20, 30], Q::lit(0.25), Q::lit(0.5))
+            .flat()
+            .specular(Q::lit(0.75), 12);
+        assert_eq!(
+            m,
+            Material {
+                color: [10, 20, 30],
+                ambient: Q::lit(0.25),
+                diffuse: Q::lit(0.5),
+                specular: Q::lit(0.75),
+                shininess: 12,
+                shading: Shading::Flat,
+            }
+        );
+        assert_eq!(m.gouraud().shading, Shading::Gouraud);
+        assert_eq!(m.gouraud().shading(Shading::Flat), m);
+        const M: Material<f32> = Material::matte([1, 2, 3], 0.5, 0.5).flat();
+        assert_eq!(M.shading, Shading::Flat);
+    }
+
+    /// A switched-off light adds exactly nothing, whatever the normal, material and type.
+    fn off_light_adds_nothing<S: Scalar>() {
+        let sun = Light::white([-1.0, 2.0, 1.5].map(S::from_f64));
+        let dim = Light {
+            direction: [0.5, -1.0, 2.0].map(S::from_f64),
+            color: [200, 120, 40],
+        };
+        assert!(Light::<S>::off().is_off() && dim.switched_off().is_off() && !dim.is_off());
+        assert_eq!(dim.switched_off().direction, dim.direction);
+        let one = [PreparedLight::new(&sun)];
+        for off in [Light::off(), dim.switched_off()] {
+            let two = [PreparedLight::new(&sun), PreparedLight::new(&off)];
+            for spec in [0.0, 0.6] {
+                let m = Material::matte([200, 150, 90], S::from_f64(0.15), S::from_f64(0.85))
+                    .specular(S::from_f64(spec), 9);
+                for i in 0..24 {
+                    let a = i as f64 * 0.2618;
+                    let n = [a.cos() * 0.6, a.sin() * 0.6, 0.8].map(S::from_f64);
+                    let v = [0.0, a.sin() * 0.6, 0.8].map(S::from_f64);
+                    assert_eq!(lit_color(&m, &one, n, v), lit_color(&m, &two, n, v));
+                    assert_eq!(lit_diffuse(&m, &one, n), lit_diffuse(&m, &two, n));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_switched_off_light_adds_nothing() {
+        off_light_adds_nothing::<f64>();
+        off_light_adds_nothing::<f32>();
+        off_light_adds_nothing::<Fx<I16F16>>();
     }
 
     #[test]

@@ -1,5 +1,5 @@
-//! Built-in procedural meshes for tests, benchmarks and demos: cube, torus, icosphere and a
-//! height-field terrain grid.
+//! Built-in procedural meshes for tests, benchmarks and demos: cube, torus, icosphere, a flat
+//! plane (a ground or a quad) and a height-field terrain grid.
 //!
 //! Shapes are generated in `f64` (libm, pure software, so bit-identical on every target) and
 //! rounded once to `S`. Their storage is sized at compile time: `V` vertices and `T` triangles.
@@ -9,7 +9,7 @@
 //!
 //! 1. [`ShapeError::BadParameter`]: a parameter no number type or capacity could make valid —
 //!    a NaN or infinite length, a length ≤ 0, a minor radius above the major one, fewer than 3
-//!    segments, 0 terrain cells, more than 4 icosphere subdivisions.
+//!    segments, 0 terrain or plane cells, more than 4 icosphere subdivisions.
 //! 2. [`ShapeError::OutOfRange`]: the shape's extent (its largest coordinate; for the terrain,
 //!    the largest difference between coordinates) does not fit `S` (it would saturate a
 //!    fixed-point type, which the renderer then treats as invalid, or overflow `f32`) or rounds
@@ -453,6 +453,65 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
         Ok(s)
     }
 
+    /// A flat rectangle in the XZ plane (y = 0) centred at the origin, facing up (+Y): a
+    /// ground plane, or with one cell a quad of 4 vertices and 2 triangles. It is `size_x`
+    /// world units along X and `size_z` along Z, divided into `cells_x × cells_z` equal cells
+    /// (more cells follow a specular highlight more closely and split a large ground into
+    /// smaller triangles; a directional light lights a flat plane evenly with any number).
+    /// Vertex `(i, k)` (i = 0..=cells_x along X, k = 0..=cells_z along Z) has index
+    /// `i·(cells_z+1) + k`, position `(size_x·(i/cells_x − ½), 0, size_z·(k/cells_z − ½))` and
+    /// normal `(0, 1, 0)`; each cell gives triangles `(i,k),(i,k+1),(i+1,k)` and
+    /// `(i+1,k),(i,k+1),(i+1,k+1)`, counter-clockwise seen from above:
+    /// `(cells_x+1)·(cells_z+1)` vertices, `2·cells_x·cells_z` triangles. Seen from below it is
+    /// back-facing and culled (flip it with a rotation of π about X for a ceiling).
+    ///
+    /// # Errors
+    ///
+    /// [`ShapeError::BadParameter`] unless `size_x` and `size_z` are finite and > 0 and
+    /// `cells_x`, `cells_z` ≥ 1; [`ShapeError::OutOfRange`] if the extent `max(size_x,
+    /// size_z)` (the largest difference between two vertices' coordinates, which flat shading
+    /// takes in `S`) is not a valid value of `S`, or if half the smaller size (the smallest
+    /// coordinate of a corner) rounds to 0 there; [`ShapeError::Capacity`] if
+    /// `(cells_x+1)·(cells_z+1)` exceeds `V` or 65 536, or `2·cells_x·cells_z` exceeds `T`.
+    pub fn plane(
+        size_x: f64,
+        size_z: f64,
+        cells_x: usize,
+        cells_z: usize,
+    ) -> Result<Self, ShapeError> {
+        positive("size_x", size_x)?;
+        positive("size_z", size_z)?;
+        at_least("cells_x", cells_x, 1, ">= 1")?;
+        at_least("cells_z", cells_z, 1, ">= 1")?;
+        Self::check_extent(size_x.max(size_z))?;
+        // Smaller than the checked extent, so only its rounding to 0 can fail.
+        Self::check_extent(size_x.min(size_z) * 0.5)?;
+        let vertices = cells_x
+            .checked_add(1)
+            .zip(cells_z.checked_add(1))
+            .and_then(|(a, b)| a.checked_mul(b));
+        let triangles = cells_x.checked_mul(cells_z).and_then(|c| c.checked_mul(2));
+        // After this, (cells_x+1)·(cells_z+1) ≤ 65 536: the loops below are bounded by the
+        // capacity.
+        let mut s = Self::with_capacity_for(vertices, triangles)?;
+        let n = cells_z + 1;
+        for i in 0..=cells_x {
+            let x = size_x * (i as f64 / cells_x as f64 - 0.5);
+            for k in 0..=cells_z {
+                let z = size_z * (k as f64 / cells_z as f64 - 0.5);
+                s.vertex([x, 0.0, z], [0.0, 1.0, 0.0]);
+            }
+        }
+        for i in 0..cells_x {
+            for k in 0..cells_z {
+                let id = |i: usize, k: usize| i * n + k;
+                s.tri(id(i, k), id(i, k + 1), id(i + 1, k));
+                s.tri(id(i + 1, k), id(i, k + 1), id(i + 1, k + 1));
+            }
+        }
+        Ok(s)
+    }
+
     /// A height-field terrain in the XZ plane, `size × size` world units centred at the origin,
     /// `cells × cells` quads, height `amplitude · sin(2.1x)·cos(1.7z)`-style rolling hills
     /// (amplitude 0 gives a flat ground plane). Faces up (+Y); normals are face averages.
@@ -525,6 +584,8 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
 mod tests {
     use super::*;
     use crate::math::{cross, dot, sub};
+    use crate::scalar::Fx;
+    use fixed::types::I16F16;
 
     fn outward<const V: usize, const T: usize>(s: &Shape<f64, V, T>) {
         for t in &s.indices {
@@ -562,6 +623,96 @@ mod tests {
             let [a, b, c] = tri.map(|i| t.positions[i as usize]);
             assert!(cross(sub(b, a), sub(c, a))[1] > 0.0);
         }
+    }
+
+    #[test]
+    fn plane_matches_the_spec_and_faces_up() {
+        let p = Shape::<f64, 12, 12>::plane(4.0, 2.0, 3, 2).unwrap();
+        assert_eq!((p.positions.len(), p.indices.len()), (12, 12));
+        assert_eq!(p.positions[0], [-2.0, 0.0, -1.0]);
+        assert_eq!(p.positions[11], [2.0, 0.0, 1.0]);
+        assert_eq!(p.indices[0], [0, 1, 3]);
+        assert_eq!(p.indices[1], [3, 1, 4]);
+        outward(&p);
+        for tri in &p.indices {
+            let [a, b, c] = tri.map(|i| p.positions[i as usize]);
+            assert!(cross(sub(b, a), sub(c, a))[1] > 0.0);
+        }
+        assert!(p.normals.iter().all(|n| *n == [0.0, 1.0, 0.0]));
+        let quad = Shape::<Fx<I16F16>, 4, 2>::plane(1.0, 1.0, 1, 1).unwrap();
+        assert_eq!((quad.positions.len(), quad.indices.len()), (4, 2));
+        quad.mesh().validate().unwrap();
+    }
+
+    #[test]
+    fn plane_checks_parameters_range_and_capacity_in_order() {
+        type P = Shape<Fx<I16F16>, 16, 18>;
+        let bad = |name, value, expected| ShapeError::BadParameter {
+            name,
+            value,
+            expected,
+        };
+        let real = ParamValue::Real;
+        assert!(matches!(
+            P::plane(f64::NAN, 1.0, 1, 1).unwrap_err(),
+            ShapeError::BadParameter { name: "size_x", value: ParamValue::Real(v), .. } if v.is_nan()
+        ));
+        for (sx, sz, name, v) in [
+            (0.0, 1.0, "size_x", 0.0),
+            (-1.0, 1.0, "size_x", -1.0),
+            (f64::INFINITY, 1.0, "size_x", f64::INFINITY),
+            (1.0, 0.0, "size_z", 0.0),
+            (1.0, f64::NEG_INFINITY, "size_z", f64::NEG_INFINITY),
+        ] {
+            assert_eq!(
+                P::plane(sx, sz, 0, 0).unwrap_err(),
+                bad(name, real(v), "finite and > 0")
+            );
+        }
+        assert_eq!(
+            P::plane(1.0, 1.0, 0, 5).unwrap_err(),
+            bad("cells_x", ParamValue::Count(0), ">= 1")
+        );
+        assert_eq!(
+            P::plane(1.0, 1.0, 5, 0).unwrap_err(),
+            bad("cells_z", ParamValue::Count(0), ">= 1")
+        );
+        // Q16.16 holds up to 32 768: a side of 40 000 saturates the edge vectors.
+        assert_eq!(
+            P::plane(40_000.0, 1.0, 1, 1).unwrap_err(),
+            ShapeError::OutOfRange {
+                extent: 40_000.0,
+                number_type: Fx::<I16F16>::NAME,
+                rounds_to_zero: false,
+            }
+        );
+        assert!(matches!(
+            P::plane(1.0, 1e-7, 1, 1).unwrap_err(),
+            ShapeError::OutOfRange {
+                rounds_to_zero: true,
+                ..
+            }
+        ));
+        assert!(Shape::<f64, 16, 18>::plane(1.0, 1e-7, 1, 1).is_ok());
+        assert_eq!(
+            P::plane(1.0, 1.0, 3, 4).unwrap_err(),
+            ShapeError::Capacity {
+                vertices: Some(20),
+                triangles: Some(24),
+                vertex_capacity: 16,
+                triangle_capacity: 18,
+            }
+        );
+        assert_eq!(
+            P::plane(1.0, 1.0, usize::MAX, usize::MAX).unwrap_err(),
+            ShapeError::Capacity {
+                vertices: None,
+                triangles: None,
+                vertex_capacity: 16,
+                triangle_capacity: 18,
+            }
+        );
+        assert!(P::plane(1.0, 1.0, 3, 3).is_ok());
     }
 
     #[test]

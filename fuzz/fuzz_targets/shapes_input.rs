@@ -1,4 +1,4 @@
-//! Decodes fuzzer bytes into a shape constructor call (cube, torus, icosphere or terrain) with
+//! Decodes fuzzer bytes into a shape constructor call (cube, torus, icosphere, terrain or plane) with
 //! any parameters — NaN, infinities, huge and tiny lengths, counts up to `usize::MAX` — and runs
 //! it with `Fx<I16F16>`, `Fx<I12F20>`, `f32` and `f64`. Shared by the fuzz target
 //! (`fuzz_targets/shapes.rs`) and the host test `tests/hostile_shapes.rs`, which replays the
@@ -94,11 +94,18 @@ enum Call {
     Torus(f64, f64, usize, usize),
     Icosphere(f64, u32),
     Terrain(f64, usize, f64),
+    Plane(f64, f64, usize, usize),
 }
 
 fn decode(data: &[u8]) -> Call {
     let mut b = Bytes(data);
-    match b.u8() % 4 {
+    let selector = b.u8();
+    // 4, 12, 20, ...: the plane, added after the seed corpus was written (whose selectors are
+    // 0..=3 and 251); every other selector decodes as before.
+    if selector % 8 == 4 {
+        return Call::Plane(b.real(), b.real(), b.count(), b.count());
+    }
+    match selector % 4 {
         0 => Call::Cube(b.real()),
         1 => Call::Torus(b.real(), b.real(), b.count(), b.count()),
         2 => Call::Icosphere(
@@ -138,6 +145,14 @@ fn is_bad(call: Call, name: &str, value: ParamValue) -> bool {
         (Call::Terrain(_, _, a), "amplitude", ParamValue::Real(v)) => {
             v.to_bits() == a.to_bits() && !a.is_finite()
         }
+        (Call::Plane(sx, _, _, _), "size_x", ParamValue::Real(v)) => {
+            v.to_bits() == sx.to_bits() && bad_len(sx)
+        }
+        (Call::Plane(_, sz, _, _), "size_z", ParamValue::Real(v)) => {
+            v.to_bits() == sz.to_bits() && bad_len(sz)
+        }
+        (Call::Plane(_, _, cx, _), "cells_x", ParamValue::Count(n)) => n == cx as u64 && cx == 0,
+        (Call::Plane(_, _, _, cz), "cells_z", ParamValue::Count(n)) => n == cz as u64 && cz == 0,
         _ => false,
     }
 }
@@ -162,6 +177,10 @@ fn needed(call: Call) -> (u128, u128) {
                 (c as u128 * c as u128).saturating_mul(2),
             )
         }
+        Call::Plane(_, _, cx, cz) => (
+            (cx as u128 + 1).saturating_mul(cz as u128 + 1),
+            (cx as u128 * cz as u128).saturating_mul(2),
+        ),
     }
 }
 
@@ -171,6 +190,7 @@ fn check<S: Scalar>(call: Call) {
         Call::Torus(br, r, nu, nv) => Shape::<S, V, T>::torus(br, r, nu, nv),
         Call::Icosphere(rad, s) => Shape::<S, V, T>::icosphere(rad, s),
         Call::Terrain(size, c, a) => Shape::<S, V, T>::terrain(size, c, a),
+        Call::Plane(sx, sz, cx, cz) => Shape::<S, V, T>::plane(sx, sz, cx, cz),
     };
     let (nv, nt) = needed(call);
     match r {
