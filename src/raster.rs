@@ -308,9 +308,9 @@ pub(crate) fn signed_bits(next: &mut impl FnMut() -> u32, max_bits: u32) -> i32 
     }
 }
 
-/// Cortex-M only, for the benchmark firmware's self-tests: a xorshift32 generator from `seed`
-/// (nonzero), the same sequence on every core.
-#[cfg(all(target_arch = "arm", target_os = "none"))]
+/// For the benchmark firmware's self-tests (Cortex-M) and the unit tests: a xorshift32
+/// generator from `seed` (nonzero), the same sequence on every core.
+#[cfg(any(test, all(target_arch = "arm", target_os = "none")))]
 pub(crate) fn xorshift32(seed: u32) -> impl FnMut() -> u32 {
     let mut state = seed;
     move || {
@@ -424,6 +424,27 @@ pub fn gouraud_setup_self_test(n: u32) -> Option<([[i32; 4]; 3], [i32; 3])> {
     None
 }
 
+/// For the triangle setup self-tests: case `i`'s three random vertices within a box of 48,
+/// 400, 4000 or 16 000 subpixels (by `i mod 4`) around (120, 120) px, any depths and colours,
+/// each then changed by `tweak`.
+#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
+fn random_triangle(
+    i: u32,
+    next: &mut impl FnMut() -> u32,
+    tweak: impl Fn(&mut ScreenVertex),
+) -> [ScreenVertex; 3] {
+    let size = [48u32, 400, 4000, 16000][(i % 4) as usize];
+    let mut v = [ScreenVertex::default(); 3];
+    for p in &mut v {
+        let r = next();
+        p.x = ((r % size) as i32 - size as i32 / 2 + 1920) as i16;
+        p.y = (((r >> 16) % size) as i32 - size as i32 / 2 + 1920) as i16;
+        random_depth_and_colour(p, next);
+        tweak(p);
+    }
+    v
+}
+
 /// Cortex-M0 only, for the benchmark firmware: the assembly triangle setup
 /// (`span_thumb::setup565`) against [`ActiveTri::setup_portable`] for RGB565 on `n`
 /// pseudo-random Gouraud triangles (small, tall and wide ones, equal ys, first rows before,
@@ -447,18 +468,12 @@ pub fn triangle_setup_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
             && (a.gx, a.row, a.inc) == (b.gx, b.row, b.inc)
     };
     for i in 0..n {
-        let size = [48u32, 400, 4000, 16000][(i % 4) as usize];
-        let mut v = [ScreenVertex::default(); 3];
-        for p in &mut v {
-            let r = next();
-            p.x = ((r % size) as i32 - size as i32 / 2 + 1920) as i16;
-            p.y = (((r >> 16) % size) as i32 - size as i32 / 2 + 1920) as i16;
+        let v = random_triangle(i, &mut next, |p| {
             if i % 7 == 0 {
                 // Equal ys.
                 p.y &= !63;
             }
-            random_depth_and_colour(p, &mut next);
-        }
+        });
         let t = TriRecord { v: [0, 1, 2] };
         let y_min = v.iter().map(|p| p.y as i32).min().unwrap_or(0);
         let r = next();
@@ -509,18 +524,12 @@ pub fn dither_fits_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
     let mut i = 0u32;
     while tested < n && i < 8 * n {
         i += 1;
-        let size = [48u32, 400, 4000, 16000][(i % 4) as usize];
-        let mut v = [ScreenVertex::default(); 3];
-        for p in &mut v {
-            let r = next();
-            p.x = ((r % size) as i32 - size as i32 / 2 + 1920) as i16;
-            p.y = (((r >> 16) % size) as i32 - size as i32 / 2 + 1920) as i16;
-            random_depth_and_colour(p, &mut next);
+        let v = random_triangle(i, &mut next, |p| {
             if i % 2 == 0 {
                 let c = p.color();
                 p.set_color([c[0] % 993, c[1] % 1009, c[2] % 993]);
             }
-        }
+        });
         let t = TriRecord { v: [0, 1, 2] };
         let y_min = v.iter().map(|p| p.y as i32).min().unwrap_or(0);
         let row = (first_pixel(y_min) + (next() % 16) as i32 - 2).max(0);
@@ -2292,13 +2301,7 @@ mod tests {
 
     #[test]
     fn green_fits_equals_its_64_bit_specification() {
-        let mut x = 0x9e37_79b9_u32;
-        let mut rnd = move || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x
-        };
+        let mut rnd = xorshift32(0x9e37_79b9);
         let edges = [
             0,
             1,
@@ -2560,13 +2563,7 @@ mod tests {
     #[test]
     fn dithered_fast_span_is_exact_and_within_one_lsb() {
         use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-        let mut state = 0x2468_ace1u32;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 17;
-            state ^= state << 5;
-            state
-        };
+        let mut next = xorshift32(0x2468_ace1);
         let mode = SpanMode::new::<Rgb565>(DepthTest::Less, true);
         assert!(mode.fast_gouraud && mode.dither);
         const W: usize = 1100;

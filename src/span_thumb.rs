@@ -532,6 +532,47 @@ const INTERP1_LANE0: u32 = 16 | 11 << 5 | 15 << 10;
 #[cfg(feature = "rp2040")]
 const INTERP1_LANE1: u32 = 11 | 4 << 10 | 1 << 16;
 
+/// The interpolators' register base, 0xd000_0080, into low register `$r`.
+#[cfg(feature = "rp2040")]
+macro_rules! interp_base {
+    ($r:literal) => {
+        concat!(
+            "movs ",
+            $r,
+            ", #0xd0\n",
+            "lsls ",
+            $r,
+            ", ",
+            $r,
+            ", #24\n",
+            "adds ",
+            $r,
+            ", #0x80\n",
+        )
+    };
+}
+
+/// For [`dither_pixel_interp`]'s spans: the depth word (r2) and its step (r8) into interpolator
+/// 0, then r2 = the interpolators' base. Uses low register `$t`.
+#[cfg(feature = "rp2040")]
+macro_rules! interp_take_depth {
+    ($t:literal) => {
+        concat!(
+            interp_base!($t),
+            "str r2, [",
+            $t,
+            ", #{i0_accum0}]\n",
+            "mov r2, r8\n",
+            "str r2, [",
+            $t,
+            ", #{i0_base1}]\n",
+            "mov r2, ",
+            $t,
+            "\n",
+        )
+    };
+}
+
 /// For [`scanline3d_rows565_dither_interp`]'s entry: both interpolators of the calling core
 /// set up for [`dither_pixel_interp`] (lane controls, interpolator 0's BASE0 and interpolator
 /// 1's BASE2 zero). Uses r2 and r3.
@@ -539,9 +580,7 @@ const INTERP1_LANE1: u32 = 11 | 4 << 10 | 1 << 16;
 macro_rules! interp_config {
     () => {
         concat!(
-            "movs r2, #0xd0\n",
-            "lsls r2, r2, #24\n",
-            "adds r2, #0x80\n",
+            interp_base!("r2"),
             "movs r3, #0\n",
             "str r3, [r2, #{i0_base0}]\n",
             "str r3, [r2, #{i1_base2}]\n",
@@ -564,9 +603,6 @@ macro_rules! interp_config {
 /// branch over it), and a span past the line's end is clamped by the stub at label 26 (so
 /// that the common case is a branch not taken). Ends with r0 = r12 = the triangle.
 macro_rules! row_span_dither_inline {
-    () => {
-        row_span_dither_inline!("", dither_loop!("i", count_on_stack!()))
-    };
     // `$setup` runs once the row's start words are in r2–r4 (the interpolator variant hands
     // the depth word to interpolator 0 there); `$loop` is the pixel loop.
     ($setup:expr, $loop:expr) => {
@@ -1099,123 +1135,97 @@ rows565_routine!(
     []
 );
 
-// The dithered row routine (r1 = the eight offsets of the row's Bayer row in
-// `raster::DITHER565`): before the context's six words, the offsets go on the stack ([sp, #28]
-// to [sp, #56] in the routine, the `itrb`/`itg` words; the span subroutine of the rarer paths
-// sees them 4 bytes further, after the saved fragment count: the `strb`/`stg` words). The
-// common row draws its span with a copy of the dithered loop in line (no call). Only
-// `DITHER_OK` triangles have routine rows in a dithered strip (`ActiveTri::set_routine_rows`),
-// so the routine needs no test of its own for them.
-rows565_routine!(
+/// A dithered row routine `$name` (r1 = the eight offsets of the row's Bayer row in
+/// `raster::DITHER565`): before the context's six words, the offsets go on the stack ([sp, #28]
+/// to [sp, #56] in the routine, the `itrb`/`itg` words; the span subroutine of the rarer paths
+/// sees them 4 bytes further, after the saved fragment count: the `strb`/`stg` words). The
+/// common row draws its span with a copy of the dithered loop in line (no call), the rarer
+/// rows through the subroutine at label 40. Only `DITHER_OK` triangles have routine rows in a
+/// dithered strip (`ActiveTri::set_routine_rows`), so the routine needs no test of its own for
+/// them. `$entry` runs first; `$take_depth` (common row) and `$sub_take_depth` (subroutine)
+/// run once a span's start words are in r2–r4; `$pixel` and `$steps` are the loop's written
+/// pixel and a hidden pixel's steps ([`dither_loop`]); `$extra` more operands.
+macro_rules! rows565_dither_routine {
+    ($name:literal, $entry:expr, $take_depth:expr, $sub_take_depth:expr, $pixel:ident,
+     $steps:expr, [$($extra:tt)*]) => {
+        rows565_routine!(
+            $name,
+            concat!(
+                $entry,
+                "adds r1, #16\n",
+                "ldm r1!, {{r2, r3, r4, r5}}\n",
+                "push {{r2, r3, r4, r5}}\n",
+                "subs r1, #32\n",
+                "ldm r1!, {{r2, r3, r4, r5}}\n",
+                "push {{r2, r3, r4, r5}}\n",
+            ),
+            row_span_dither_inline!(
+                $take_depth,
+                dither_loop!("i", count_on_stack!(), $pixel, $steps)
+            ),
+            span_run_dither,
+            "26:\nmov r5, r11\nb 36f\n27:\nb 37f\n",
+            "60",
+            concat!(
+                "40:\n",
+                $sub_take_depth,
+                dither_loop!(
+                    "s",
+                    "ldr r5, [sp, #24]\nadds r5, #1\nstr r5, [sp, #24]\n",
+                    $pixel,
+                    $steps
+                ),
+                "bx lr\n",
+            ),
+            [
+                strb0 = const 32,
+                stg0 = const 36,
+                strb1 = const 40,
+                stg1 = const 44,
+                strb2 = const 48,
+                stg2 = const 52,
+                strb3 = const 56,
+                stg3 = const 60,
+                itrb0 = const 28,
+                itg0 = const 32,
+                itrb1 = const 36,
+                itg1 = const 40,
+                itrb2 = const 44,
+                itg2 = const 48,
+                itrb3 = const 52,
+                itg3 = const 56,
+                $($extra)*
+            ]
+        );
+    };
+}
+
+rows565_dither_routine!(
     "scanline3d_rows565_dither",
-    concat!(
-        "adds r1, #16\n",
-        "ldm r1!, {{r2, r3, r4, r5}}\n",
-        "push {{r2, r3, r4, r5}}\n",
-        "subs r1, #32\n",
-        "ldm r1!, {{r2, r3, r4, r5}}\n",
-        "push {{r2, r3, r4, r5}}\n",
-    ),
-    row_span_dither_inline!(),
-    span_run_dither,
-    "26:\nmov r5, r11\nb 36f\n27:\nb 37f\n",
-    "60",
-    concat!(
-        "40:\n",
-        dither_loop!("s", "ldr r5, [sp, #24]\nadds r5, #1\nstr r5, [sp, #24]\n"),
-        "bx lr\n",
-    ),
-    [
-        strb0 = const 32,
-        stg0 = const 36,
-        strb1 = const 40,
-        stg1 = const 44,
-        strb2 = const 48,
-        stg2 = const 52,
-        strb3 = const 56,
-        stg3 = const 60,
-        itrb0 = const 28,
-        itg0 = const 32,
-        itrb1 = const 36,
-        itg1 = const 40,
-        itrb2 = const 44,
-        itg2 = const 48,
-        itrb3 = const 52,
-        itg3 = const 56,
-    ]
+    "",
+    "",
+    "",
+    dither_pixel,
+    gouraud_steps!(),
+    []
 );
 
 // The dithered row routine with the RP2040's SIO interpolators (feature `rp2040`, where the
 // Pico firmware runs: the SIO exists only on an RP2040, so other ARMv6-M parts keep
-// `scanline3d_rows565_dither`). The same routine but for its common row, whose pixel loop is
-// [`dither_pixel_interp`]'s; it sets up both interpolators of the calling core on entry
-// ([`interp_config`]) and leaves them changed (the renderer owns them while it draws: an
-// interrupt handler that uses them must save and restore them). Its register offsets are
-// from the interpolators' base 0xd000_0080 (RP2040 datasheet 2.3.1.6, SIO registers
-// INTERP0_ACCUM0 … INTERP1_BASE_1AND0).
+// `scanline3d_rows565_dither`). The same routine with [`dither_pixel_interp`]'s pixels; it sets
+// up both interpolators of the calling core on entry ([`interp_config`]) and leaves them
+// changed (the renderer owns them while it draws: an interrupt handler that uses them must
+// save and restore them). Its register offsets are from the interpolators' base 0xd000_0080
+// (RP2040 datasheet 2.3.1.6, SIO registers INTERP0_ACCUM0 … INTERP1_BASE_1AND0).
 #[cfg(feature = "rp2040")]
-rows565_routine!(
+rows565_dither_routine!(
     "scanline3d_rows565_dither_interp",
-    concat!(
-        interp_config!(),
-        "adds r1, #16\n",
-        "ldm r1!, {{r2, r3, r4, r5}}\n",
-        "push {{r2, r3, r4, r5}}\n",
-        "subs r1, #32\n",
-        "ldm r1!, {{r2, r3, r4, r5}}\n",
-        "push {{r2, r3, r4, r5}}\n",
-    ),
-    row_span_dither_inline!(
-        concat!(
-            // r2 = z into interpolator 0 with its step (r8), r2 = the interpolator base.
-            "movs r0, #0xd0\n",
-            "lsls r0, r0, #24\n",
-            "adds r0, #0x80\n",
-            "str r2, [r0, #{i0_accum0}]\n",
-            "mov r2, r8\n",
-            "str r2, [r0, #{i0_base1}]\n",
-            "mov r2, r0\n",
-        ),
-        dither_loop!("i", count_on_stack!(), dither_pixel_interp, "add r3, r9\nadd r4, r10\n")
-    ),
-    span_run_dither,
-    "26:\nmov r5, r11\nb 36f\n27:\nb 37f\n",
-    "60",
-    concat!(
-        "40:\n",
-        // The subroutine's pixels with the interpolators too (r2 = z, r8 = its step).
-        "movs r6, #0xd0\n",
-        "lsls r6, r6, #24\n",
-        "adds r6, #0x80\n",
-        "str r2, [r6, #{i0_accum0}]\n",
-        "mov r2, r8\n",
-        "str r2, [r6, #{i0_base1}]\n",
-        "mov r2, r6\n",
-        dither_loop!(
-            "s",
-            "ldr r5, [sp, #24]\nadds r5, #1\nstr r5, [sp, #24]\n",
-            dither_pixel_interp,
-            "add r3, r9\nadd r4, r10\n"
-        ),
-        "bx lr\n",
-    ),
+    interp_config!(),
+    interp_take_depth!("r0"),
+    interp_take_depth!("r6"),
+    dither_pixel_interp,
+    "add r3, r9\nadd r4, r10\n",
     [
-        strb0 = const 32,
-        stg0 = const 36,
-        strb1 = const 40,
-        stg1 = const 44,
-        strb2 = const 48,
-        stg2 = const 52,
-        strb3 = const 56,
-        stg3 = const 60,
-        itrb0 = const 28,
-        itg0 = const 32,
-        itrb1 = const 36,
-        itg1 = const 40,
-        itrb2 = const 44,
-        itg2 = const 48,
-        itrb3 = const 52,
-        itg3 = const 56,
         i0_accum0 = const 0x00,
         i0_base0 = const 0x08,
         i0_base1 = const 0x0c,
