@@ -153,7 +153,13 @@ pub fn unpack_channels(rgb: [u16; 3], max: [u8; 3]) -> [u16; 3] {
     let mut out = [0u16; 3];
     for k in 0..3 {
         if max[k] != 0 {
-            out[k] = rgb[k] << (channel_bits(max[k]) - 2);
+            // A 1-bit channel (BinaryColor) was shifted left by one: shift it back.
+            let bits = channel_bits(max[k]);
+            out[k] = if bits >= 2 {
+                rgb[k] << (bits - 2)
+            } else {
+                rgb[k] >> (2 - bits)
+            };
         }
     }
     out

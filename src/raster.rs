@@ -22,14 +22,12 @@ use crate::color::{TargetColor, BAYER};
 use crate::project::{
     channel_bits, vertex_frac_bits, ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS,
 };
-use crate::scalar::{mul_wide, mul_wide16, recip_norm, round_shr_sat};
+use crate::scalar::{mul_wide, mul_wide16, recip_norm, round_shr64};
 use heapless::Vec;
 
 /// Fraction bits of interpolated colour channels (channel units, so 0..=255·2²⁰ < 2²⁸ fits an
 /// `i32`; step 2⁻²⁰ of a channel unit).
 pub const COLOR_FRAC_BITS: u32 = 20;
-/// Largest magnitude of a gradient (per pixel), to keep spans in `i32`.
-const GRAD_LIMIT: i64 = 1 << 30;
 
 /// The comparison a fragment's depth must pass against the stored depth (0 = nearest).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
@@ -170,33 +168,28 @@ fn mul_shr_16(m: i32, v: i32, l: u32) -> i32 {
     }
 }
 
-/// A gradient `S · 2^-shift` (see [`ActiveTri::setup`]) rounded and clamped to
-/// ±[`GRAD_LIMIT`].
-#[inline(always)]
-fn scale_gradient(s: i64, shift: i32) -> i32 {
-    let g = if shift <= 0 {
-        if s == 0 {
-            0
-        } else if s > 0 {
-            GRAD_LIMIT
-        } else {
-            -GRAD_LIMIT
-        }
-    } else if shift >= 63 {
+/// A gradient `S · 2^-shift` (see [`ActiveTri::setup`]) rounded half up, for `shift ≥ 1`
+/// (a triangle's setup has `shift ≥ 10`) and `|S| < 2⁶²`: exact, not clamped. A sliver's
+/// gradient can exceed the `i32` range; the planes are stepped in wrapping arithmetic (see
+/// [`ActiveTri`]), so only its low bits matter where it is used, but those must be exact.
+#[inline]
+fn scale_gradient(s: i64, shift: i32) -> i64 {
+    if shift >= 63 {
+        // |S| < 2⁶², so S / 2^shift rounds to 0.
         0
     } else {
-        return round_shr_sat(s, shift as u32, GRAD_LIMIT as i32);
-    };
-    g.clamp(-GRAD_LIMIT, GRAD_LIMIT) as i32
+        round_shr64(s, shift.max(1) as u32)
+    }
 }
 
-/// A colour channel's x and y gradients from the exact 64-bit sums, for slivers too thin for
-/// the 16-bit coefficients (see [`ActiveTri::setup`]). Out of line and cold: inlined, LLVM
-/// computed parts of it for every triangle and spilled them.
+/// A colour channel's x and y gradients from the exact 64-bit sums, for the triangles whose
+/// 16-bit coefficients are not precise enough (see [`attribute_words`]). Out of line and
+/// cold: inlined, LLVM computed parts of it for every triangle and spilled them.
 #[cold]
 #[inline(never)]
-fn sliver_color_gradients(b: [i32; 4], d1: i32, d2: i32, sh: u32, shift: i32) -> [i32; 2] {
+fn exact_color_gradients(b: [i32; 4], d1: i32, d2: i32, sh: u32, shift: i32) -> [i64; 2] {
     let [bx1, bx2, by1, by2] = b;
+    // |b| ≤ 2³⁰ and |d| < 2¹⁰, so each sum is below 2⁴¹ and, shifted by sh ≤ 18, below 2⁵⁹.
     [
         scale_gradient((mul_wide16(bx1, d1) - mul_wide16(bx2, d2)) << sh, shift),
         scale_gradient((mul_wide16(by1, d2) - mul_wide16(by2, d1)) << sh, shift),
@@ -406,6 +399,24 @@ pub fn gouraud_setup_self_test(n: u32) -> Option<([[i32; 4]; 3], [i32; 3])> {
             left_c,
             left_sq,
         };
+        // The routine's precondition, which a first pixel of the left edge (within a pixel of
+        // the triangle) meets: every colour plane at the first pixel within ±2³⁰ (20
+        // fraction bits), so that its 32-bit value has not wrapped. Random first pixels far
+        // from a small triangle can break it.
+        let (dx, dy) = (16 * left_c + 8 - a.x as i32, 16 * row + 8 - a.y as i32);
+        let (dx1, dy1) = (b.x as i32 - a.x as i32, b.y as i32 - a.y as i32);
+        let (dx2, dy2) = (c.x as i32 - a.x as i32, c.y as i32 - a.y as i32);
+        let l1 = dy2 as i64 * dx as i64 - dx2 as i64 * dy as i64;
+        let l2 = dx1 as i64 * dy as i64 - dy1 as i64 * dx as i64;
+        let in_range = (0..3).all(|k| {
+            let c0 = a.color()[k] as i64;
+            let (d1, d2) = (b.color()[k] as i64 - c0, c.color()[k] as i64 - c0);
+            let n = (c0 * det as i64 + d1 * l1 + d2 * l2) << 16;
+            n.unsigned_abs() < (det.unsigned_abs() as u64) << 30
+        });
+        if !in_range {
+            continue;
+        }
         let want = attribute_words::<Rgb565>(&tri, false, true, [0; 3]);
         let mut rec = ActiveTri::EMPTY;
         if crate::span_thumb::gouraud_setup(&mut rec, &tri) && [rec.gx, rec.row, rec.inc] != want {
@@ -866,11 +877,10 @@ fn packed_frac_bits<C: TargetColor>() -> (u32, u32) {
 /// gradients): each rounded to `16 − bits` fraction bits, red in the high half, added with
 /// wrapping (so the word is `R·2¹⁶ + B mod 2³²`, whatever the signs).
 #[inline(always)]
-fn pack_rb<C: TargetColor>(r: i32, b: i32) -> u32 {
+fn pack_rb<C: TargetColor>(r: i64, b: i64) -> u32 {
     let (fr, fb) = packed_frac_bits::<C>();
-    let conv = |v: i32, s: u32| v.wrapping_add(1 << (s - 1)) >> s;
-    ((conv(r, COLOR_FRAC_BITS - fr) as u32) << 16)
-        .wrapping_add(conv(b, COLOR_FRAC_BITS - fb) as u32)
+    let conv = |v: i64, s: u32| (v.wrapping_add(1 << (s - 1)) >> s) as u32;
+    (conv(r, COLOR_FRAC_BITS - fr) << 16).wrapping_add(conv(b, COLOR_FRAC_BITS - fb))
 }
 
 /// Half a unit of red and of blue in a packed red-blue word: the rounding bias of a start value.
@@ -942,11 +952,11 @@ fn packed_g_shift<C: TargetColor>() -> u32 {
 /// words, red and blue in one word ([`pack_rb`]). All wrapping, so stepping the packed words
 /// gives exactly the packed stepped values.
 #[inline(always)]
-fn pack_zrgb<C: TargetColor>(z: i32, r: i32, g: i32, b: i32) -> [i32; 3] {
+fn pack_zrgb<C: TargetColor>(z: i64, r: i64, g: i64, b: i64) -> [i32; 3] {
     [
-        z << PACKED_Z_SHIFT,
+        (z as i32) << PACKED_Z_SHIFT,
         pack_rb::<C>(r, b) as i32,
-        g << packed_g_shift::<C>(),
+        (g as i32) << packed_g_shift::<C>(),
     ]
 }
 
@@ -1204,21 +1214,28 @@ fn attribute_words<C: TargetColor>(
     let (bx1, bx2, by1, by2) = (coef(dy2), coef(dy1), coef(dx1), coef(dx2));
     // g = S · 2^(l + 4 − e), S = Σ da·b.
     let shift = inv.e as i32 - (l as i32 + 4);
-    let scale = |s: i64| scale_gradient(s, shift);
+    // The 16-bit coefficients below move a colour anywhere in the triangle by at most
+    // (|d1| + |d2|)·2^(2l − bitlen(det) − 14) channel units (10-bit); with |d| < 2¹⁰ that is
+    // at most 1/8 of a 5-bit unit when 2l − bitlen(det) ≤ 5, i.e. shift − l ≥ 20 (a
+    // triangle at most about 32 times longer than it is thick). Thinner ones take the exact
+    // sums.
+    let coarse_ok = shift - l as i32 >= COARSE_MIN;
 
     let n_attrs = if flat { 1 } else { 4 };
     // The coefficients rounded to 16 bits (|c| ≤ 2^15) for the colour gradients.
     let c16 = [bx1, bx2, by1, by2].map(|v| (v + (1 << 14)) >> 15);
     let (ca, cb, cc) = (a.color(), b.color(), c.color());
+    // Values at the first vertex, and the gradients per pixel: exact, in 64 bits (a sliver's
+    // gradients may exceed the i32 range; see [`scale_gradient`]).
     let mut a0 = [0i32; 4];
-    let mut gx = [0i32; 4];
-    let mut gy = [0i32; 4];
+    let mut gx = [0i64; 4];
+    let mut gy = [0i64; 4];
     {
         let (v0, v1, v2) = (a.depth(), b.depth(), c.depth());
         let (da1, da2) = (v1 - v0, v2 - v0); // |da| < 2^28
         a0[0] = v0;
-        gx[0] = scale(mul_wide(da1, bx1) - mul_wide(da2, bx2));
-        gy[0] = scale(mul_wide(da2, by1) - mul_wide(da1, by2));
+        gx[0] = scale_gradient(mul_wide(da1, bx1) - mul_wide(da2, bx2), shift);
+        gy[0] = scale_gradient(mul_wide(da2, by1) - mul_wide(da1, by2), shift);
     }
     // Constant trip counts (with a break), so that the channels are unrolled: with a
     // variable count LLVM kept the arrays in memory and the loop cost about twice as much.
@@ -1230,51 +1247,62 @@ fn attribute_words<C: TargetColor>(
         // 32 × 16-bit, shifted afterwards (the same values).
         let sh = COLOR_FRAC_BITS - vertex_frac_bits(C::CHANNEL_MAX[k - 1]);
         let c0 = ca[k - 1] as i32;
-        let (d1, d2) = (cb[k - 1] as i32 - c0, cc[k - 1] as i32 - c0); // |d| < 2^11
+        let (d1, d2) = (cb[k - 1] as i32 - c0, cc[k - 1] as i32 - c0); // |d| < 2^10
         a0[k] = c0 << sh;
         // The gradients from the coefficients rounded to 16 bits: sums of single 32-bit
-        // products (|d·c| < 2^26), rounded once by a 32-bit shift. The largest
-        // coefficient is at least 2^28, so rounding them to multiples of 2^15 moves a value
-        // anywhere in the triangle by a few 2^-14 of the channel's change across it: under
-        // 2^-8 of a unit for a 5-bit channel, which flips a rounding only next to a half
-        // (`tests/accuracy.rs` bounds the image against f64). Slivers thin enough to need
-        // a left shift of more than 3 keep the exact 64-bit sums.
+        // products (|d·c| < 2^26), rounded once by a 32-bit shift (see `coarse_ok`). Slivers
+        // thin enough to need a left shift of more than 3 keep the exact 64-bit sums.
         let r = shift - 15 - sh as i32;
-        if r >= -3 {
-            let round = |v: i32| -> i32 {
-                if r > 0 {
-                    // v / 2^r rounded half up, as `round_shr_sat` (r ≤ 62).
+        if r >= -3 && coarse_ok {
+            let round = |v: i32| -> i64 {
+                (if r > 0 {
+                    // v / 2^r rounded half up, as `round_shr64` (r ≤ 62).
                     ((v >> (r - 1).min(31)) + 1) >> 1
                 } else {
-                    // |v| < 2^27, so |v·2^3| < 2^30 = GRAD_LIMIT.
+                    // |v| < 2^27, so |v·2^3| < 2^30.
                     v << -r
-                }
+                }) as i64
             };
             gx[k] = round(c16[0] * d1 - c16[1] * d2);
             gy[k] = round(c16[2] * d2 - c16[3] * d1);
         } else {
-            [gx[k], gy[k]] = sliver_color_gradients([bx1, bx2, by1, by2], d1, d2, sh, shift);
+            [gx[k], gy[k]] = exact_color_gradients([bx1, bx2, by1, by2], d1, d2, sh, shift);
         }
     }
-    // Evaluate every attribute plane at the centre of pixel (left.c, row).
+    // Evaluate every attribute plane at the centre of pixel (left.c, row), modulo 2⁶⁴ (the
+    // exact value where it is used: see [`ActiveTri`]).
     let dx = SUBPIXELS * tri.left_c + SUBPIXELS / 2 - ax;
     let dy = SUBPIXELS * tri.row + SUBPIXELS / 2 - ay;
-    let short_d = dx == dx as i16 as i32 && dy == dy as i16 as i32;
-    let mut row_v = [0i32; 4];
-    let mut inc = [0i32; 4];
+    let mut row64 = [0i64; 4];
     for k in 0..4 {
         if k == n_attrs {
             break;
         }
-        let p = if short_d {
-            mul_wide16(gx[k], dx) + mul_wide16(gy[k], dy)
-        } else {
-            mul_wide(gx[k], dx) + mul_wide(gy[k], dy)
-        };
-        let d = p >> crate::project::SUBPIXEL_BITS;
-        row_v[k] = a0[k].wrapping_add(d as i32);
-        inc[k] = gy[k].wrapping_add(gx[k].wrapping_mul(tri.left_sq));
+        let p = wide_plane(gx[k], dx).wrapping_add(wide_plane(gy[k], dy));
+        row64[k] = (a0[k] as i64).wrapping_add(p >> crate::project::SUBPIXEL_BITS);
     }
+    let sq = tri.left_sq;
+    if fast && !flat {
+        // Pack once here, so that rows and spans step three words and convert nothing. Red
+        // and blue are packed from the 64-bit values (a wrapped 32-bit blue would put a wrong
+        // borrow into red), and the row step from the packed gradients, `Gy + Gx·sq`, so that
+        // stepping rows adds no error beyond the packed gradients' own (see
+        // [`ActiveTri::dither_fits`]).
+        let [z, rb, g] = pack_zrgb::<C>(
+            row64[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1)),
+            row64[1],
+            row64[2].wrapping_add(1 << (COLOR_FRAC_BITS - 1)),
+            row64[3],
+        );
+        let row_v = [z, rb.wrapping_add(packed_rb_half::<C>() as i32), g, 0];
+        let px = pack_zrgb::<C>(gx[0], gx[1], gx[2], gx[3]);
+        let py = pack_zrgb::<C>(gy[0], gy[1], gy[2], gy[3]);
+        let inc = [0, 1, 2].map(|k| py[k].wrapping_add(px[k].wrapping_mul(sq)));
+        return [[px[0], px[1], px[2], 0], row_v, [inc[0], inc[1], inc[2], 0]];
+    }
+    let mut out_gx = gx.map(|g| g as i32);
+    let mut row_v = row64.map(|v| v as i32);
+    let inc = [0, 1, 2, 3].map(|k| (gy[k] as i32).wrapping_add((gx[k] as i32).wrapping_mul(sq)));
     if flat {
         // Final channel values, rounded from the vertex bytes.
         let mut ch = [0u8; 3];
@@ -1282,25 +1310,27 @@ fn attribute_words<C: TargetColor>(
             let f = vertex_frac_bits(C::CHANNEL_MAX[k]);
             ch[k] = ((flat_rgb[k] as u32 + (1 << (f - 1))) >> f) as u8;
         }
-        gx[1] = i32::from_le_bytes([ch[0], ch[1], ch[2], 0]);
+        out_gx[1] = i32::from_le_bytes([ch[0], ch[1], ch[2], 0]);
     }
-    if fast && !flat {
-        // Pack once here, so that rows and spans step three words and convert nothing.
-        let [z, rb, g] = pack_zrgb::<C>(
-            row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1)),
-            row_v[1],
-            row_v[2].wrapping_add(1 << (COLOR_FRAC_BITS - 1)),
-            row_v[3],
-        );
-        row_v = [z, rb.wrapping_add(packed_rb_half::<C>() as i32), g, 0];
-        let [z, rb, g] = pack_zrgb::<C>(gx[0], gx[1], gx[2], gx[3]);
-        gx = [z, rb, g, 0];
-        let [z, rb, g] = pack_zrgb::<C>(inc[0], inc[1], inc[2], inc[3]);
-        inc = [z, rb, g, 0];
-    } else if fast {
+    if fast {
         row_v[0] = row_v[0].wrapping_add(1 << (DEPTH_FRAC_BITS - 1));
     }
-    [gx, row_v, inc]
+    [out_gx, row_v, inc]
+}
+
+/// The smallest `shift − l` (see [`attribute_words`]) for which a triangle's colour gradients
+/// come from the 16-bit coefficients.
+pub(crate) const COARSE_MIN: i32 = 20;
+
+/// `g·d` modulo 2⁶⁴ for a gradient `g` and a subpixel offset `|d| < 2¹⁵` ([`mul_wide16`]'s
+/// range) or any `d` (a 64-bit multiply).
+#[inline(always)]
+fn wide_plane(g: i64, d: i32) -> i64 {
+    if g == g as i32 as i64 && d == d as i16 as i32 {
+        mul_wide16(g as i32, d)
+    } else {
+        g.wrapping_mul(d as i64)
+    }
 }
 
 /// [`attribute_words`] into `rec`, out of line, on ARMv6-M: there the assembly
@@ -2090,9 +2120,13 @@ impl Span {
         colors: &mut [C],
         depth: &mut [u16],
     ) -> u32 {
-        let [s, g] = [self.start, self.gx];
+        // The stored gradients are the low 32 bits of the exact ones, which are the exact ones
+        // whenever the span has two pixels or more: two pixel centres of one row inside the
+        // triangle differ by less than a channel's range, so |gx| < 2⁸ units per pixel. (With
+        // one pixel the gradient is never added.)
+        let [s, g] = [self.start, self.gx].map(|w| w.map(|v| v as i64));
         let [z, rb, g0] = pack_zrgb::<C>(
-            self.z_start(),
+            self.z_start() as i64,
             s[1],
             s[2] + (1 << (COLOR_FRAC_BITS - 1)),
             s[3],

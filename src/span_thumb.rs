@@ -1768,8 +1768,8 @@ macro_rules! mul_depth {
 /// For [`scanline3d_gouraud_setup`]: the depth gradient
 /// `raster::scale_gradient(a·b − c·d, shift)` for the frame words at `$a`, `$b`, `$c`, `$d`,
 /// stored at `$out`: the difference of two [`mul_depth`] products, rounded half up by
-/// `shift − 1` (in `gs_k`, 10..=54) then 1, saturated to ±2³⁰ as `scalar::round_shr_sat`.
-/// Uses r0–r7.
+/// `shift − 1` (in `gs_k`, 10..=54) then 1, or the routine declines (label 8) where that
+/// exceeds ±2³⁰. Uses r0–r7.
 macro_rules! depth_gradient {
     ($a:literal, $b:literal, $c:literal, $d:literal, $out:literal) => {
         concat!(
@@ -1801,23 +1801,17 @@ macro_rules! depth_gradient {
             "asrs r6, r6, r0\n",
             "mov r5, r6\n",
             "asrs r6, r6, #31\n",
-            // |t| ≥ 2³¹: ±2³⁰ by its sign; else (t >> 1) + (t & 1) (the carry of the shift),
-            // which is within ±2³⁰.
+            // |t| ≥ 2³¹: a gradient beyond 2³⁰ (a sliver's), which the portable code keeps in
+            // 64 bits: declined. Else (t >> 1) + (t & 1) (the carry of the shift), within ±2³⁰.
             "2:\n",
             "asrs r0, r5, #31\n",
             "cmp r0, r6\n",
             "beq 3f\n",
-            "movs r5, #1\n",
-            "lsls r5, r5, #30\n",
-            "cmp r6, #0\n",
-            "bge 4f\n",
-            "negs r5, r5\n",
-            "b 4f\n",
+            "b 8f\n",
             "3:\n",
             "asrs r5, r5, #1\n",
             "movs r0, #0\n",
             "adcs r5, r0\n",
-            "4:\n",
             "str r5, [sp, #", $out, "]\n",
         )
     };
@@ -1927,8 +1921,9 @@ macro_rules! prestep {
 /// shift to 20 fraction bits, `$less` = [`round_channel`]'s adjustment for green), from its
 /// value at the first vertex `c0 << sh` and its gradients from the 16-bit coefficients,
 /// `gx = round(c0·d1 − c1·d2)` and `gy = round(c2·d2 − c3·d1)`, to its value at the first
-/// pixel (`+ `[`prestep`]) and its row step `gy + gx·sq`, all three packed into the record
-/// (r7) by `$gx`, `$inc` and `$row` ([`pack_blue`], [`pack_red`], [`pack_green`]: each
+/// pixel (`+ `[`prestep`]) and `gy` (the row step's first part: the routine adds `Gx·sq` of
+/// the packed gradient at the end), all three packed into the record (r7) by `$gx`, `$inc`
+/// and `$row` ([`pack_blue`], [`pack_red`], [`pack_green`]: each
 /// stores the word in the register it names, with r6 = 2⁸). Nothing goes through the frame
 /// but the constants. Uses r0–r7.
 macro_rules! channel {
@@ -1962,11 +1957,10 @@ macro_rules! channel {
             "asrs r3, r3, r2\n",
             "adds r3, #1\n",
             "asrs r3, r3, #1\n",
-            // r1 = gy + gx·sq; the packed gx and row step.
+            // r1 = gy; the packed gx and gy (the row step `Gy + Gx·sq` is completed from the
+            // packed words once all channels are in).
             "ldr r7, [sp, #gs_rec]\n",
-            "ldr r1, [sp, #gs_lsq]\n",
-            "muls r1, r0, r1\n",
-            "adds r1, r1, r3\n",
+            "mov r1, r3\n",
             "movs r6, #1\n",
             "lsls r6, r6, #8\n",
             "mov r2, r0\n",
@@ -2133,8 +2127,11 @@ core::arch::global_asm!(
     // the record's packed attribute words (`gx`, `row`, `inc`, twelve words from `gx` on) as
     // `raster::attribute_words` computes them for a fast Gouraud triangle with RGB565
     // channels and returns 1; or returns 0 with the record unchanged for what the portable
-    // code handles: a first pixel 2¹⁵ subpixels or more from the first vertex, and slivers
-    // whose colour gradients need the exact sums.
+    // code handles: a first pixel 2¹⁵ subpixels or more from the first vertex, slivers whose
+    // colour gradients need the exact sums and those whose depth gradient exceeds 2³⁰. The
+    // first pixel is the left edge's (within a pixel of the triangle), so every colour value
+    // there is within ±2³⁰ and its 32-bit word has not wrapped: red and blue are packed from
+    // it as the portable code packs them from 64 bits.
     "scanline3d_gouraud_setup:",
     "push {{r4, r5, r6, r7, lr}}",
     "sub sp, #gs_frame",
@@ -2213,10 +2210,16 @@ core::arch::global_asm!(
     recip_norm!(),
     // shift = 29 + s − (l + 4); k = shift − 1 (10..=54); the red and blue rounding
     // r = shift − 15 − 15 (gs_r = r + 3), green's one less: below −3 the portable code keeps
-    // exact sums.
+    // exact sums, and so it does where shift − l < `raster::COARSE_MIN` (a triangle too thin
+    // for the 16-bit coefficients).
     "ldr r2, [sp, #gs_k]",
     "adds r5, #25",
     "subs r5, r5, r2",
+    "subs r0, r5, r2",
+    "subs r0, #{coarse_min}",
+    "bpl 1f",
+    "b 8f",
+    "1:",
     "subs r0, r5, #1",
     "str r0, [sp, #gs_k]",
     "subs r5, #27",
@@ -2254,8 +2257,9 @@ core::arch::global_asm!(
     depth_gradient!("gs_da2", "gs_by1", "gs_da1", "gs_by2", "gs_gy"),
     // Packed (`raster::pack_zrgb`) into the record (r7) as each attribute is done: its
     // gradient, its value at the first pixel with its rounding bias, and its row step
-    // `gy + gx·sq`; each word of the record is [depth << 4, red << 16 + blue (rounded to 11
-    // fraction bits), green << 6, 0]. Depth: gy is in r5.
+    // `Gy + Gx·sq` of the packed gradients (for the colours completed at the end); each word
+    // of the record is [depth << 4, red << 16 + blue (rounded to 11 fraction bits),
+    // green << 6, 0]. Depth: gy is in r5.
     "ldr r7, [sp, #gs_rec]",
     "ldr r0, [sp, #gs_gx]",
     "mov r3, r5",
@@ -2297,6 +2301,18 @@ core::arch::global_asm!(
         pack_green!("r1", "{inc} + 8"),
         concat!("lsls r4, r6, #11\nadds r0, r0, r4\n", pack_green!("r0", "{row} + 8"))
     ),
+    // The red-blue and green row steps: Gy + Gx·sq from the packed words (r7 = the record).
+    "ldr r1, [sp, #gs_lsq]",
+    "ldr r0, [r7, #{gx} + 4]",
+    "muls r0, r1, r0",
+    "ldr r2, [r7, #{inc} + 4]",
+    "adds r0, r0, r2",
+    "str r0, [r7, #{inc} + 4]",
+    "ldr r0, [r7, #{gx} + 8]",
+    "muls r0, r1, r0",
+    "ldr r2, [r7, #{inc} + 8]",
+    "adds r0, r0, r2",
+    "str r0, [r7, #{inc} + 8]",
     "movs r0, #1",
     "add sp, #gs_frame",
     "pop {{r4, r5, r6, r7, pc}}",
@@ -2314,6 +2330,7 @@ core::arch::global_asm!(
     gx = const o::GX,
     row = const o::ROW,
     inc = const o::INC,
+    coarse_min = const crate::raster::COARSE_MIN,
 );
 
 /// `(n / d, n % d)` for `0 ≤ n < 2³¹`, `d ≥ 1` by shift and subtract, one step per quotient

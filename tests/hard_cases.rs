@@ -15,17 +15,18 @@ use scanline3d::{Probe, Stats, TriangleId};
 
 type Q = Fx<I16F16>;
 
-/// Prints a measurement and appends it to `target/hard-cases.txt` (see `scripts/hard-cases`).
+/// Prints a measurement and, when `HARD_CASES_REPORT` names a file, appends it there
+/// (`scripts/hard-cases` collects them into `target/hard-cases.txt`).
 fn report(line: String) {
     use std::io::Write as _;
     println!("{line}");
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/target/hard-cases.txt");
-    if let Ok(mut f) = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(path)
-    {
-        let _ = writeln!(f, "{line}");
+    if let Ok(path) = std::env::var("HARD_CASES_REPORT") {
+        let mut f = std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(&path)
+            .unwrap_or_else(|e| panic!("{path}: {e}"));
+        writeln!(f, "{line}").unwrap_or_else(|e| panic!("{path}: {e}"));
     }
 }
 

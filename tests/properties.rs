@@ -229,3 +229,89 @@ proptest! {
         }
     }
 }
+
+#[path = "../fuzz/fuzz_targets/render_input.rs"]
+#[allow(dead_code)]
+mod render_input;
+
+/// Random meshes with slivers (a vertex near the line through two others) and strongly
+/// different vertex colours, seen by a perspective camera; `(positions, indices, colours)`.
+fn coloured_mesh() -> impl Strategy<Value = (Vec<[f64; 3]>, Vec<[u16; 3]>, Vec<[u8; 3]>)> {
+    let v = || [-3.0f64..3.0, -3.0f64..3.0, -3.0f64..3.0];
+    (1usize..8).prop_flat_map(move |n| {
+        (
+            proptest::collection::vec((v(), v(), 0.0f64..1.0, -1e-3f64..1e-3, any::<bool>()), n),
+            proptest::collection::vec(any::<[u8; 3]>(), 3 * n),
+        )
+            .prop_map(|(tris, cols)| {
+                let mut pos = Vec::new();
+                for (a, b, t, e, sliver) in tris {
+                    // The third vertex: on the segment a–b, off by e (a sliver), or anywhere.
+                    let c = if sliver {
+                        [0, 1, 2].map(|k| a[k] + t * (b[k] - a[k]) + e * (k as f64 + 1.0))
+                    } else {
+                        [0, 1, 2].map(|k| a[k] * t - b[k] * (1.0 - t) + e * 1e3)
+                    };
+                    pos.extend([a, b, c]);
+                }
+                let idx = (0..pos.len() as u16 / 3)
+                    .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+                    .collect();
+                (pos, idx, cols)
+            })
+    })
+}
+
+fn colour_range_holds<S: Scalar>(
+    pos: &[[f64; 3]],
+    idx: &[[u16; 3]],
+    cols: &[[u8; 3]],
+    dither: bool,
+) -> Result<usize, TestCaseError> {
+    let camera = Camera::look_at(
+        [S::from_f64(0.3), S::from_f64(0.2), S::from_f64(8.0)],
+        [S::from_f64(0.0); 3],
+        [S::from_f64(0.0), S::from_f64(1.0), S::from_f64(0.0)],
+        Projection::Perspective {
+            fov_y: S::from_f64(0.9),
+            near: S::from_f64(0.5),
+            far: S::from_f64(30.0),
+        },
+    )
+    .unwrap();
+    let p: Vec<[S; 3]> = pos.iter().map(|a| a.map(S::from_f64)).collect();
+    // Both windings, so that back faces show too.
+    let flipped: Vec<[u16; 3]> = idx.iter().map(|&[a, b, c]| [a, c, b]).collect();
+    let mut checked = 0;
+    for idx in [idx, &flipped[..]] {
+        checked += render_input::colour_range_violation(&p, idx, cols, camera, dither)
+            .map_err(TestCaseError::fail)?;
+    }
+    Ok(checked)
+}
+
+/// Pixels the invariant property checked (summed over its cases), to show it is not vacuous.
+static CHECKED: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    /// Issue #20's invariant: every pixel's colour lies within its triangle's vertex colours
+    /// (per RGB565 channel, ±1 LSB), slivers included, in every number type, with and without
+    /// dithering. (The fuzz target checks the same on its inputs.)
+    #[test]
+    fn colour_stays_within_the_vertex_colours((pos, idx, cols) in coloured_mesh(), dither in any::<bool>()) {
+        let n = colour_range_holds::<Q>(&pos, &idx, &cols, dither)?
+            + colour_range_holds::<f32>(&pos, &idx, &cols, dither)?
+            + colour_range_holds::<f64>(&pos, &idx, &cols, dither)?;
+        CHECKED.fetch_add(n, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+#[test]
+fn the_colour_range_property_checks_pixels() {
+    // Runs the property's cases itself when the harness runs this test first.
+    colour_stays_within_the_vertex_colours();
+    let n = CHECKED.load(std::sync::atomic::Ordering::Relaxed);
+    assert!(n > 100_000, "only {n} pixels checked");
+}

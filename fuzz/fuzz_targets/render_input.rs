@@ -2,10 +2,14 @@
 //! target (`fuzz_targets/render.rs`) and the host regression test
 //! (`tests/fuzz_regressions.rs`), which replays the committed corpus and crash inputs.
 
-use embedded_graphics_core::pixelcolor::Rgb565;
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{OriginDimensions, Size};
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use embedded_graphics_core::Pixel;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::hash::HashTarget;
 use scanline3d::prelude::*;
+use scanline3d::{TargetColor, TriangleId};
 
 struct Bytes<'a>(&'a [u8]);
 
@@ -109,6 +113,139 @@ fn render<S: Scalar>(data: &[u8]) {
     });
     let mut h = HashTarget::<Rgb565>::new(40, 32);
     let _ = r.render(&scene, &mut h);
+    // The colour-range invariant on the same geometry and camera, with vertex colours taken
+    // from the normals' bytes.
+    let cols: Vec<[u8; 3]> = nor_bytes(&nor);
+    if let Err(v) = colour_range_violation(&pos, &idx, &cols, camera, opts & 4 != 0) {
+        panic!("{v}");
+    }
+}
+
+/// Vertex colours from normals (their components' magnitudes scaled to bytes).
+fn nor_bytes<S: Scalar>(nor: &[[S; 3]]) -> Vec<[u8; 3]> {
+    nor.iter()
+        .map(|n| n.map(|c| (c.to_f64().abs().min(1.0) * 255.0) as u8))
+        .collect()
+}
+
+/// A frame in memory for the invariant's two renders.
+struct Buf<C> {
+    px: Vec<C>,
+}
+
+impl<C: TargetColor> OriginDimensions for Buf<C> {
+    fn size(&self) -> Size {
+        Size::new(W as u32, H as u32)
+    }
+}
+
+impl<C: TargetColor> DrawTarget for Buf<C> {
+    type Color = C;
+    type Error = core::convert::Infallible;
+    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
+        for Pixel(p, c) in pixels {
+            if (0..W as i32).contains(&p.x) && (0..H as i32).contains(&p.y) {
+                self.px[p.y as usize * W + p.x as usize] = c;
+            }
+        }
+        Ok(())
+    }
+}
+
+const W: usize = 40;
+const H: usize = 32;
+
+/// The issue #20 invariant: every pixel's colour lies within the range of its triangle's
+/// vertex colours, per RGB565 channel, ±1 LSB. The scene is lit so that each vertex's colour
+/// is known: a white material (ambient 0, diffuse 1, Gouraud) under three lights along the
+/// axes, red, green and blue, lights a vertex with normal `(r, g, b)/255` (identity transform,
+/// so the normal is not rotated) to `(r, g, b)`. A second render into [`TriangleId`] says
+/// which triangle each pixel shows; clipped triangles keep their id and interpolate within the
+/// same range. Returns the number of pixels checked (0 where the mesh or the render is
+/// refused: an error is a defined result), or the first violation, described.
+pub fn colour_range_violation<S: Scalar>(
+    pos: &[[S; 3]],
+    idx: &[[u16; 3]],
+    cols: &[[u8; 3]],
+    camera: Camera<S>,
+    dither: bool,
+) -> Result<usize, String> {
+    let nor: Vec<[S; 3]> = cols
+        .iter()
+        .map(|c| c.map(|v| S::from_f64(v as f64 / 255.0)))
+        .collect();
+    let Some(mesh) = Mesh::new(pos, idx)
+        .ok()
+        .and_then(|m| m.with_normals(&nor).ok())
+    else {
+        return Ok(0);
+    };
+    let objects = [Object {
+        mesh,
+        transform: Mat4::identity(),
+        material: Material {
+            color: [255; 3],
+            ambient: S::from_f64(0.0),
+            diffuse: S::from_f64(1.0),
+            specular: S::from_f64(0.0),
+            shininess: 1,
+            shading: Shading::Gouraud,
+        },
+    }];
+    let axis = |k: usize| {
+        let mut d = [S::from_f64(0.0); 3];
+        d[k] = S::from_f64(1.0);
+        let mut c = [0u8; 3];
+        c[k] = 255;
+        Light {
+            direction: d,
+            color: c,
+        }
+    };
+    let scene = Scene::new(&objects, camera, [axis(0), axis(1), axis(2)]);
+    let mut colours = Buf {
+        px: vec![Rgb565::BLACK; W * H],
+    };
+    let mut r = Box::new(Renderer::<S, Rgb565, W, H, 128, 64, 32, 3>::new());
+    r.set_dither(dither);
+    if r.render(&scene, &mut colours).is_err() {
+        return Ok(0);
+    }
+    let mut ids = Buf {
+        px: vec![TriangleId(0); W * H],
+    };
+    let mut r = Box::new(Renderer::<S, TriangleId, W, H, 128, 64, 32, 3>::new());
+    if r.render(&scene, &mut ids).is_err() {
+        return Ok(0);
+    }
+    let mut checked = 0;
+    for (i, (&c, &id)) in colours.px.iter().zip(&ids.px).enumerate() {
+        let Some(t) = (id.0 as usize).checked_sub(1).and_then(|t| idx.get(t)) else {
+            continue;
+        };
+        checked += 1;
+        let got = [c.r(), c.g(), c.b()];
+        for (k, max) in [31u8, 63, 31].into_iter().enumerate() {
+            let unit = |v: u8| v as f64 * max as f64 / 255.0;
+            let vs = t.map(|v| unit(cols[v as usize][k]));
+            let lo = vs.iter().cloned().fold(f64::MAX, f64::min).floor() - 1.0;
+            let hi = vs.iter().cloned().fold(f64::MIN, f64::max).ceil() + 1.0;
+            let g = got[k] as f64;
+            if g < lo || g > hi {
+                return Err(format!(
+                    "pixel ({}, {}) of triangle {t:?}: channel {k} is {g}, outside {lo}..={hi} \
+                     (vertex colours {:?})",
+                    i % W,
+                    i / W,
+                    t.map(|v| cols[v as usize])
+                ));
+            }
+        }
+    }
+    Ok(checked)
 }
 
 /// Renders the scene encoded in `data` with I16F16, f32 and f64.
