@@ -1456,14 +1456,13 @@ fn clipped_gouraud_triangles() {
     some_targets(&CLIPPED_GOURAUD, Targets::NotBinary);
 }
 
-/// Found by this suite: a clipped Gouraud triangle into BinaryColor. `unpack_channels`
-/// (src/project.rs:156, called by `Renderer::clipped` for the clipper's new vertices) shifts
+/// Found by this suite (fixed since): a clipped Gouraud triangle into BinaryColor.
+/// `unpack_channels` (called by `Renderer::clipped` for the clipper's new vertices) shifted
 /// by `channel_bits(1) - 2`, which underflows for a 1-bit channel: "attempt to subtract with
-/// overflow" in debug; in release the shift wraps and the lit cube face that fills the screen
-/// (`NarrowFov`) is all Off (0 of 1600 covered pixels On; luma of every lit colour > 55 %).
-/// The same defect as issue #21's first one (`pack_channels`), in the clipper's path.
+/// overflow" in debug; in release the shift wrapped and the lit cube face that fills the
+/// screen (`NarrowFov`) was all Off (0 of 1600 covered pixels On; luma of every lit colour
+/// > 55 %). The same defect as issue #21's first one (`pack_channels`), in the clipper's path.
 #[test]
-#[ignore = "bug: clipped Gouraud triangles into BinaryColor (unpack_channels, project.rs:156)"]
 fn clipped_gouraud_triangles_into_binary_color() {
     some_targets(&CLIPPED_GOURAUD, Targets::Binary);
 }
