@@ -22,12 +22,23 @@ use scanline3d::fixed::types::I16F16;
 use scanline3d::metrics::Metrics;
 use scanline3d::prelude::*;
 use scanline3d::renderer::ram_formula;
-use scanline3d::{Capacity, Error, Stats};
+use scanline3d::{Capacity, Error, Needs, Stats};
 
-/// Largest preview size and capacities (host only; `--budget` prints what a device needs).
+/// Largest preview size and capacities (host only; `--budget` prints what a device needs): the
+/// library's largest renderer (`Renderer`'s limits: 32 768 vertices, 32 767 triangles, 32 768
+/// triangles active on one row).
 const MAX_W: usize = 1024;
 const MAX_H: usize = 1024;
-type Big<S, C> = Renderer<S, C, MAX_W, MAX_H, 32768, 32767, 8192>;
+type Big<S, C> = Renderer<S, C, MAX_W, MAX_H, 32768, 32767, 32768>;
+/// The same with one strip over the whole image, for a frame too large for one renderer: it is
+/// drawn in passes ([`Renderer::render_passes`]), each a piece of the mesh that fits. Its lines
+/// are 5 MB at 1024x1024 (made only when a frame needs them).
+type Layered<S, C> = Renderer<S, C, MAX_W, MAX_H, 32768, 32767, 32768, MAX_H>;
+/// The library's limits, the most any one renderer holds.
+const LIMIT: Needs = Big::<f32, Rgb565>::CAPACITY;
+/// Host time spent on the timing runs of one frame after which no more are made (the median
+/// of fewer runs): a large model in a debug build takes seconds a frame.
+const TIMING_BUDGET_S: f64 = 0.5;
 /// Lights the tool supports (unused ones are zero vectors, which light nothing).
 const LIGHTS: usize = 4;
 /// Most frames one run renders. Every frame is kept in memory twice (the tested number type
@@ -221,12 +232,18 @@ struct Args {
     #[arg(long)]
     budget: bool,
     /// Simplify the OBJ to at most this many triangles first (meshoptimizer; as `bake
-    /// --max-triangles`), e.g. to preview a model too large for one frame
+    /// --max-triangles`), e.g. to see a model too large for one renderer (drawn in passes
+    /// here) as a device can hold it
     #[arg(long, value_name = "N", requires = "obj")]
     max_triangles: Option<usize>,
     /// Simplify the OBJ to at most this many vertices first (meshoptimizer)
     #[arg(long, value_name = "N", requires = "obj")]
     max_vertices: Option<usize>,
+    /// Testing: draw every frame in passes of at most N triangles of the mesh, as a frame too
+    /// large for one renderer is drawn (the image must be the same as in one pass). The active
+    /// count of `--budget` and of the RAM figure is then an upper bound.
+    #[arg(long, value_name = "N", hide = true)]
+    pass_triangles: Option<usize>,
 }
 
 /// The model in f64, before conversion to the pipeline's number type.
@@ -409,8 +426,133 @@ fn lights<S: Scalar>(args: &Args) -> [Light<S>; LIGHTS] {
 
 struct Run<C> {
     frames: Vec<Frame<C>>,
+    /// Per frame; for a frame drawn in passes, the passes' counts added up
+    /// ([`Renderer::render_passes`]).
     stats: Vec<Stats>,
+    /// Per frame, what one renderer drawing it in one pass needs: for a frame drawn in passes,
+    /// the mesh's vertices plus every pass's clipper and face-colour vertices, every pass's
+    /// stored triangles, and (an upper bound) the passes' largest active counts added up.
+    needs: Vec<Needs>,
+    /// Per frame, the number of passes it was drawn in (1: one `render`).
+    passes: Vec<usize>,
     ns_per_frame: f64,
+}
+
+/// A piece of the mesh for one pass: consecutive triangles, with their own vertex arrays.
+struct Piece<S> {
+    positions: Vec<[S; 3]>,
+    normals: Vec<[S; 3]>,
+    indices: Vec<[u16; 3]>,
+}
+
+/// The triangles `tris` with only the vertices they use, renumbered in order of first use.
+/// `map` (one entry per mesh vertex, all `u32::MAX`) is left as it was found.
+fn piece<S: Copy>(
+    positions: &[[S; 3]],
+    normals: &[[S; 3]],
+    tris: &[[u16; 3]],
+    map: &mut [u32],
+) -> Piece<S> {
+    let mut p = Piece {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        indices: Vec::with_capacity(tris.len()),
+    };
+    for t in tris {
+        p.indices.push(t.map(|i| {
+            let slot = &mut map[i as usize];
+            if *slot == u32::MAX {
+                *slot = p.positions.len() as u32;
+                p.positions.push(positions[i as usize]);
+                p.normals.push(normals[i as usize]);
+            }
+            *slot as u16
+        }));
+    }
+    for t in tris {
+        for &i in t {
+            map[i as usize] = u32::MAX;
+        }
+    }
+    p
+}
+
+/// What a frame's scenes share: the camera, lights and background, the model's transform and
+/// material.
+struct FrameSetup<S: Scalar> {
+    camera: Camera<S>,
+    lights: [Light<S>; LIGHTS],
+    background: [u8; 3],
+    transform: Mat4<S>,
+    material: Material<S>,
+}
+
+impl<S: Scalar> FrameSetup<S> {
+    fn object<'a>(&self, mesh: Mesh<'a, S>) -> [Object<'a, S>; 1] {
+        [Object {
+            mesh,
+            transform: self.transform,
+            material: self.material,
+        }]
+    }
+
+    fn scene<'a>(&self, objects: &'a [Object<'a, S>]) -> Scene<'a, S, LIGHTS> {
+        let mut scene = Scene::new(objects, self.camera, self.lights);
+        scene.background = self.background;
+        scene
+    }
+}
+
+fn piece_mesh<'a, S: Scalar>(m: &Model, p: &'a Piece<S>) -> Result<Mesh<'a, S>, String> {
+    Mesh::new(&p.positions, &p.indices)
+        .and_then(|mesh| mesh.with_normals(&p.normals))
+        .map_err(|e| format!("{}: {e}", m.name))
+}
+
+/// Splits the mesh into pieces of consecutive triangles that each fit one renderer in this
+/// frame (pieces of `first_pieces` triangles, each halved until it fits), in mesh order, with
+/// each piece's needs.
+fn plan<S: Scalar, C: TargetColor>(
+    r: &mut Layered<S, C>,
+    m: &Model,
+    pos: &[[S; 3]],
+    nor: &[[S; 3]],
+    fs: &FrameSetup<S>,
+    first_pieces: usize,
+) -> Result<Vec<(Piece<S>, Needs)>, String> {
+    let mut map = vec![u32::MAX; pos.len()];
+    let n = m.indices.len();
+    let step = first_pieces.clamp(1, n.max(1));
+    // Pieces of `step` triangles, the first on top of the stack.
+    let mut todo: Vec<_> = (0..n.div_ceil(step))
+        .rev()
+        .map(|k| k * step..n.min((k + 1) * step))
+        .collect();
+    let mut out = Vec::new();
+    while let Some(range) = todo.pop() {
+        let p = piece(pos, nor, &m.indices[range.clone()], &mut map);
+        let objects = fs.object(piece_mesh(m, &p)?);
+        let measured = match r.needs(&fs.scene(&objects)) {
+            Ok(n) => n,
+            // Not measured exactly: the piece is too large, and is split.
+            Err(Error::Shortfall(_)) => Needs::new(usize::MAX, usize::MAX, usize::MAX),
+            Err(e) => return Err(format!("{}: {e}", m.name)),
+        };
+        if measured.fits(&LIMIT) {
+            out.push((p, measured));
+        } else if range.len() > 1 {
+            let mid = range.start + range.len() / 2;
+            // A stack: the first half is taken next, so the pieces stay in mesh order.
+            todo.push(mid..range.end);
+            todo.push(range.start..mid);
+        } else {
+            return Err(format!(
+                "{}: triangle {} alone does not fit a renderer ({measured:?})",
+                m.name, range.start
+            ));
+        }
+    }
+    Ok(out)
 }
 
 fn run<S: Scalar, C: TargetColor>(
@@ -465,72 +607,128 @@ fn run<S: Scalar, C: TargetColor>(
     let mut r: Box<Big<S, C>> = Box::default();
     r.set_viewport(w, h);
     r.set_dither(args.dither == OnOff::On);
+    // Made when a frame does not fit `r`.
+    let mut layered: Option<Box<Layered<S, C>>> = None;
     let mut out = Run {
         frames: Vec::new(),
         stats: Vec::new(),
+        needs: Vec::new(),
+        passes: Vec::new(),
         ns_per_frame: 0.0,
     };
     let mut times = Vec::new();
     for k in 0..args.frames {
-        let objects = [Object {
-            mesh,
+        let fs = FrameSetup {
+            camera,
+            lights: lights::<S>(args),
+            background: args.background,
             transform: transform::<S>(args, s, k),
             material,
-        }];
-        let mut scene = Scene::new(&objects, camera, lights::<S>(args));
-        scene.background = args.background;
+        };
+        let objects = fs.object(mesh);
+        let scene = fs.scene(&objects);
         let mut f = Frame::new(w as u32, h as u32, C::from_channels([0; 3]));
-        let stats = r.render(&scene, &mut f).map_err(|e| match e {
-            Error::Shortfall(s) => s
-                .iter()
-                .map(|(what, needed, capacity)| {
-                    capacity_message(m, what, capacity, needed, s.exact)
-                })
-                .collect::<Vec<_>>()
-                .join("\n"),
-            other => format!("{}: {other}", m.name),
-        })?;
-        for _ in 0..timed_runs {
-            let mut t = Timer::default();
-            let mut sink = scanline3d::hash::NullTarget::<C>::new(w as u32, h as u32);
-            let _ = r.render_probed(&scene, &mut sink, &mut t);
-            times.push(t.total.as_nanos() as f64);
+        // Up to `timed_runs` runs, fewer once they took `TIMING_BUDGET_S`.
+        let mut timed = |render: &mut dyn FnMut() -> f64| {
+            let mut spent = 0.0;
+            for _ in 0..timed_runs {
+                let ns = render();
+                times.push(ns);
+                spent += ns / 1e9;
+                if spent > TIMING_BUDGET_S {
+                    break;
+                }
+            }
+        };
+        let one_pass = match args.pass_triangles {
+            None => r.render(&scene, &mut f).map(Some),
+            Some(_) => Ok(None),
+        };
+        match one_pass {
+            Ok(Some(stats)) => {
+                timed(&mut || {
+                    let mut t = Timer::default();
+                    let mut sink = scanline3d::hash::NullTarget::<C>::new(w as u32, h as u32);
+                    let _ = r.render_probed(&scene, &mut sink, &mut t);
+                    t.total.as_nanos() as f64
+                });
+                out.needs.push(Needs::from_stats(&stats));
+                out.stats.push(stats);
+                out.passes.push(1);
+            }
+            // More than one renderer holds: drawn in passes, each a piece of the mesh that fits.
+            Ok(None) | Err(Error::Shortfall(_)) => {
+                let lr = layered.get_or_insert_with(|| {
+                    let mut l: Box<Layered<S, C>> = Box::default();
+                    l.set_viewport(w, h);
+                    l.set_dither(args.dither == OnOff::On);
+                    l
+                });
+                let first = args.pass_triangles.unwrap_or(m.indices.len());
+                let pieces = plan(lr, m, &pos, &nor, &fs, first)?;
+                let objects = pieces
+                    .iter()
+                    .map(|(p, _)| piece_mesh(m, p).map(|mesh| fs.object(mesh)))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let scenes: Vec<_> = objects.iter().map(|o| fs.scene(o)).collect();
+                let stats = lr
+                    .render_passes(&scenes, &mut f)
+                    .map_err(|e| format!("{}: {e}", m.name))?;
+                timed(&mut || {
+                    let mut sink = scanline3d::hash::NullTarget::<C>::new(w as u32, h as u32);
+                    let t = Instant::now();
+                    let _ = lr.render_passes(&scenes, &mut sink);
+                    t.elapsed().as_nanos() as f64
+                });
+                // A vertex shared by pieces is in each piece's arrays: counted once here.
+                let copies: usize = pieces.iter().map(|(p, _)| p.positions.len()).sum();
+                let sum = |f: fn(&Needs) -> usize| pieces.iter().map(|(_, n)| f(n)).sum::<usize>();
+                out.needs.push(Needs::new(
+                    m.positions.len() + sum(|n| n.vertices) - copies,
+                    sum(|n| n.triangles),
+                    sum(|n| n.active),
+                ));
+                out.stats.push(stats);
+                out.passes.push(pieces.len());
+            }
+            Err(e) => return Err(format!("{}: {e}", m.name)),
         }
         out.frames.push(f);
-        out.stats.push(stats);
     }
     times.sort_by(|a, b| a.total_cmp(b));
     out.ns_per_frame = times.get(times.len() / 2).copied().unwrap_or(0.0);
     Ok(out)
 }
 
-/// A capacity error, with what to do about it.
-fn capacity_message(
-    m: &Model,
-    what: Capacity,
-    capacity: usize,
-    needed: usize,
-    exact: bool,
-) -> String {
-    let name = &m.name;
-    let what_name = capacity_name(what);
-    match what {
-        // The preview's vertex and triangle stores are the library's largest
-        // (`Renderer::CHECK`): no renderer holds this frame.
-        Capacity::Vertices | Capacity::Triangles => {
-            let n = suggest_triangles(m.indices.len(), needed, capacity);
-            format!(
-                "{name}: one frame needs {}{needed} {what_name}, more than any renderer holds \
-                 ({capacity}, the library's limit): simplify the model, e.g. preview it with \
-                 `--max-triangles {n}`, or bake a smaller mesh with \
-                 `cargo run --release --example bake -- {name} --max-triangles {n} --obj-out smaller.obj`",
-                if exact { "" } else { "about " },
-            )
-        }
-        _ => format!(
-            "{name}: needs {needed} {what_name}, more than the preview's {capacity}: simplify the model (--max-triangles N)"
-        ),
+/// The capacities `needs` exceeds the library's limits in: (capacity, needed, limit, whether
+/// `needed` is an upper bound). A frame drawn in passes (`multi_pass`) has an upper bound of
+/// its active count (the passes' largest counts added up), named only when its vertices and
+/// triangles are within the limits.
+fn short_capacities(needs: &Needs, multi_pass: bool) -> Vec<(Capacity, usize, usize, bool)> {
+    let mut out: Vec<_> = [Capacity::Vertices, Capacity::Triangles]
+        .into_iter()
+        .filter(|&c| needs.get(c) > LIMIT.get(c))
+        .map(|c| (c, needs.get(c), LIMIT.get(c), false))
+        .collect();
+    let active = Capacity::ActiveTriangles;
+    if (out.is_empty() || !multi_pass) && needs.active > LIMIT.active {
+        out.push((active, needs.active, LIMIT.active, multi_pass));
     }
+    out
+}
+
+/// A capacity no renderer has, with what to do about it.
+fn capacity_message(m: &Model, what: Capacity, needed: usize, limit: usize, bound: bool) -> String {
+    let name = &m.name;
+    let n = suggest_triangles(m.indices.len(), needed, limit);
+    format!(
+        "{name}: one frame needs {}{needed} {}, more than any renderer holds ({limit}, the \
+         library's limit): the preview draws it in passes, a device cannot; simplify the model, \
+         e.g. preview and budget it with `--max-triangles {n}`, or bake a smaller mesh with \
+         `cargo run --release --example bake -- {name} --max-triangles {n} --obj-out smaller.obj`",
+        if bound { "up to " } else { "" },
+        capacity_name(what),
+    )
 }
 
 fn capacity_name(c: Capacity) -> &'static str {
@@ -780,15 +978,47 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
     let st = tested.stats[0];
     let (w, h) = args.size;
     let need = |f: fn(&Stats) -> u32| tested.stats.iter().map(f).max().unwrap_or(0) as usize;
-    let ram = ram_formula(
-        w,
-        h,
-        core::mem::size_of::<C>(),
-        args.strip,
-        need(|s| s.vertices),
-        need(|s| s.drawn),
-        need(|s| s.max_active),
-    );
+    let needs = tested.needs.iter().fold(Needs::default(), |a, n| a.max(*n));
+    let passes = tested.passes.iter().copied().max().unwrap_or(1);
+    let short: Vec<String> = short_capacities(&needs, passes > 1)
+        .iter()
+        .map(|&(what, needed, limit, bound)| {
+            format!(
+                "{}{needed} {} (of {limit})",
+                if bound { "up to " } else { "" },
+                capacity_name(what)
+            )
+        })
+        .collect();
+    let ram = if !short.is_empty() {
+        // Said on the note line below.
+        format!("renderer RAM: no renderer holds this scene (drawn in {passes} passes here)")
+    } else {
+        format!(
+            "renderer RAM {} B for this scene ({} lines)",
+            ram_formula(
+                w,
+                h,
+                core::mem::size_of::<C>(),
+                args.strip,
+                needs.vertices,
+                needs.triangles,
+                needs.active,
+            ),
+            args.strip
+        )
+    };
+    if !short.is_empty() {
+        println!(
+            "{}: drawn in {passes} passes (pieces of the mesh, one depth buffer): one frame needs \
+             {}, more than one renderer holds; `--budget` says what a device needs, \
+             `--max-triangles N` previews it simplified",
+            m.name,
+            short.join(" and ")
+        );
+    } else if passes > 1 {
+        println!("{}: drawn in {passes} passes (--pass-triangles)", m.name);
+    }
     // Triangles skipped as invalid (a vertex out of the number type's range, NaN or infinite):
     // frame 0's count, as the other counts, and the largest of any frame when it differs.
     let invalid_max = need(|s| s.invalid);
@@ -798,7 +1028,7 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
         st.invalid.to_string()
     };
     println!(
-        "{}: {w}x{h} {name} {}{} | triangles in {} / culled {} / clipped {} / drawn {} / invalid {invalid} | pixels written {} | {:.3} ms/frame (host, median) | vs f64: max LSB r{} g{} b{}, PSNR {}, {} coverage mismatches | renderer RAM {} B for this scene ({} lines) | {:.1} s",
+        "{}: {w}x{h} {name} {}{} | triangles in {} / culled {} / clipped {} / drawn {} / invalid {invalid} | pixels written {} | {:.3} ms/frame (host, median) | vs f64: max LSB r{} g{} b{}, PSNR {}, {} coverage mismatches | {ram} | {:.1} s",
         args.out.display(),
         m.name,
         if tested.frames.len() > 1 { format!(", {} frames", tested.frames.len()) } else { String::new() },
@@ -813,8 +1043,6 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
         metrics.max_lsb[2],
         if metrics.psnr_db().is_finite() { format!("{:.1} dB", metrics.psnr_db()) } else { "∞ (identical)".into() },
         metrics.coverage_mismatch,
-        ram,
-        args.strip,
         t0.elapsed().as_secs_f64(),
     );
     if invalid_max > 0 {
@@ -839,7 +1067,10 @@ fn budget<C: TargetColor>(
 ) -> Result<(), (String, i32)> {
     let (w, h) = args.size;
     let max = |f: fn(&Stats) -> u32| run.stats.iter().map(f).max().unwrap_or(0) as usize;
-    let (verts, tris, active) = (max(|s| s.vertices), max(|s| s.drawn), max(|s| s.max_active));
+    // What one renderer needs for every frame (for a frame drawn in passes, its whole mesh's).
+    let needs = run.needs.iter().fold(Needs::default(), |a, n| a.max(*n));
+    let (verts, tris, active) = (needs.vertices, needs.triangles, needs.active);
+    let passes = run.passes.iter().copied().max().unwrap_or(1);
     let invalid = max(|s| s.invalid);
     // Fixed-point headroom: the largest magnitudes each stage reaches, in f64, against Q16.16.
     let cam = Camera::look_at(s.eye, s.target, s.up, s.projection)
@@ -867,7 +1098,6 @@ fn budget<C: TargetColor>(
     let matrix_max = pv.m.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
     let range = 32768.0;
     let lines = args.strip;
-    let ram = ram_formula(w, h, core::mem::size_of::<C>(), lines, verts, tris, active);
     let color = if core::mem::size_of::<C>() == 2 {
         "Rgb565"
     } else {
@@ -886,7 +1116,14 @@ fn budget<C: TargetColor>(
         "  triangles after culling and clipping: {tris} (of {} in the mesh)",
         m.indices.len()
     );
-    println!("  triangles active on one row (max): {active}");
+    if passes > 1 {
+        println!(
+            "  triangles active on one row (max): at most {active} (the preview drew a frame in \
+             {passes} passes; this adds up their largest counts)"
+        );
+    } else {
+        println!("  triangles active on one row (max): {active}");
+    }
     println!("  invalid triangles skipped: {invalid}");
     println!("  fixed-point headroom (Q16.16 range ±32768; margin = range / largest magnitude):");
     for (stage, v) in [
@@ -900,6 +1137,21 @@ fn budget<C: TargetColor>(
             range / v.max(1e-30)
         );
     }
+    let short = short_capacities(&needs, passes > 1);
+    if !short.is_empty() {
+        // No renderer holds a frame: no RAM figure or renderer type, but what to do.
+        return Err((
+            short
+                .iter()
+                .map(|&(what, needed, limit, bound)| {
+                    capacity_message(m, what, needed, limit, bound)
+                })
+                .collect::<Vec<_>>()
+                .join("\n"),
+            1,
+        ));
+    }
+    let ram = ram_formula(w, h, core::mem::size_of::<C>(), lines, verts, tris, active);
     println!(
         "  renderer RAM: {ram} bytes = {lines}·{w}·({} + 2) + {}·{verts} + {}·{tris} + {}·{active} + 4·{h} (+ ≤ 128 state)",
         core::mem::size_of::<C>(),

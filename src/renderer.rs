@@ -128,6 +128,15 @@ pub enum Error<E> {
         /// The target's bounding box.
         target: Rectangle,
     },
+    /// [`Renderer::render_passes`] needs one strip over the whole viewport (the colour and
+    /// depth lines keep every pass's pixels until the frame is sent): `LINES` is `lines`, the
+    /// viewport is `height` rows high. Nothing was drawn.
+    StripTooShort {
+        /// The renderer's `LINES`.
+        lines: usize,
+        /// The viewport's height.
+        height: usize,
+    },
 }
 
 impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
@@ -169,6 +178,12 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
                 target.top_left.y,
                 viewport.width,
                 viewport.height
+            ),
+            Error::StripTooShort { lines, height } => write!(
+                f,
+                "drawing in passes needs one strip over the whole viewport, but the renderer's \
+                 strip has {lines} lines for a viewport {height} rows high (LINES must be at \
+                 least the viewport's height); nothing was drawn"
             ),
         }
     }
@@ -485,6 +500,25 @@ pub struct Stats {
 }
 
 impl Stats {
+    /// Adds the counts of another pass of the same frame ([`Renderer::render_passes`]):
+    /// `max_active` is the larger of the two, every other field the sum (saturating).
+    fn add_pass(&mut self, p: &Stats) {
+        let add = |a: &mut u32, b: u32| *a = a.saturating_add(b);
+        add(&mut self.triangles_in, p.triangles_in);
+        add(&mut self.invalid, p.invalid);
+        add(&mut self.outside, p.outside);
+        add(&mut self.culled, p.culled);
+        add(&mut self.degenerate, p.degenerate);
+        add(&mut self.clipped, p.clipped);
+        add(&mut self.empty, p.empty);
+        add(&mut self.drawn, p.drawn);
+        add(&mut self.vertices, p.vertices);
+        add(&mut self.color_vertices, p.color_vertices);
+        add(&mut self.fragments, p.fragments);
+        add(&mut self.pixels_written, p.pixels_written);
+        self.max_active = self.max_active.max(p.max_active);
+    }
+
     /// Counts one triangle-row's fragments and written pixels (saturating).
     fn add_row(&mut self, fragments: u32, written: u32) {
         self.fragments = self.fragments.saturating_add(fragments);
@@ -985,6 +1019,80 @@ impl<
         probe.enter(Stage::Done);
         probe.frame_end();
         result
+    }
+
+    /// Draws the scenes of `passes` one after another into the same colour and depth lines, as
+    /// one frame, and sends the frame to `target` once: a frame larger than the capacities,
+    /// split between scenes (objects, or a mesh cut into pieces) that each fit, on a renderer
+    /// whose strip holds the whole viewport (`LINES` ≥ the viewport's height, so a host's
+    /// preview rather than a microcontroller's strip). Where two passes draw the same pixel the
+    /// depth test decides, as within a pass, and a mesh cut between passes covers exactly the
+    /// pixels it covers in one pass (the top-left rule decides a shared edge's pixels whatever
+    /// the order), so the frame equals the one-pass frame wherever no two triangles have equal
+    /// depth at a pixel (there the first one drawn stays under [`DepthTest::Less`], the last
+    /// under [`DepthTest::LessEqual`]; under [`DepthTest::Always`] a later pass is drawn over
+    /// an earlier one).
+    ///
+    /// The frame is cleared to the first scene's background; the other scenes' backgrounds are
+    /// not used. An empty `passes` draws nothing and returns `Stats::default()`. The returned
+    /// [`Stats`] add up the passes' counts except [`Stats::max_active`], the largest of any
+    /// pass: `drawn` is what one renderer drawing the frame in one pass would store, while
+    /// `vertices` counts a vertex once for each pass whose mesh has it. [`Renderer::stats`]
+    /// and [`Renderer::shortfall`] are the last pass's. The overflow policy applies to each
+    /// pass.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::StripTooShort`] when `LINES` is less than the viewport's height,
+    /// [`Error::TargetTooSmall`], and a pass's [`Error::Shortfall`], [`Error::MissingNormals`]
+    /// or [`Error::Camera`]: all before anything is sent to the target (the passes before the
+    /// failing one were drawn into the lines only). A target error is returned as
+    /// [`Error::Target`].
+    pub fn render_passes<D, const L: usize>(
+        &mut self,
+        passes: &[Scene<'_, S, L>],
+        target: &mut D,
+    ) -> Result<Stats, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+    {
+        let Some(first) = passes.first() else {
+            return Ok(Stats::default());
+        };
+        let (vw, vh) = (self.vw, self.vh);
+        if LINES < vh {
+            return Err(Error::StripTooShort {
+                lines: LINES,
+                height: vh,
+            });
+        }
+        self.check_target(target)?;
+        let background = crate::color::quantize::<C>(first.background);
+        for (c, d) in self.color[..vh].iter_mut().zip(&mut self.depth[..vh]) {
+            c[..vw].fill(background);
+            d[..vw].fill(u16::MAX);
+        }
+        let mut total = Stats::default();
+        for scene in passes {
+            self.geometry(scene, &mut NoProbe)?;
+            // One strip: `LINES` ≥ `vh` rows from row 0.
+            while self
+                .draw_strip::<NoProbe, false>(None, LINES, &mut NoProbe)
+                .is_some()
+            {}
+            total.add_pass(&self.stats);
+        }
+        let area = Rectangle::new(Point::zero(), Size::new(vw as u32, vh as u32));
+        target
+            .fill_contiguous(
+                &area,
+                self.color[..vh]
+                    .iter()
+                    .flat_map(|line| line[..vw].iter())
+                    .copied(),
+            )
+            .map_err(Error::Target)?;
+        Ok(total)
     }
 
     /// Runs the geometry stage (transform, light, clip, project, cull, bucket) for a frame of
@@ -1645,7 +1753,7 @@ impl<
         P: Probe,
         F: FnMut(&mut StripCanvas<'_, C, W>),
     {
-        let Some((y0, lines)) = self.draw_strip(None, LINES, probe) else {
+        let Some((y0, lines)) = self.draw_strip::<P, true>(None, LINES, probe) else {
             return Ok(None);
         };
         let (vw, vh) = (self.vw, self.vh);
@@ -1693,7 +1801,7 @@ impl<
         lines: &mut [[C; W]; N],
     ) -> Option<core::ops::Range<usize>> {
         const { assert!(N >= 1, "a strip buffer needs at least one line") };
-        self.draw_strip(Some(lines), N, &mut NoProbe)
+        self.draw_strip::<NoProbe, true>(Some(lines), N, &mut NoProbe)
             .map(|(y0, n)| y0..y0 + n)
     }
 
@@ -1728,7 +1836,7 @@ impl<
             });
         }
         let fit = out.len() / row_bytes;
-        let Some((y0, lines)) = self.draw_strip(None, fit, &mut NoProbe) else {
+        let Some((y0, lines)) = self.draw_strip::<NoProbe, true>(None, fit, &mut NoProbe) else {
             return Ok(None);
         };
         for (line, dst) in self.color[..lines]
@@ -1744,8 +1852,11 @@ impl<
 
     /// Rasterizes the next strip of the prepared frame, at most `limit` rows, into `ext` (the
     /// caller's lines) or, for `None`, into the renderer's own lines. Returns its first row and
-    /// height, or `None` when the frame is complete.
-    fn draw_strip<P: Probe>(
+    /// height, or `None` when the frame is complete. `CLEAR`: each line is cleared to the
+    /// background (colour) and the far plane (depth) first; without it the frame is drawn over
+    /// what the lines hold ([`Renderer::render_passes`]; a constant, so the strip routines of
+    /// a frame compile as they did without the option).
+    fn draw_strip<P: Probe, const CLEAR: bool>(
         &mut self,
         ext: Option<&mut [[C; W]]>,
         limit: usize,
@@ -1777,17 +1888,19 @@ impl<
         };
         let lines = LINES.min(limit).min(color.len()).min(vh - y0);
         for l in 0..lines {
-            #[cfg(all(target_arch = "arm", target_os = "none"))]
-            let cleared = crate::span_thumb::clear_line(
-                &mut color[l][..vw],
-                &mut depth[l][..vw],
-                *background,
-            );
-            #[cfg(not(all(target_arch = "arm", target_os = "none")))]
-            let cleared = false;
-            if !cleared {
-                color[l][..vw].fill(*background);
-                depth[l][..vw].fill(u16::MAX);
+            if CLEAR {
+                #[cfg(all(target_arch = "arm", target_os = "none"))]
+                let cleared = crate::span_thumb::clear_line(
+                    &mut color[l][..vw],
+                    &mut depth[l][..vw],
+                    *background,
+                );
+                #[cfg(not(all(target_arch = "arm", target_os = "none")))]
+                let cleared = false;
+                if !cleared {
+                    color[l][..vw].fill(*background);
+                    depth[l][..vw].fill(u16::MAX);
+                }
             }
             let row = y0 + l;
             let end = if row + 1 < vh {

@@ -1,5 +1,6 @@
-//! The preview tools on large models (issue #20, defect 4) and on bad inputs: `render` refuses
-//! a model no renderer can hold with a message that says what to do, `--max-triangles`
+//! The preview tools on large models (issue #20, defect 4) and on bad inputs: `render` draws a
+//! model no renderer can hold in passes and its `--budget` refuses it with a message that says
+//! what to do, a model beyond u16 indices is refused with that message, `--max-triangles`
 //! previews it simplified, and `bake --max-triangles` simplifies it to a budget and reports the
 //! error. Large models are made here, never committed.
 
@@ -74,32 +75,160 @@ fn reported_error(stdout: &str) -> (f64, f64) {
     (words[0].parse().unwrap(), words[4].parse().unwrap())
 }
 
+/// A UV sphere of radius 1: `rings` bands of `segs` segments, `(rings − 1)·segs + 2` vertices
+/// and `2·segs·(rings − 1)` triangles, outward winding, no normals.
+fn sphere_obj(rings: usize, segs: usize) -> String {
+    use std::f64::consts::{PI, TAU};
+    let mut s = String::from("v 0 1 0\n");
+    for i in 1..rings {
+        let th = PI * i as f64 / rings as f64;
+        for j in 0..segs {
+            let ph = TAU * j as f64 / segs as f64;
+            let (x, y, z) = (th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin());
+            writeln!(s, "v {x} {y} {z}").unwrap();
+        }
+    }
+    s.push_str("v 0 -1 0\n");
+    let v = |i: usize, j: usize| 2 + (i - 1) * segs + j % segs;
+    let bottom = 2 + (rings - 1) * segs;
+    for j in 0..segs {
+        writeln!(s, "f 1 {} {}", v(1, j + 1), v(1, j)).unwrap();
+        writeln!(s, "f {bottom} {} {}", v(rings - 1, j), v(rings - 1, j + 1)).unwrap();
+    }
+    for i in 1..rings - 1 {
+        for j in 0..segs {
+            let (a, b, c, d) = (v(i, j), v(i, j + 1), v(i + 1, j + 1), v(i + 1, j));
+            writeln!(s, "f {a} {b} {c}\nf {a} {c} {d}").unwrap();
+        }
+    }
+    s
+}
+
+/// The number after `key` in `text` ("pixels written 41023" → 41023).
+fn number_after(text: &str, key: &str) -> usize {
+    let rest = text
+        .split(key)
+        .nth(1)
+        .unwrap_or_else(|| panic!("{key:?} not in {text}"));
+    rest.split_whitespace()
+        .next()
+        .unwrap()
+        .trim_matches([',', '`'])
+        .parse()
+        .unwrap()
+}
+
+/// Pixels of an RGB image that are not black (the background).
+fn lit_pixels(rgb: &[u8]) -> usize {
+    rgb.chunks_exact(3).filter(|p| p != &[0, 0, 0]).count()
+}
+
 #[test]
-fn a_model_too_large_for_a_frame_is_refused_clearly_and_can_be_simplified() {
+fn a_69k_triangle_scan_previews_on_the_host_in_passes() {
+    // 34 562 vertices, 69 120 triangles: within u16 indices, beyond any one renderer (32 768
+    // vertices).
+    let obj = tmp("big_sphere.obj");
+    std::fs::write(&obj, sphere_obj(145, 240)).unwrap();
+    let o = obj.to_str().unwrap();
+    let png = tmp("big_sphere.png");
+    let forced = tmp("big_sphere_forced.png");
+    let _ = std::fs::remove_file(&png);
+    // Orthographic and fitted: the sphere's outline is a disc of radius 240 / 2.1 px.
+    let args = ["--obj", o, "--fit", "--ortho", "1", "--out"];
+    let (code, stdout, stderr) = run("render", &[&args[..], &[png.to_str().unwrap()]].concat());
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stderr.is_empty(), "{stderr}");
+    println!("{stdout}");
+    assert!(stdout.contains("triangles in 69120"), "{stdout}");
+    assert!(stdout.contains("drawn in 2 passes"), "{stdout}");
+    assert!(stdout.contains("34562 vertices (of 32768)"), "{stdout}");
+    assert!(stdout.contains("no renderer holds this scene"), "{stdout}");
+    // Half the sphere faces the camera: the back half is culled, every piece's share added up.
+    let culled = number_after(&stdout, "culled ");
+    assert!((34_000..=35_100).contains(&culled), "{stdout}");
+    let (w, h, rgb) = common::read_png(&png).expect("a PNG");
+    assert_eq!((w, h), (240, 240));
+    let covered = lit_pixels(&rgb);
+    // A closed convex object after culling: no pixel is written twice, whatever the pass.
+    assert_eq!(
+        covered,
+        number_after(&stdout, "pixels written "),
+        "{stdout}"
+    );
+    let r = 240.0 / 2.1;
+    let disc = std::f64::consts::PI * r * r;
+    assert!(
+        (covered as f64 - disc).abs() < 2.0 * std::f64::consts::PI * r * 0.5,
+        "{covered} pixels covered, the disc has {disc:.0}"
+    );
+    // Passes of at most 10 000 triangles (7 or more): the same image.
+    let (code, stdout, stderr) = run(
+        "render",
+        &[
+            &args[..],
+            &[forced.to_str().unwrap(), "--pass-triangles", "10000"],
+        ]
+        .concat(),
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert!(number_after(&stdout, "drawn in ") >= 7, "{stdout}");
+    assert_eq!(common::read_png(&forced), common::read_png(&png));
+
+    // The budget says what a device would need and what to do; nothing is written.
+    let (code, stdout, stderr) = run("render", &["--obj", o, "--fit", "--budget"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(
+        stdout.contains("vertices stored (mesh + clipping): 34562"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("of 69120 in the mesh"), "{stdout}");
+    for part in [
+        "big_sphere.obj",
+        "34562 vertices",
+        "32768",
+        "--max-triangles",
+        "example bake",
+    ] {
+        assert!(stderr.contains(part), "{stderr:?} lacks {part:?}");
+    }
+    // What it suggests fits a renderer: the budget of the simplified model passes.
+    let n = number_after(&stderr, "--max-triangles ").to_string();
+    let (code, stdout, stderr) = run(
+        "render",
+        &["--obj", o, "--fit", "--budget", "--max-triangles", &n],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("renderer type:"), "{stdout}");
+}
+
+#[test]
+fn a_model_too_large_for_one_renderer_is_drawn_in_passes_and_can_be_simplified() {
     // 36 000 vertices, 72 000 triangles: within u16 indices, beyond any renderer's frame.
     let obj = tmp("big_torus.obj");
     std::fs::write(&obj, torus_obj(300, 120)).unwrap();
     let o = obj.to_str().unwrap();
     let png = tmp("big_torus.png");
     let _ = std::fs::remove_file(&png);
-    for budget in [false, true] {
-        let mut args = vec!["--obj", o, "--fit", "--out", png.to_str().unwrap()];
-        if budget {
-            args.push("--budget");
-        }
-        let (code, _, stderr) = run("render", &args);
-        assert_eq!(code, 1, "{stderr}");
-        assert!(!stderr.contains("panicked"), "{stderr}");
-        for part in [
-            "big_torus.obj",
-            "36000 vertices",
-            "32768",
-            "--max-triangles",
-            "example bake",
-        ] {
-            assert!(stderr.contains(part), "{stderr:?} lacks {part:?}");
-        }
-        assert!(!png.exists());
+    let (code, stdout, stderr) = run(
+        "render",
+        &["--obj", o, "--fit", "--out", png.to_str().unwrap()],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("triangles in 72000"), "{stdout}");
+    assert!(stdout.contains("36000 vertices (of 32768)"), "{stdout}");
+    assert_eq!(common::read_png(&png).map(|p| (p.0, p.1)), Some((240, 240)));
+    let (code, _, stderr) = run("render", &["--obj", o, "--fit", "--budget"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    for part in [
+        "big_torus.obj",
+        "36000 vertices",
+        "32768",
+        "--max-triangles",
+        "example bake",
+    ] {
+        assert!(stderr.contains(part), "{stderr:?} lacks {part:?}");
     }
     // Previewed simplified, with the error in the summary and in the budget.
     let (code, stdout, stderr) = run(
@@ -228,6 +357,26 @@ fn beyond_u16_indices_the_message_says_what_to_do_and_bake_can_simplify() {
         assert!(stderr.contains(part), "{stderr:?} lacks {part:?}");
     }
     assert!(!png.exists());
+    // The preview of the model simplified as the message suggests.
+    let n = number_after(&stderr, "--max-triangles ").to_string();
+    let (code, stdout, stderr) = run(
+        "render",
+        &[
+            "--obj",
+            o,
+            "--fit",
+            "--max-triangles",
+            &n,
+            "--out",
+            png.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stdout.contains(&format!("69998 -> {n} triangles")),
+        "{stdout}"
+    );
+    assert!(png.exists());
     // What the message suggests works.
     let small = tmp("strip_small.obj");
     let (code, stdout, stderr) = run(
