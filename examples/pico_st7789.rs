@@ -50,7 +50,7 @@ mod firmware {
     use scanline3d::demo::board;
     use scanline3d::fixed::types::I16F16;
     use scanline3d::overlay::Glyphs;
-    use scanline3d::Fx;
+    use scanline3d::{renderer_type, Capacities, Fx};
 
     // Wiring of the Waveshare Pico-LCD-1.3 (SPI1). Another board: change these lines.
     type ClkPin = gpio::Pin<gpio::bank0::Gpio10, gpio::FunctionSpi, gpio::PullNone>;
@@ -65,6 +65,21 @@ mod firmware {
     const DREQ_SPI1_TX: u8 = 18;
 
     type Q = Fx<I16F16>;
+
+    /// The renderer's size and capacities, by name: the panel; the default torus's needs over
+    /// a full turn (`scanline3d::demo::TORUS_CAPACITY`: 512 vertices, 466 triangles, 61 active)
+    /// with a margin; strips of `board::STRIP_LINES` rows. The host tool that renders the
+    /// reference frames uses `board::BoardRenderer`: `Device` must be that type, and the
+    /// compiler checks it is (`board::draw_strip` takes a `BoardRenderer`).
+    const CAPS: Capacities = Capacities {
+        width: board::SIZE,
+        height: board::SIZE,
+        vertices: 512,
+        triangles: 480,
+        active: 64,
+        lines: board::STRIP_LINES,
+    };
+    type Device = renderer_type!(Q, Rgb565, CAPS);
 
     /// Strip buffers in the ring (10 × 3 840 B in SRAM): enough for the renderer to run ahead
     /// through the empty rows above and below the torus while the SPI catches up.
@@ -142,7 +157,7 @@ mod firmware {
 
     /// Renders the prepared frame's strips into the ring, each queued for the DMA as soon as it
     /// is drawn; returns once the last one is queued (it is sent while the caller goes on).
-    fn stream_frame(renderer: &mut board::BoardRenderer<Q>, glyphs: &Glyphs<16>, label: &str) {
+    fn stream_frame(renderer: &mut Device, glyphs: &Glyphs<16>, label: &str) {
         loop {
             let k = READY.load(Ordering::Relaxed);
             // A free buffer: fewer than RING strips rendered and not yet sent.
@@ -274,6 +289,14 @@ mod firmware {
 
     #[entry]
     fn main() -> ! {
+        // The renderer (`Device::RAM_BYTES`, 23 KB) is a static, never built on the stack: its
+        // initial value is a constant (`const_new`), in `.data`, which the reset handler copies
+        // from flash before `main` (the image takes as much flash; `.bss` would need a zero
+        // initial value, and the depth lines start at u16::MAX). cortex-m-rt's `#[entry]` (which rp-pico's wraps, keeping
+        // the statics first) turns a `static mut` declared first in the entry function into a
+        // `&'static mut` — safe, as the entry function runs once — so no flag, lock, unsafe
+        // block or extra crate is needed.
+        static mut RENDERER: Device = Device::const_new(Rgb565::BLACK);
         // First: the HAL's clock set-up below already divides (hardware-divider helpers).
         load_ram_code();
         let mut pac = pac::Peripherals::take().unwrap();
@@ -339,9 +362,8 @@ mod firmware {
         let word = unsafe { *(probe.as_ptr() as *const u16) };
         assert!(core::mem::size_of::<Rgb565>() == 2 && word == RawU16::from(probe[0]).into_inner());
 
-        // The scene: the default torus, generated once into RAM (18 KB), and the renderer (its
-        // RAM: `demo::board::BoardRenderer::RAM_BYTES`), on `main`'s stack; the strip buffers
-        // are a static ring (`BUFFERS`).
+        // The scene: the default torus, generated once into RAM (18 KB), on `main`'s stack; the
+        // renderer (`RENDERER`) and the strip buffers (the ring `BUFFERS`) are statics.
         // The dithered row routine with the interpolators (feature `rp2040`) against the
         // portable rows on 25 random strips of four triangles: it can only run on an RP2040
         // (the QEMU benchmark's Cortex-M0 has no SIO). A mismatch stops the firmware before
@@ -349,7 +371,9 @@ mod firmware {
         assert!(scanline3d::raster::dither_rows_self_test(25).is_none());
         let scene = board::BoardScene::<Q>::new().unwrap();
         let glyphs = board::glyphs().unwrap();
-        let mut renderer = board::renderer::<Q>();
+        // `board::renderer()`'s options, which the host's reference frames are drawn with.
+        let renderer: &'static mut Device = RENDERER;
+        renderer.set_dither(true);
         let last_pixel = board::SIZE as u16 - 1;
 
         // The timer is read once per frame, before the frame is drawn (the emulator check
@@ -362,13 +386,13 @@ mod firmware {
             // Geometry first: the previous frame's last strips are still going out meanwhile.
             // A frame that does not fit (it always does: the capacities hold for a full turn)
             // leaves the previous image on the panel.
-            if scene.prepare(&mut renderer, frame).is_ok() {
+            if scene.prepare(renderer, frame).is_ok() {
                 // The address window and RAMWR through mipidsi (once the queue is empty).
                 let _ = display.set_pixels(0, 0, last_pixel, last_pixel, core::iter::empty());
                 // SAFETY: only data is sent until the next mipidsi call, which ends the stream
                 // (`finish_pixels`) before its command.
                 unsafe { display.dcs() }.begin_pixels();
-                stream_frame(&mut renderer, &glyphs, &label);
+                stream_frame(renderer, &glyphs, &label);
             }
             let now = timer.get_counter();
             frame_us = (now - last).to_micros();

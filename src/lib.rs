@@ -37,8 +37,10 @@
 //! let scene = Scene::new(&objects, camera, [Light::white([-Q::ONE, Q::ONE, Q::ONE])]);
 //!
 //! // 64×64 pixels, up to 32 vertices (24 + one face-colour vertex per drawn flat triangle),
-//! // 12 triangles, 12 active per row, one-line strip.
-//! let mut renderer = Renderer::<Q, Rgb565, 64, 64, 32, 12, 12>::new();
+//! // 12 triangles, 12 active per row, one-line strip (`lines`, default 1).
+//! type Small = renderer_type!(Q, Rgb565,
+//!     width: 64, height: 64, vertices: 32, triangles: 12, active: 12);
+//! let mut renderer = Small::new();
 //! let mut display = MockDisplay::<Rgb565>::new(); // panics if a pixel is drawn twice
 //! let stats = renderer.render(&scene, &mut display).unwrap();
 //! assert_eq!(stats.culled, 6); // the back half of the cube
@@ -61,6 +63,14 @@
 //! framebuffer plus a 16-bit depth buffer.
 //!
 //! ## Capacities and placement
+//!
+//! The renderer's size and capacities are const generic parameters,
+//! `Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES = 1>`: write the type with names instead,
+//! [`renderer_type!`]`(S, C, width: …, height: …, vertices: …, triangles: …, active: …)`
+//! (any order, each name required but `lines`; a missing, repeated or unknown name is a compile
+//! error that says which), or from a [`Capacities`] constant (a struct with named fields),
+//! `renderer_type!(S, C, CAPS)`. Both expand to the positional type and check each value's
+//! range by name where the type is written ([`config`] has the details).
 //!
 //! A frame that needs more than `VERTS`, `TRIS` or `ACTIVE` fails with [`Error::Shortfall`],
 //! which names every capacity that is short, before anything is drawn; or, with
@@ -105,6 +115,7 @@
 pub mod camera;
 pub mod clip;
 pub mod color;
+pub mod config;
 pub mod cull;
 #[cfg(all(target_arch = "arm", target_os = "none"))]
 mod cull_thumb;
@@ -132,6 +143,7 @@ pub use fixed;
 
 pub use camera::{Camera, CameraError, Projection};
 pub use color::{TargetColor, TriangleId};
+pub use config::Capacities;
 pub use math::{Mat4, Vec3};
 pub use mesh::{Mesh, MeshError};
 pub use raster::DepthTest;
@@ -151,8 +163,8 @@ pub use embedded_graphics_core::draw_target::DrawTarget;
 pub mod prelude {
     pub use crate::mesh::vertex_normals;
     pub use crate::{
-        Camera, DepthTest, Fx, Light, Mat4, Material, Mesh, Needs, Object, OverflowPolicy,
-        Projection, Renderer, Scalar, Scene, Shading, Shape, TargetColor,
+        renderer_type, Camera, Capacities, DepthTest, Fx, Light, Mat4, Material, Mesh, Needs,
+        Object, OverflowPolicy, Projection, Renderer, Scalar, Scene, Shading, Shape, TargetColor,
     };
 }
 

@@ -9,7 +9,8 @@
 //! (`Material::matte(..).flat()`, `.specular(..)`), transforms from the `*` operator.
 //!
 //! The device renderer's capacities were sized with [`Renderer::needs`] over the whole
-//! animation ([`Needs::max`], [`Needs::fits`]); the firmware's renderer is a `static` built by
+//! animation ([`Needs::max`], [`Needs::fits`]) and are named in a [`Capacities`] constant that
+//! [`renderer_type!`] turns into the renderer type; the firmware's renderer is a `static` built by
 //! [`Renderer::const_new`] behind a mutex (`critical_section::Mutex<RefCell<..>>` on a device,
 //! `std::sync::Mutex` here). Frames go to RGB565, RGB888 and Gray8 frame buffers, to a custom
 //! `DrawTarget` that records what a panel driver would receive (and can fail like a bus), and
@@ -34,18 +35,29 @@ const H: usize = 96;
 /// One orbit of the camera.
 const FRAMES: usize = 24;
 
-/// The device renderer's capacities: the largest needs over the animation, as
-/// `the_device_renderer_is_sized_for_the_whole_animation` measures them with
+/// The device renderer's size and capacities: the panel, and the largest needs over the
+/// animation, as `the_device_renderer_is_sized_for_the_whole_animation` measures them with
 /// [`Renderer::needs`] (vertices 341, triangles 220, active 43; frame 0 alone needs less), plus
 /// a small margin.
-const VERTS: usize = 360;
-const TRIS: usize = 240;
-const ACTIVE: usize = 48;
+const CAPS: Capacities = Capacities {
+    width: W,
+    height: H,
+    vertices: 360,
+    triangles: 240,
+    active: 48,
+    lines: 1,
+};
 
 /// The firmware's renderer type.
-type Device<C> = Renderer<Q, C, W, H, VERTS, TRIS, ACTIVE>;
+type Device<C> = renderer_type!(Q, C, CAPS);
 /// The host's measuring renderer: the device's size, generous capacities.
-type Measure = Renderer<Q, Rgb565, W, H, 4096, 4096, 512>;
+const MEASURE: Capacities = Capacities {
+    vertices: 4096,
+    triangles: 4096,
+    active: 512,
+    ..CAPS
+};
+type Measure = renderer_type!(Q, Rgb565, MEASURE);
 
 /// The firmware's renderer, in a `static`: no stack copy, placed by the linker.
 static DEVICE: Mutex<Device<Rgb565>> = Mutex::new(Device::const_new(Rgb565::BLACK));
@@ -314,7 +326,12 @@ fn the_device_renderer_is_sized_for_the_whole_animation() {
         worst = worst.max(needs);
     }
     println!("worst needs over {FRAMES} frames: {worst:?}");
-    assert!(worst.fits(&Device::<Rgb565>::CAPACITY), "{worst:?}");
+    assert!(worst.fits(&CAPS.capacity()), "{worst:?}");
+    // The type is the one the constant names, and the positional spelling is the same type.
+    assert_eq!(Device::<Rgb565>::CAPACITIES, CAPS);
+    assert_eq!(Device::<Rgb565>::CAPACITY, CAPS.capacity());
+    let positional: Box<Renderer<Q, Rgb565, W, H, 360, 240, 48, 1>> = Box::new(Device::new());
+    assert_eq!(positional.viewport(), (W, H));
     // Sized from the measurement, not guessed: at most a small margin above it.
     for what in [
         Capacity::Vertices,
@@ -565,13 +582,15 @@ fn mistakes_are_reported_before_anything_is_drawn() {
     assert!(small.px.iter().all(|&p| p == Rgb565::MAGENTA));
 
     // Too few active triangles, enough of the rest.
-    let mut tight = Box::new(Renderer::<Q, Rgb565, W, H, VERTS, TRIS, 8>::new());
+    const TIGHT: Capacities = Capacities { active: 8, ..CAPS };
+    type Tight = renderer_type!(Q, Rgb565, TIGHT);
+    let mut tight = Box::new(Tight::new());
     let mut f = Frame::new(W, H, Rgb565::MAGENTA);
     match tight.render(&s, &mut f) {
         Err(Error::Shortfall(short)) => {
             assert!(short.is_short(Capacity::ActiveTriangles));
             assert!(!short.is_short(Capacity::Vertices) && !short.is_short(Capacity::Triangles));
-            assert!(short.needed.active > 8 && short.needed.active <= ACTIVE);
+            assert!(short.needed.active > 8 && short.needed.active <= CAPS.active);
         }
         other => panic!("{other:?}"),
     }
