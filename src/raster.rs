@@ -183,7 +183,7 @@ fn scale_gradient(s: i64, shift: i32) -> i64 {
 }
 
 /// A colour channel's x and y gradients from the exact 64-bit sums, for the triangles whose
-/// 16-bit coefficients are not precise enough (see [`attribute_words`]). Out of line and
+/// 20-bit coefficients are not precise enough (see [`attribute_words`]). Out of line and
 /// cold: inlined, LLVM computed parts of it for every triangle and spilled them.
 #[cold]
 #[inline(never)]
@@ -1214,16 +1214,18 @@ fn attribute_words<C: TargetColor>(
     let (bx1, bx2, by1, by2) = (coef(dy2), coef(dy1), coef(dx1), coef(dx2));
     // g = S · 2^(l + 4 − e), S = Σ da·b.
     let shift = inv.e as i32 - (l as i32 + 4);
-    // The 16-bit coefficients below move a colour anywhere in the triangle by at most
-    // (|d1| + |d2|)·2^(2l − bitlen(det) − 14) channel units (10-bit); with |d| < 2¹⁰ that is
-    // at most 1/8 of a 5-bit unit when 2l − bitlen(det) ≤ 5, i.e. shift − l ≥ 20 (a
-    // triangle at most about 32 times longer than it is thick). Thinner ones take the exact
-    // sums.
+    // The 20-bit coefficients below move a colour anywhere in the triangle by at most
+    // (|d1| + |d2|)·2^(2l − bitlen(det) − 18) channel units (10-bit): each is within 2¹⁰ of
+    // its coefficient (≤ 2³⁰, so 2⁻²⁰ of the largest), that error in a gradient is
+    // (|d1| + |d2|)·2^(l − 15 − bitlen(det)) per pixel, and no pixel is more than 2^(l − 3)
+    // pixels (x plus y) from the first vertex. With |d| < 2¹⁰ that is at most 1/8 of a 5-bit
+    // unit when 2l − bitlen(det) ≤ 9, i.e. shift − l ≥ 16 (a triangle at most about 500 times
+    // longer than it is thick). Thinner ones take the exact sums.
     let coarse_ok = shift - l as i32 >= COARSE_MIN;
 
     let n_attrs = if flat { 1 } else { 4 };
-    // The coefficients rounded to 16 bits (|c| ≤ 2^15) for the colour gradients.
-    let c16 = [bx1, bx2, by1, by2].map(|v| (v + (1 << 14)) >> 15);
+    // The coefficients rounded to 20 bits (|c| ≤ 2^19) for the colour gradients.
+    let c20 = [bx1, bx2, by1, by2].map(|v| (v + (1 << 10)) >> 11);
     let (ca, cb, cc) = (a.color(), b.color(), c.color());
     // Values at the first vertex, and the gradients per pixel: exact, in 64 bits (a sliver's
     // gradients may exceed the i32 range; see [`scale_gradient`]).
@@ -1249,22 +1251,15 @@ fn attribute_words<C: TargetColor>(
         let c0 = ca[k - 1] as i32;
         let (d1, d2) = (cb[k - 1] as i32 - c0, cc[k - 1] as i32 - c0); // |d| < 2^10
         a0[k] = c0 << sh;
-        // The gradients from the coefficients rounded to 16 bits: sums of single 32-bit
-        // products (|d·c| < 2^26), rounded once by a 32-bit shift (see `coarse_ok`). Slivers
-        // thin enough to need a left shift of more than 3 keep the exact 64-bit sums.
-        let r = shift - 15 - sh as i32;
-        if r >= -3 && coarse_ok {
-            let round = |v: i32| -> i64 {
-                (if r > 0 {
-                    // v / 2^r rounded half up, as `round_shr64` (r ≤ 62).
-                    ((v >> (r - 1).min(31)) + 1) >> 1
-                } else {
-                    // |v| < 2^27, so |v·2^3| < 2^30.
-                    v << -r
-                }) as i64
-            };
-            gx[k] = round(c16[0] * d1 - c16[1] * d2);
-            gy[k] = round(c16[2] * d2 - c16[3] * d1);
+        // The gradients from the coefficients rounded to 20 bits: sums of single 32-bit
+        // products (|d·c| < 2^29), rounded once by a 32-bit shift (see `coarse_ok`).
+        // Triangles thin enough to need a shift of less than 1 keep the exact 64-bit sums.
+        let r = shift - 11 - sh as i32;
+        if r >= 1 && coarse_ok {
+            // v / 2^r rounded half up, as `round_shr64` (r ≤ 62).
+            let round = |v: i32| -> i64 { (((v >> (r - 1).min(31)) + 1) >> 1) as i64 };
+            gx[k] = round(c20[0] * d1 - c20[1] * d2);
+            gy[k] = round(c20[2] * d2 - c20[3] * d1);
         } else {
             [gx[k], gy[k]] = exact_color_gradients([bx1, bx2, by1, by2], d1, d2, sh, shift);
         }
@@ -1319,8 +1314,8 @@ fn attribute_words<C: TargetColor>(
 }
 
 /// The smallest `shift − l` (see [`attribute_words`]) for which a triangle's colour gradients
-/// come from the 16-bit coefficients.
-pub(crate) const COARSE_MIN: i32 = 20;
+/// come from the 20-bit coefficients.
+pub(crate) const COARSE_MIN: i32 = 16;
 
 /// `g·d` modulo 2⁶⁴ for a gradient `g` and a subpixel offset `|d| < 2¹⁵` ([`mul_wide16`]'s
 /// range) or any `d` (a 64-bit multiply).
@@ -1453,7 +1448,7 @@ impl ActiveTri {
     ///
     /// Why this is checked per triangle: the packed fields hold the value plus ½ unit, and the
     /// values the packed rows produce are not exactly within the channel's range. The colour
-    /// gradients come from coefficients rounded to 16 bits (a few 2⁻¹⁴ of the channel's change
+    /// gradients come from coefficients rounded to 20 bits (a few 2⁻¹⁸ of the channel's change
     /// across the triangle), and the packed steps are rounded to `16 − bits` fraction bits:
     /// 2⁻¹² unit per pixel, and per row 2⁻¹² unit times `1 + |sq|` (the row step is
     /// `inc = gy + gx·sq`, and after the short edge's switch `inc` changes by the *packed*

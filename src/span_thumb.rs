@@ -1869,17 +1869,14 @@ macro_rules! vertex_channel {
     };
 }
 
-/// For [`scanline3d_gouraud_setup`]: r0 (|r0| < 2²⁶) rounded by the channel's shift `r` as
-/// the portable setup rounds a colour gradient, `((v >> (r − 1)) + 1) >> 1` for r > 0 and
-/// `v << −r` for −3 ≤ r ≤ 0: both are `(((v << 4) >> (r + 3)) + 1) >> 1` (for r ≤ 0 the shifted
-/// value is even). `gs_r` holds r + 3 for red and blue; `$green` subtracts one for green.
-/// Uses r2.
+/// For [`scanline3d_gouraud_setup`]: r0 (|r0| < 2³⁰) rounded by the channel's shift `r ≥ 1`
+/// as the portable setup rounds a colour gradient, `((v >> (r − 1)) + 1) >> 1`. `gs_r` holds
+/// r − 1 for red and blue; `$green` subtracts one for green. Uses r2.
 macro_rules! round_channel {
     ($green:literal) => {
         concat!(
             "ldr r2, [sp, #gs_r]\n",
             $green,
-            "lsls r0, r0, #4\n",
             "asrs r0, r0, r2\n",
             "adds r0, #1\n",
             "asrs r0, r0, #1\n",
@@ -1919,7 +1916,7 @@ macro_rules! prestep {
 /// For [`scanline3d_gouraud_setup`]: colour channel `$rgb` (its byte's offset in a vertex;
 /// `$fl` = the left shift that brings its two low bits to the top of the flags, `$sh` = its
 /// shift to 20 fraction bits, `$less` = [`round_channel`]'s adjustment for green), from its
-/// value at the first vertex `c0 << sh` and its gradients from the 16-bit coefficients,
+/// value at the first vertex `c0 << sh` and its gradients from the 20-bit coefficients,
 /// `gx = round(c0·d1 − c1·d2)` and `gy = round(c2·d2 − c3·d1)`, to its value at the first
 /// pixel (`+ `[`prestep`]) and `gy` (the row step's first part: the routine adds `Gx·sq` of
 /// the packed gradient at the end), all three packed into the record (r7) by `$gx`, `$inc`
@@ -1941,19 +1938,18 @@ macro_rules! channel {
             $sh,
             "\n",
             // r0 = gx, r3 = gy.
-            "ldr r0, [sp, #gs_c16]\n",
+            "ldr r0, [sp, #gs_c20]\n",
             "muls r0, r6, r0\n",
-            "ldr r1, [sp, #gs_c16 + 4]\n",
+            "ldr r1, [sp, #gs_c20 + 4]\n",
             "muls r1, r7, r1\n",
             "subs r0, r0, r1\n",
             round_channel!($less),
-            "ldr r3, [sp, #gs_c16 + 8]\n",
+            "ldr r3, [sp, #gs_c20 + 8]\n",
             "muls r3, r7, r3\n",
-            "ldr r1, [sp, #gs_c16 + 12]\n",
+            "ldr r1, [sp, #gs_c20 + 12]\n",
             "muls r1, r6, r1\n",
             "subs r3, r3, r1\n",
             // Rounded as r0 was, by the shift left in r2.
-            "lsls r3, r3, #4\n",
             "asrs r3, r3, r2\n",
             "adds r3, #1\n",
             "asrs r3, r3, #1\n",
@@ -2062,10 +2058,10 @@ macro_rules! bitlen16 {
 
 /// For [`scanline3d_gouraud_setup`]: the gradient coefficient in frame word `$f` (a
 /// coordinate difference v on entry): `±raster::mul_shr_16(m, v, l)` with r0 = m >> 15,
-/// r1 = m & 0x7fff, r2 = l, r3 = 15 − l, r4 = 0 or −1 (det < 0: negated), and its 16-bit
-/// rounding `(q + 2¹⁴) >> 15` (r5 = 2¹⁴) into `$c16`. Uses r6, r7.
+/// r1 = m & 0x7fff, r2 = l, r3 = 15 − l, r4 = 0 or −1 (det < 0: negated), and its 20-bit
+/// rounding `(q + 2¹⁰) >> 11` (r5 = 2¹⁰) into `$c20`. Uses r6, r7.
 macro_rules! coefficient {
-    ($f:literal, $c16:literal) => {
+    ($f:literal, $c20:literal) => {
         concat!(
             "ldr r6, [sp, #",
             $f,
@@ -2082,9 +2078,9 @@ macro_rules! coefficient {
             $f,
             "]\n",
             "adds r6, r6, r5\n",
-            "asrs r6, r6, #15\n",
+            "asrs r6, r6, #11\n",
             "str r6, [sp, #",
-            $c16,
+            $c20,
             "]\n",
         )
     };
@@ -2120,7 +2116,7 @@ core::arch::global_asm!(
     ".equ gs_dy, 108",
     ".equ gs_da1, 112",
     ".equ gs_da2, 116",
-    ".equ gs_c16, 120",
+    ".equ gs_c20, 120",
     ".equ gs_frame, 136",
     // r0 = `raster::Sorted` (seven words: the three vertices top to bottom, det, the row,
     // the left edge's column and step), r1 = the record, r2 = `scalar::RECIP_SEED`. Writes
@@ -2209,9 +2205,9 @@ core::arch::global_asm!(
     "mov r2, r12",
     recip_norm!(),
     // shift = 29 + s − (l + 4); k = shift − 1 (10..=54); the red and blue rounding
-    // r = shift − 15 − 15 (gs_r = r + 3), green's one less: below −3 the portable code keeps
+    // r = shift − 11 − 15 (gs_r = r − 1), green's one less: below 1 the portable code keeps
     // exact sums, and so it does where shift − l < `raster::COARSE_MIN` (a triangle too thin
-    // for the 16-bit coefficients).
+    // for the 20-bit coefficients).
     "ldr r2, [sp, #gs_k]",
     "adds r5, #25",
     "subs r5, r5, r2",
@@ -2228,7 +2224,7 @@ core::arch::global_asm!(
     "bpl 1f",
     "b 8f",
     "1:",
-    // The coefficients and their 16-bit roundings.
+    // The coefficients and their 20-bit roundings.
     "lsrs r0, r6, #15",
     "movs r1, #0x7f",
     "lsls r1, r1, #8",
@@ -2239,11 +2235,11 @@ core::arch::global_asm!(
     "ldr r4, [sp, #gs_det]",
     "asrs r4, r4, #31",
     "movs r5, #1",
-    "lsls r5, r5, #14",
-    coefficient!("gs_bx1", "gs_c16"),
-    coefficient!("gs_bx2", "gs_c16 + 4"),
-    coefficient!("gs_by1", "gs_c16 + 8"),
-    coefficient!("gs_by2", "gs_c16 + 12"),
+    "lsls r5, r5, #10",
+    coefficient!("gs_bx1", "gs_c20"),
+    coefficient!("gs_bx2", "gs_c20 + 4"),
+    coefficient!("gs_by1", "gs_c20 + 8"),
+    coefficient!("gs_by2", "gs_c20 + 12"),
     // Depth (16.12): a0 = the first vertex's, da1 and da2 the others' differences from it.
     vertex_depth!("gs_va", "r1"),
     "str r1, [sp, #gs_a0]",

@@ -236,7 +236,10 @@ mod render_input;
 
 /// Random meshes with slivers (a vertex near the line through two others) and strongly
 /// different vertex colours, seen by a perspective camera; `(positions, indices, colours)`.
-fn coloured_mesh() -> impl Strategy<Value = (Vec<[f64; 3]>, Vec<[u16; 3]>, Vec<[u8; 3]>)> {
+/// Positions, indices and vertex colours.
+type ColouredMesh = (Vec<[f64; 3]>, Vec<[u16; 3]>, Vec<[u8; 3]>);
+
+fn coloured_mesh() -> impl Strategy<Value = ColouredMesh> {
     let v = || [-3.0f64..3.0, -3.0f64..3.0, -3.0f64..3.0];
     (1usize..8).prop_flat_map(move |n| {
         (
