@@ -993,8 +993,9 @@ pub(crate) struct ActiveTri {
     by: i16,
     cx: i16,
     cy: i16,
-    /// Per-pixel x gradients, |g| ≤ 2³⁰: depth (16.12 per pixel) and r, g, b (channel units,
-    /// 20 fraction bits per pixel). Flat triangles keep their final channel bytes in `gx[1]`.
+    /// Per-pixel x gradients, the low 32 bits of the exact ones (a sliver's can exceed the
+    /// `i32` range; every value used is exact modulo 2³², see above): depth (16.12 per pixel)
+    /// and r, g, b (channel units, 20 fraction bits per pixel). Flat triangles keep their final channel bytes in `gx[1]`.
     /// (The y gradient lives on in `inc`, and the values at the first vertex in `row`, so
     /// neither is stored.)
     gx: [i32; 4],
