@@ -1,9 +1,14 @@
 //! Turns the benchmark firmware's semihosting logs into `target/mcu-bench/report.json` and the
 //! generated `BENCHMARKS.md`, recomputing every frame's hash on the host with the same library
 //! code. Run by `scripts/mcu-bench`; exits non-zero if a fixed-point hash differs from the
-//! host's, a log is incomplete, or (with `--enforce-budget`) the budget is not met.
+//! host's, a log is incomplete, (with `--enforce-budget`) the budget is not met, or the
+//! performance ratchet fails: a frame's renderer instructions grew by more than 1 % over the
+//! committed baseline `mcu-bench/baseline.txt`, or a row is new or no longer measured
+//! (`mcu_report/ratchet.rs`). `--update-baseline` writes the baseline from this measurement
+//! instead; `--baseline=PATH` compares with (or updates) another file.
 //!
-//! `cargo run --release --example mcu_report -- [--enforce-budget] m0=LOG m4f=LOG [m0-microbit=LOG]`
+//! `cargo run --release --example mcu_report -- [--enforce-budget] [--update-baseline]
+//! [--baseline=PATH] m0=LOG m4f=LOG [microbit=LOG]`
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -14,6 +19,9 @@ use scanline3d::fixed::types::I16F16;
 use scanline3d::hash::HashTarget;
 use scanline3d::{Fx, NoProbe, Scalar};
 use serde_json::{json, Value};
+
+#[path = "mcu_report/ratchet.rs"]
+mod ratchet;
 
 /// The budget for the default torus, fixed point, on the Cortex-M0 instruction stream.
 const BUDGET_INSTRUCTIONS: u64 = 1_400_000;
@@ -75,10 +83,18 @@ fn main() {
 
 fn run() -> Result<(), String> {
     let mut enforce = false;
+    let mut update_baseline = false;
+    let mut baseline_path = ratchet::BASELINE_PATH.to_string();
     let mut logs = Vec::new();
     for a in std::env::args().skip(1) {
         if a == "--enforce-budget" {
             enforce = true;
+        } else if a == "--update-baseline" {
+            update_baseline = true;
+        } else if let Some(p) = a.strip_prefix("--baseline=") {
+            baseline_path = p.to_string();
+        } else if a.starts_with("--") {
+            return Err(format!("unknown option {a:?}"));
         } else if let Some((core, path)) = a.split_once('=') {
             logs.push((core.to_string(), path.to_string()));
         } else {
@@ -86,7 +102,10 @@ fn run() -> Result<(), String> {
         }
     }
     if logs.is_empty() {
-        return Err("usage: mcu_report [--enforce-budget] m0=LOG m4f=LOG".into());
+        return Err(
+            "usage: mcu_report [--enforce-budget] [--update-baseline] [--baseline=PATH] m0=LOG m4f=LOG [microbit=LOG]"
+                .into(),
+        );
     }
     let mut rows: Vec<Value> = Vec::new();
     let mut mem: BTreeMap<String, (u64, u64, u64)> = BTreeMap::new();
@@ -107,7 +126,11 @@ fn run() -> Result<(), String> {
             }
             if line.starts_with("SIZED ") || line.starts_with("FIT ") {
                 let f = parse_fields(line);
-                let mut v = json!({ "machine": machine(core).1, "core": machine(core).0 });
+                let mut v = json!({
+                    "machine": machine(core).1,
+                    "core": machine(core).0,
+                    "label": core,
+                });
                 for (k, x) in &f {
                     v[k] = match x.parse::<u64>() {
                         Ok(n) => json!(n),
@@ -288,11 +311,84 @@ fn run() -> Result<(), String> {
         }
     }
     println!("wrote target/mcu-bench/report.json and BENCHMARKS.md");
+    let measured = ratchet_counts(&rows, &small, &strips);
+    if update_baseline {
+        if failures.is_empty() {
+            let old = std::fs::read_to_string(&baseline_path)
+                .ok()
+                .and_then(|t| ratchet::parse(&t).ok());
+            if let Some(old) = old {
+                print!(
+                    "{}",
+                    ratchet::compare(&old, &measured).summary(&baseline_path)
+                );
+            }
+            ratchet::write_atomic(
+                std::path::Path::new(&baseline_path),
+                &ratchet::format(&measured),
+            )?;
+            println!(
+                "ratchet: wrote {} rows to {baseline_path}: commit it with the change",
+                measured.len()
+            );
+        } else {
+            failures.push(format!(
+                "{baseline_path} not updated: the measurement failed"
+            ));
+        }
+    } else {
+        let text = std::fs::read_to_string(&baseline_path).map_err(|e| {
+            format!(
+                "{baseline_path}: {e} (create it from this measurement with `{}`)",
+                ratchet::UPDATE_COMMAND
+            )
+        })?;
+        let baseline = ratchet::parse(&text).map_err(|e| format!("{baseline_path}: {e}"))?;
+        let c = ratchet::compare(&baseline, &measured);
+        print!("{}", c.summary(&baseline_path));
+        if let Some(f) = c.failure(&baseline_path) {
+            failures.push(f);
+        }
+    }
     if failures.is_empty() {
         Ok(())
     } else {
         Err(failures.join("\n"))
     }
+}
+
+/// The rows of the performance ratchet: every frame's renderer instructions (each benchmark
+/// scene, number type and core; the 16 KB part's sized torus; the torus with a taller strip).
+fn ratchet_counts(rows: &[Value], small: &[Value], strips: &[Value]) -> ratchet::Counts {
+    let s = |v: &Value, k: &str| v[k].as_str().unwrap_or_default().to_string();
+    let mut out = ratchet::Counts::new();
+    for r in rows {
+        out.push((
+            ratchet::Key::new(&s(r, "scene"), &s(r, "number"), &s(r, "label")),
+            r["renderer_instructions"].as_u64().unwrap_or(u64::MAX),
+        ));
+    }
+    for v in small.iter().filter(|v| v.get("instructions").is_some()) {
+        out.push((
+            ratchet::Key::new(
+                &format!("{}, {1} × {1}", s(v, "scene"), v["size"]),
+                &s(v, "number"),
+                &s(v, "label"),
+            ),
+            v["instructions"].as_u64().unwrap_or(u64::MAX),
+        ));
+    }
+    for st in strips.iter().filter(|st| st["kind"] == "strip") {
+        out.push((
+            ratchet::Key::new(
+                &format!("{}, strip of {} lines", s(st, "scene"), st["lines"]),
+                &s(st, "number"),
+                &s(st, "label"),
+            ),
+            st["renderer_instructions"].as_u64().unwrap_or(u64::MAX),
+        ));
+    }
+    out
 }
 
 /// The section of BENCHMARKS.md that `scripts/pico-emu` generates, markers included.
