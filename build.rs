@@ -1,4 +1,10 @@
-//! Puts the Raspberry Pi Pico's `memory.x` on the linker path — only for this package's
+//! Chooses the kernels (`src/kernel`): sets the cfg aliases `scanline3d_thumb` (a Cortex-M
+//! target: `target_arch = "arm"` and `target_os = "none"`) and `scanline3d_thumb_v6m` (the
+//! same without 32-bit atomics, i.e. ARMv6-M: Cortex-M0/M0+), both unless the `portable`
+//! feature is on, and `scanline3d_no_divide` (ARMv6-M, whatever the features: no divide
+//! instruction). This is the one place the target's architecture is looked at.
+//!
+//! Also puts the Raspberry Pi Pico's `memory.x` on the linker path — only for this package's
 //! examples (the firmware example `pico_st7789`) and only when building for the RP2040's target,
 //! `thumbv6m-none-eabi`. The library itself links nothing, and crates that depend on it (such as
 //! the QEMU benchmark firmware with its own memory layouts) never see this file.
@@ -7,6 +13,24 @@ use std::{env, fs, path::PathBuf};
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=memory.x");
+    println!("cargo::rustc-check-cfg=cfg(scanline3d_thumb)");
+    println!("cargo::rustc-check-cfg=cfg(scanline3d_thumb_v6m)");
+    println!("cargo::rustc-check-cfg=cfg(scanline3d_no_divide)");
+    let cfg = |k: &str| env::var(k).unwrap_or_default();
+    let cortex_m = cfg("CARGO_CFG_TARGET_ARCH") == "arm" && cfg("CARGO_CFG_TARGET_OS") == "none";
+    let atomics32 = cfg("CARGO_CFG_TARGET_HAS_ATOMIC")
+        .split(',')
+        .any(|w| w == "32");
+    let portable = env::var_os("CARGO_FEATURE_PORTABLE").is_some();
+    if cortex_m && !atomics32 {
+        println!("cargo::rustc-cfg=scanline3d_no_divide");
+    }
+    if cortex_m && !portable {
+        println!("cargo::rustc-cfg=scanline3d_thumb");
+        if !atomics32 {
+            println!("cargo::rustc-cfg=scanline3d_thumb_v6m");
+        }
+    }
     let target = env::var("TARGET").unwrap_or_default();
     if target != "thumbv6m-none-eabi" {
         return;

@@ -436,7 +436,7 @@ fn table(rows: &[Value]) -> String {
     s
 }
 
-/// Instructions per written pixel of the Cortex-M span loop (`src/span_thumb.rs`,
+/// Instructions per written pixel of the Cortex-M span loop (`src/kernel/thumb/span.rs`,
 /// `pixel_loop!`): the floor of the raster stage for a frame's written pixels.
 const SPAN_LOOP_PER_PIXEL: u64 = 19;
 

@@ -368,7 +368,7 @@ mod firmware {
         // portable rows on 25 random strips of four triangles: it can only run on an RP2040
         // (the QEMU benchmark's Cortex-M0 has no SIO). A mismatch stops the firmware before
         // its first frame.
-        assert!(scanline3d::raster::dither_rows_self_test(25).is_none());
+        assert!(scanline3d::selftest::dither_rows_self_test(25).is_none());
         let scene = board::BoardScene::<Q>::new().unwrap();
         let glyphs = board::glyphs().unwrap();
         // `board::renderer()`'s options, which the host's reference frames are drawn with.

@@ -13,22 +13,7 @@
 
 use crate::scalar::Scalar;
 
-/// Outcode bit: `x < −w`.
-pub const LEFT: u8 = 1;
-/// Outcode bit: `x > w`.
-pub const RIGHT: u8 = 2;
-/// Outcode bit: `y < −w`.
-pub const BOTTOM: u8 = 4;
-/// Outcode bit: `y > w`.
-pub const TOP: u8 = 8;
-/// Outcode bit: `z < 0` (in front of the near plane, including everything behind the eye).
-pub const NEAR: u8 = 16;
-/// Outcode bit: `z > w` (beyond the far plane).
-pub const FAR: u8 = 32;
-/// Extra bit (not part of the 6-bit outcode): outside the x/y guard band.
-pub const GUARD: u8 = 64;
-/// The bits that require geometric clipping.
-pub const NEEDS_CLIP: u8 = NEAR | FAR | GUARD;
+pub use crate::kernel::records::{BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP};
 
 /// The 6-bit outcode of `p = (x, y, z, w)`, plus [`GUARD`] when `|x|` or `|y|` exceeds `g·w`.
 #[must_use]

@@ -6,9 +6,11 @@
 //! **pixel** only an add and a shift remain: `(c + bias) >> frac`, where `bias` is one half
 //! (round to nearest) or, with dithering, a 4×4 ordered (Bayer) threshold.
 
+use core::any::TypeId;
+
 use embedded_graphics_core::pixelcolor::{
-    Bgr555, Bgr565, Bgr666, Bgr888, BinaryColor, Gray2, Gray4, Gray8, PixelColor, Rgb555, Rgb565,
-    Rgb666, Rgb888, RgbColor,
+    Bgr555, Bgr565, Bgr666, Bgr888, BinaryColor, Gray2, Gray4, Gray8, IntoStorage, PixelColor,
+    Rgb555, Rgb565, Rgb666, Rgb888, RgbColor,
 };
 
 /// A pixel colour the renderer can write.
@@ -16,15 +18,9 @@ use embedded_graphics_core::pixelcolor::{
 /// Implemented for the embedded-graphics RGB, BGR, grey and binary colours. For another colour
 /// type that converts from [`Rgb888`], an empty `impl TargetColor for MyColor {}` works: the
 /// defaults quantize to 8 bits per channel and convert through `Rgb888`.
-pub trait TargetColor: PixelColor + From<Rgb888> {
+pub trait TargetColor: PixelColor + From<Rgb888> + 'static {
     /// The largest value of each channel (R, G, B) in this colour's own units.
     const CHANNEL_MAX: [u8; 3] = [255, 255, 255];
-
-    /// Whether a pixel of this type is one 16-bit word `r << 11 | g << 5 | b` (5-6-5 bits, as
-    /// embedded-graphics' `Rgb565`). On Cortex-M the Gouraud span loop then writes those words
-    /// from assembly; the renderer also checks the size and the bit positions itself, so a
-    /// wrong `true` only costs the fast path. Default `false`.
-    const RGB565_WORD: bool = false;
 
     /// Builds a pixel from channels already in this colour's units (≤ [`Self::CHANNEL_MAX`]).
     #[must_use]
@@ -53,6 +49,53 @@ pub trait TargetColor: PixelColor + From<Rgb888> {
     fn can_dither() -> bool {
         Self::CHANNEL_MAX.iter().any(|&m| m != 0 && m < 255)
     }
+}
+
+/// Whether `C` is embedded-graphics' [`Rgb565`], whose raw storage ([`IntoStorage`]) is the
+/// 16-bit word `r << 11 | g << 5 | b`, laid out in memory as that `u16` (checked, not
+/// assumed: a size, an alignment and a probe value). The RGB565 kernels write such words, so
+/// they are chosen by this, a property of the type itself (no trait constant a user could set
+/// wrongly). Folds to a constant for every concrete `C`.
+#[inline(always)]
+pub(crate) fn is_rgb565<C: TargetColor>() -> bool {
+    TypeId::of::<C>() == TypeId::of::<Rgb565>() && rgb565_is_its_storage()
+}
+
+/// `Rgb565` is two bytes, at most 2-aligned, and its bytes are its raw storage word.
+#[inline(always)]
+#[allow(unsafe_code)]
+fn rgb565_is_its_storage() -> bool {
+    if core::mem::size_of::<Rgb565>() != 2 || core::mem::align_of::<Rgb565>() > 2 {
+        return false;
+    }
+    let probe = Rgb565::new(0b10110, 0b011001, 0b01101);
+    // SAFETY: `Rgb565` is two bytes (checked above) without padding (a `u16` wrapper), so its
+    // bytes are a valid `u16`.
+    let bytes = unsafe { core::mem::transmute_copy::<Rgb565, u16>(&probe) };
+    bytes == probe.into_storage()
+}
+
+/// A line of `C` as RGB565 words when [`is_rgb565`] holds, else `None`.
+#[inline(always)]
+#[allow(unsafe_code)]
+pub(crate) fn rgb565_words_mut<C: TargetColor>(cs: &mut [C]) -> Option<&mut [u16]> {
+    if !is_rgb565::<C>() {
+        return None;
+    }
+    // SAFETY: `C` is `Rgb565` (same `TypeId`), which is two bytes, 2-aligned at most, with its
+    // raw storage word as its bytes (checked by `is_rgb565`); every `u16` is a valid `Rgb565`.
+    // The slice is exclusively borrowed for the lifetime of the result.
+    Some(unsafe { core::slice::from_raw_parts_mut(cs.as_mut_ptr() as *mut u16, cs.len()) })
+}
+
+/// A colour's RGB565 word when [`is_rgb565`] holds, else `None`.
+#[inline(always)]
+pub(crate) fn rgb565_word<C: TargetColor>(c: C) -> Option<u16> {
+    if !is_rgb565::<C>() {
+        return None;
+    }
+    let mut one = [c];
+    rgb565_words_mut(&mut one).map(|w| w[0])
 }
 
 /// `c · max / 255`, rounded to nearest, for each channel (all 8.8 fixed point).
@@ -100,7 +143,6 @@ rgb_target!(Rgb555, Bgr555, Bgr565, Rgb666, Bgr666, Rgb888, Bgr888);
 
 impl TargetColor for Rgb565 {
     const CHANNEL_MAX: [u8; 3] = [Rgb565::MAX_R, Rgb565::MAX_G, Rgb565::MAX_B];
-    const RGB565_WORD: bool = true;
     #[inline(always)]
     fn from_channels(c: [u8; 3]) -> Self {
         Rgb565::new(c[0], c[1], c[2])

@@ -112,17 +112,17 @@
 // that more plainly than zipped iterators.
 #![allow(clippy::needless_range_loop)]
 
+mod bin;
 pub mod camera;
 pub mod clip;
 pub mod color;
 pub mod config;
 pub mod cull;
-#[cfg(all(target_arch = "arm", target_os = "none"))]
-mod cull_thumb;
 pub mod demo;
+mod error;
+mod geometry;
 pub mod hash;
-#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
-mod light_thumb;
+mod kernel;
 pub mod math;
 pub mod mesh;
 pub mod metrics;
@@ -132,12 +132,15 @@ pub mod raster;
 pub mod renderer;
 pub mod scalar;
 pub mod scene;
+#[doc(hidden)]
+pub mod selftest;
+mod setup;
 pub mod shade;
 pub mod shapes;
-#[cfg(all(target_arch = "arm", target_os = "none"))]
-mod span_thumb;
-#[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
-mod vertex_thumb;
+mod span;
+mod stats;
+mod strip;
+mod wide;
 
 pub use fixed;
 

@@ -7,89 +7,13 @@
 //! Screen space: pixel (0, 0) is the top-left pixel, its centre is at (0.5, 0.5); x grows right
 //! and y grows **down**. Positions are snapped to a grid of 2⁻⁴ px ([`SUBPIXEL_BITS`]).
 
+use crate::kernel;
 use crate::scalar::{mul_q32, Scalar, NDC_FRAC_BITS};
 
-/// Fraction bits of snapped screen positions: 4, i.e. 1/16 px.
-pub const SUBPIXEL_BITS: u32 = 4;
-/// Subpixels per pixel.
-pub const SUBPIXELS: i32 = 1 << SUBPIXEL_BITS;
-/// Fraction bits of interpolated depth (unsigned 16.12 fixed point in an `i32`; range
-/// 0..=65535·2¹² plus a half-step bias; step 2⁻¹² depth units).
-pub const DEPTH_FRAC_BITS: u32 = 12;
-/// Largest stored depth (the far plane).
-pub const DEPTH_MAX: i32 = 65535;
-/// Largest magnitude of a snapped screen coordinate, in subpixels (16 383 = 1024 px − 1/16):
-/// the guard band is chosen so that every projected vertex stays within it. Coordinates then
-/// fit an `i16`, and every product and sum of the edge and area setup fits 32 bits
-/// (|Δ| ≤ 32 766, and 2·32 766² < 2³¹).
-pub const COORD_LIMIT: i32 = (1 << 14) - 1;
-/// Largest supported screen width or height in pixels.
-pub const MAX_SCREEN: usize = 1024;
-
-/// A vertex after projection: snapped position, depth and colour.
-///
-/// Size: 12 bytes (the vertex store is the largest part of a renderer's RAM). `repr(C)`, aligned
-/// to 4 bytes: the Cortex-M assembly reads x and y as one word (an unaligned word load faults
-/// on a Cortex-M0).
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-#[repr(C, align(4))]
-pub struct ScreenVertex {
-    /// x in subpixels (signed 12.4 fixed point; |x| ≤ [`COORD_LIMIT`]).
-    pub x: i16,
-    /// y in subpixels, downwards (signed 12.4; |y| ≤ [`COORD_LIMIT`]).
-    pub y: i16,
-    /// Depth, integer part (0 at the near plane, 65535 at the far plane); with [`Self::zf`]
-    /// unsigned 16.8, step 2⁻⁸ of a depth step.
-    pub z: u16,
-    /// Depth, 8 fraction bits.
-    pub zf: u8,
-    /// Colour: the upper 8 of the 10-bit channels (see [`ScreenVertex::color`]).
-    pub(crate) rgb_hi: [u8; 3],
-    /// Renderer bookkeeping: outcode and state bits in bits 0..=9; bits 10..=15 hold the
-    /// lowest 2 bits of each 10-bit colour channel.
-    pub(crate) flags: u16,
-}
-
-/// Byte offsets of [`ScreenVertex::rgb_hi`] and [`ScreenVertex::flags`], for the Cortex-M0
-/// triangle setup (`span_thumb`).
-#[cfg(all(target_arch = "arm", target_os = "none"))]
-pub(crate) const RGB_HI_OFFSET: usize = core::mem::offset_of!(ScreenVertex, rgb_hi);
-#[cfg(all(target_arch = "arm", target_os = "none"))]
-pub(crate) const FLAGS_OFFSET: usize = core::mem::offset_of!(ScreenVertex, flags);
-
-/// Mask of [`ScreenVertex::flags`] bits that belong to the renderer (the rest is colour).
-pub(crate) const FLAG_MASK: u16 = (1 << 10) - 1;
-
-impl ScreenVertex {
-    /// Colour channels in the target's channel units with `10 − bits` fraction bits for a
-    /// channel of `bits` bits (RGB565: red and blue 5.5, green 6.4; 8-bit channels 8.2;
-    /// 0..=1023, step 1/32 LSB for RGB565; see [`pack_channels`]).
-    #[inline]
-    #[must_use]
-    pub fn color(&self) -> [u16; 3] {
-        let lo = self.flags >> 10;
-        [
-            (self.rgb_hi[0] as u16) << 2 | (lo & 3),
-            (self.rgb_hi[1] as u16) << 2 | (lo >> 2 & 3),
-            (self.rgb_hi[2] as u16) << 2 | (lo >> 4 & 3),
-        ]
-    }
-
-    /// Sets the colour (10-bit channels, see [`ScreenVertex::color`]).
-    #[inline]
-    pub fn set_color(&mut self, c: [u16; 3]) {
-        self.rgb_hi = c.map(|v| (v >> 2) as u8);
-        let lo = (c[0] & 3) | (c[1] & 3) << 2 | (c[2] & 3) << 4;
-        self.flags = (self.flags & FLAG_MASK) | lo << 10;
-    }
-
-    /// Depth as unsigned 16.12 in an `i32` (0..=65535·2¹², the rasterizer's depth format).
-    #[inline]
-    #[must_use]
-    pub fn depth(&self) -> i32 {
-        ((self.z as i32) << DEPTH_FRAC_BITS) | ((self.zf as i32) << (DEPTH_FRAC_BITS - 8))
-    }
-}
+pub(crate) use crate::kernel::records::FLAG_MASK;
+pub use crate::kernel::records::{
+    ScreenVertex, COORD_LIMIT, DEPTH_FRAC_BITS, DEPTH_MAX, MAX_SCREEN, SUBPIXELS, SUBPIXEL_BITS,
+};
 
 /// Significant bits of a channel maximum (31 → 5, 63 → 6, 255 → 8, 0 → 0).
 #[must_use]
@@ -199,7 +123,9 @@ impl Viewport {
             return None;
         }
         let (sx, sy) = (8 * self.width, 8 * self.height);
-        let [x, y, z] = match S::screen_words(&p, sx, sy) {
+        // The Q16.16 projection kernel where there is one, else (or where it declines) here.
+        let fast = S::q16_words(&[p]).and_then(|w| kernel::project_q16(&w[0], sx, sy));
+        let [x, y, z] = match fast {
             Some(words) => words,
             None => self.screen_words(p),
         };
@@ -230,7 +156,7 @@ impl Viewport {
 
     /// [`Viewport::project`]'s screen words for `w > 0`: x and y in subpixels, clamped to
     /// ±[`COORD_LIMIT`], and the depth as unsigned 16.8 (0..=65535·2⁸).
-    fn screen_words<S: Scalar>(&self, p: [S; 4]) -> [i32; 3] {
+    pub(crate) fn screen_words<S: Scalar>(&self, p: [S; 4]) -> [i32; 3] {
         let [x, y, z, w] = p;
         let r = S::recip(w);
         // x_sub = (ndc_x + 1) · width/2 · 16 = ndc_x · 8·width + 8·width.
@@ -248,45 +174,6 @@ impl Viewport {
             py.clamp(-lim, lim) as i32,
             z as i32,
         ]
-    }
-
-    /// Cortex-M only, for the benchmark firmware: [`Viewport::project`]'s screen words from
-    /// the Q16.16 assembly routine against the portable ones, on `n` pseudo-random clip-space
-    /// points (w from 2⁻¹⁶ to 2¹⁵, coordinates up to 16·w and beyond the guard band, depths
-    /// in front of, inside and behind the depth range) and a few screen sizes. Returns the
-    /// first point `[x, y, z, w]` (Q16.16 bits) and width whose words differ.
-    #[cfg(all(target_arch = "arm", target_os = "none"))]
-    #[doc(hidden)]
-    #[must_use]
-    pub fn projection_self_test(n: u32) -> Option<([i32; 4], u32)> {
-        use crate::scalar::Fx;
-        use fixed::types::I16F16;
-        let mut next = crate::raster::xorshift32(0x2545_f491);
-        for i in 0..n {
-            let (r1, r2, r3) = (next(), next(), next());
-            let w = ((r1 >> 1) >> (r1 % 31)).max(1) as i32;
-            // Coordinates up to 2^k·w, every sign: mostly inside the guard band (k ≤ 3).
-            let coord = |r: u32| {
-                let k = [0u32, 1, 2, 3, 3, 4, 5, 8][(r >> 29) as usize];
-                let m = (w as i64) << k;
-                ((r as i64 % (2 * m + 1)) - m).clamp(i32::MIN as i64, i32::MAX as i64) as i32
-            };
-            let (x, y) = (coord(r2), coord(r3));
-            let z = coord(r1.rotate_left(7) ^ r3);
-            let width = [240u32, 320, 128, 1024][(i % 4) as usize];
-            let vp = Viewport {
-                width,
-                height: [240u32, 240, 160, 1024][(i % 4) as usize],
-            };
-            let p = [x, y, z, w].map(|b| Fx(I16F16::from_bits(b)));
-            let want = vp.screen_words(p);
-            if let Some(got) = crate::span_thumb::project_i16f16(&p, 8 * vp.width, 8 * vp.height) {
-                if got != want {
-                    return Some(([x, y, z, w], width));
-                }
-            }
-        }
-        None
     }
 }
 

@@ -191,7 +191,6 @@ impl<S: Scalar> PreparedLight<S> {
 
     /// A grey light with the given direction (as it is, not normalized) and colour fraction,
     /// for the lighting routine's self-test.
-    #[cfg(all(target_arch = "arm", target_os = "none", not(target_has_atomic = "32")))]
     pub(crate) fn grey_raw(dir: Vec3<S>, frac: S) -> Self {
         PreparedLight {
             dir,

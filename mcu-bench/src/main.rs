@@ -586,47 +586,47 @@ fn transform_matches_rows() -> bool {
 /// renders (on the 16 KB part every byte of it counts).
 #[inline(never)]
 fn assembly_matches_portable() -> bool {
-    if let Some(e) = scanline3d::raster::edge_setup_self_test(20_000) {
+    if let Some(e) = scanline3d::selftest::edge_setup_self_test(20_000) {
         hprintln!("EDGE MISMATCH {:?}", e);
         return false;
     }
-    if let Some(e) = scanline3d::project::Viewport::projection_self_test(20_000) {
+    if let Some(e) = scanline3d::selftest::projection_self_test(20_000) {
         hprintln!("PROJECTION MISMATCH {:?}", e);
         return false;
     }
-    if let Some(e) = scanline3d::raster::gouraud_setup_self_test(20_000) {
+    if let Some(e) = scanline3d::selftest::gouraud_setup_self_test(20_000) {
         hprintln!("SETUP MISMATCH {:?}", e);
         return false;
     }
     #[cfg(not(target_has_atomic = "32"))]
-    if let Some(e) = scanline3d::raster::triangle_setup_self_test(20_000) {
+    if let Some(e) = scanline3d::selftest::triangle_setup_self_test(20_000) {
         hprintln!("TRIANGLE SETUP MISMATCH {:?}", e);
         return false;
     }
     #[cfg(not(target_has_atomic = "32"))]
-    if let Some(e) = scanline3d::raster::dither_fits_self_test(20_000) {
+    if let Some(e) = scanline3d::selftest::dither_fits_self_test(20_000) {
         hprintln!("DITHER CHECK MISMATCH {:?}", e);
         return false;
     }
-    if let Some(e) = scanline3d::raster::dither_span_self_test(20_000) {
+    if let Some(e) = scanline3d::selftest::dither_span_self_test(20_000) {
         hprintln!("DITHERED SPAN MISMATCH {:?}", e);
         return false;
     }
-    if let Some(case) = scanline3d::raster::dither_rows_self_test(2_000) {
+    if let Some(case) = scanline3d::selftest::dither_rows_self_test(2_000) {
         hprintln!("DITHERED ROWS MISMATCH case {}", case);
         return false;
     }
-    if let Some(seed) = scanline3d::renderer::cull_self_test(5_000) {
+    if let Some(seed) = scanline3d::selftest::cull_self_test(5_000) {
         hprintln!("TRIANGLE LOOP MISMATCH seed {:#x}", seed);
         return false;
     }
     #[cfg(not(target_has_atomic = "32"))]
-    if let Some(seed) = scanline3d::renderer::vertex_self_test(5_000) {
+    if let Some(seed) = scanline3d::selftest::vertex_self_test(5_000) {
         hprintln!("VERTEX LOOP MISMATCH seed {:#x}", seed);
         return false;
     }
     #[cfg(not(target_has_atomic = "32"))]
-    if let Some(seed) = scanline3d::renderer::light_self_test(5_000) {
+    if let Some(seed) = scanline3d::selftest::light_self_test(5_000) {
         hprintln!("LIGHTING MISMATCH seed {:#x}", seed);
         return false;
     }

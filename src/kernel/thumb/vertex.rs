@@ -12,11 +12,10 @@
 //! self-tests.
 #![allow(unsafe_code)]
 
-use crate::clip::{BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP};
-use crate::project::ScreenVertex;
-use crate::scalar::Fx;
-use crate::span_thumb::spread;
-use fixed::types::I16F16;
+use crate::kernel::records::{
+    ScreenVertex, BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP,
+};
+use crate::wide::spread_bits;
 use heapless::Vec;
 
 /// The routine's argument block (`repr(C)`: it reads and updates the fields by offset).
@@ -272,8 +271,8 @@ core::arch::global_asm!(
     vy = const core::mem::offset_of!(ScreenVertex, y),
     vz = const core::mem::offset_of!(ScreenVertex, z),
     vzf = const core::mem::offset_of!(ScreenVertex, zf),
-    vrgb = const crate::project::RGB_HI_OFFSET,
-    vflags = const crate::project::FLAGS_OFFSET,
+    vrgb = const crate::kernel::records::RGB_HI_OFFSET,
+    vflags = const crate::kernel::records::FLAGS_OFFSET,
     left = const LEFT,
     right = const RIGHT,
     bottom = const BOTTOM,
@@ -282,9 +281,9 @@ core::arch::global_asm!(
     far = const FAR,
     guard = const GUARD,
     needs_clip = const NEEDS_CLIP,
-    invalid = const crate::renderer::INVALID,
+    invalid = const crate::kernel::records::INVALID,
     gk = const core::mem::offset_of!(RunCtx, gk),
-    projected_bit = const crate::renderer::PROJECTED.trailing_zeros(),
+    projected_bit = const crate::kernel::records::PROJECTED.trailing_zeros(),
 );
 
 // `adds rN, #imm8` reaches the scratch words; a record is 12 bytes; the positions are three
@@ -292,39 +291,38 @@ core::arch::global_asm!(
 const _: () = {
     assert!(core::mem::offset_of!(RunCtx, words) + 8 <= 124);
     assert!(core::mem::size_of::<ScreenVertex>() == 12);
-    assert!(core::mem::size_of::<[Fx<I16F16>; 3]>() == 12);
 };
 
-// It calls `scanline3d_xform_q16` and `scanline3d_project_q16` (`span_thumb`) itself.
+// It calls `scanline3d_xform_q16` and `scanline3d_project_q16` (`xform`, `project`) itself.
 extern "C" {
     fn scanline3d_vertices_q16(ctx: *mut RunCtx) -> u32;
 }
 
-/// `Scalar::project_run` for Q16.16 on ARMv6-M: stores the records of the longest run of
+/// `kernel::project_run` (Q16.16 words) on ARMv6-M: stores the records of the longest run of
 /// `ps` (at most the store's room) that [`scanline3d_vertices_q16`] handles and returns its
 /// length. Nothing when the guard band is not an integer of at least 1 (the renderer's is),
 /// the scales are 2¹⁶ or more, or a matrix entry is outside [−2³⁰, 2³⁰).
 #[inline(never)]
 pub(crate) fn project_run<const V: usize>(
-    m: &[[Fx<I16F16>; 4]; 4],
-    ps: &[[Fx<I16F16>; 3]],
-    g: Fx<I16F16>,
+    m: &[[i32; 4]; 4],
+    ps: &[[i32; 3]],
+    g: i32,
     sx: u32,
     sy: u32,
     out: &mut Vec<ScreenVertex, V>,
 ) -> usize {
-    let s = m.iter().flatten().fold(0, |s, &v| s | spread(v));
-    let gb = g.0.to_bits();
+    let s = m.iter().flatten().fold(0, |s, &v| s | spread_bits(v));
+    let gb = g;
     if gb < 1 << 16 || gb & 0xffff != 0 || (sx | sy) >> 16 != 0 || s >= 1 << 30 {
         return 0;
     }
     let n = ps.len().min(V - out.len());
     let run = ps[..n].as_ptr_range();
     let len = out.len();
-    let seed: &'static [u16; 128] = &crate::scalar::RECIP_SEED;
+    let seed: &'static [u16; 128] = &crate::wide::RECIP_SEED;
     let mut ctx = RunCtx {
-        pos: run.start as *const [i32; 3],
-        end: run.end as *const [i32; 3],
+        pos: run.start,
+        end: run.end,
         m: m.as_ptr() as *const i32,
         scales: sx | sy << 16,
         gk: (gb >> 16) as u32,
@@ -334,13 +332,12 @@ pub(crate) fn project_run<const V: usize>(
         clip: [0; 4],
         words: [0; 3],
     };
-    // SAFETY: `Fx<I16F16>` is `repr(transparent)` over an `i32`, so the positions are three
-    // words each and the matrix 16 words. The routine reads positions in the run, the matrix
+    // SAFETY: the positions are three words each and the matrix 16 words. The routine reads positions in the run, the matrix
     // and the seed table, writes its scratch words and one 12-byte record per position it
     // passes, below the store's capacity (`n` ≤ the room), and each record completely.
     unsafe { scanline3d_vertices_q16(&mut ctx) };
     // SAFETY: the cursor stays within the run, at a whole position.
-    let done = unsafe { (ctx.pos as *const [Fx<I16F16>; 3]).offset_from(run.start) } as usize;
+    let done = unsafe { ctx.pos.offset_from(run.start) } as usize;
     // SAFETY: the first `len + done` records are initialized (`done ≤ n ≤ V − len`).
     unsafe { out.set_len(len + done) };
     done

@@ -15,10 +15,8 @@
 //! pass on 5 000 pseudo-random objects (`renderer::light_self_test`).
 #![allow(unsafe_code)]
 
-use crate::project::ScreenVertex;
-use crate::renderer::{LIT, NEEDS_LIGHT};
-use crate::scalar::{spread_bits, Fx};
-use fixed::types::I16F16;
+use crate::kernel::records::{ScreenVertex, FLAG_MASK, LIT, NEEDS_LIGHT};
+use crate::wide::spread_bits;
 
 /// The routine's argument block (`repr(C)`: it reads and updates the fields by offset). The
 /// constant factors are split into 16-bit halves, the low one unsigned, the high one signed.
@@ -295,8 +293,8 @@ core::arch::global_asm!(
     frac_hi = const core::mem::offset_of!(LightCtx, frac_hi),
     ambient = const core::mem::offset_of!(LightCtx, ambient),
     color = const core::mem::offset_of!(LightCtx, color),
-    vrgb = const crate::project::RGB_HI_OFFSET,
-    vflags = const crate::project::FLAGS_OFFSET,
+    vrgb = const crate::kernel::records::RGB_HI_OFFSET,
+    vflags = const crate::kernel::records::FLAGS_OFFSET,
     lit_bit = const LIT.trailing_zeros(),
     needs_bit = const NEEDS_LIGHT.trailing_zeros(),
 );
@@ -307,7 +305,7 @@ const _: () = {
     assert!(core::mem::offset_of!(LightCtx, color) + 2 < 32);
     assert!(core::mem::offset_of!(LightCtx, ambient) < 128);
     assert!(core::mem::size_of::<ScreenVertex>() == 12);
-    assert!(crate::project::FLAG_MASK == 0x3ff);
+    assert!(FLAG_MASK == 0x3ff);
     assert!(LIT == 1 << 9 && NEEDS_LIGHT == 1 << 15);
 };
 
@@ -315,7 +313,7 @@ extern "C" {
     fn scanline3d_light565(ctx: *mut LightCtx) -> u32;
 }
 
-/// `Scalar::light_run_565` for Q16.16 on ARMv6-M: passes the vertices of `verts`
+/// `kernel::light_run` (Q16.16 words) on ARMv6-M: passes the vertices of `verts`
 /// (with their normals, `normals[i]` for `verts[i]`) until the first marked one it does not
 /// light, lighting the marked ones, and returns how many it passed; `None` when the light or
 /// the material is outside the routine's range (a direction component of 2²² or more, a
@@ -323,15 +321,13 @@ extern "C" {
 /// itself.
 pub(crate) fn light_run(
     verts: &mut [ScreenVertex],
-    normals: &[[Fx<I16F16>; 3]],
-    dir: [Fx<I16F16>; 3],
-    frac: Fx<I16F16>,
-    ambient: Fx<I16F16>,
-    diffuse: Fx<I16F16>,
+    normals: &[[i32; 3]],
+    dir: [i32; 3],
+    frac: i32,
+    ambient: i32,
+    diffuse: i32,
     color: [u8; 3],
 ) -> Option<usize> {
-    let b = |v: Fx<I16F16>| v.0.to_bits();
-    let (dir, frac, ambient, diffuse) = (dir.map(b), b(frac), b(ambient), b(diffuse));
     if dir.iter().fold(0, |s, &v| s | spread_bits(v)) >= 1 << 22
         || (spread_bits(frac) | spread_bits(diffuse)) >= 1 << 23
     {
@@ -353,7 +349,7 @@ pub(crate) fn light_run(
         ambient,
         color: [color[0], color[1], color[2], 0],
     };
-    // SAFETY: `Fx<I16F16>` is `repr(transparent)` over an `i32`, so a normal is three words.
+    // SAFETY: a normal is three words.
     // The routine reads the records and normals of the run (`n` of each, 12 bytes a record and
     // a normal), writes only the colour bytes and flags of records in the run and
     // its cursors, which it moves together one record (and normal) at a time up to the end.

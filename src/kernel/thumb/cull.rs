@@ -1,5 +1,5 @@
 //! Thumb-1 assembly for the common cases of an object's triangle loop on Cortex-M
-//! (`renderer::cull_push`; ARMv6-M and ARMv7E-M run the same code): index checks, the flag
+//! (`kernel::cull_push`; ARMv6-M and ARMv7E-M run the same code): index checks, the flag
 //! tests, the back-face test and, for a front face, its bounding box, the empty and off-screen
 //! tests, its record and bucket counts, and the lighting marks of its unlit vertices.
 //!
@@ -9,15 +9,16 @@
 //! on a Cortex-M0 and 39 k fewer on a Cortex-M4F (`scripts/mcu-bench`, the lighting marks
 //! included).
 //!
-//! The routine computes exactly what [`crate::renderer::cull_push_portable`] computes: the same
+//! The routine computes exactly what the portable `kernel::portable::cull_push` computes: the same
 //! tests in the same order, the same stops, records, counts and marks, so the triangle store
 //! (and so every image) is identical. The benchmark firmware compares the two on pseudo-random
-//! objects before it measures (`renderer::cull_self_test`).
+//! objects before it measures (`selftest::cull`).
 #![allow(unsafe_code)]
 
-use crate::project::{ScreenVertex, FLAGS_OFFSET};
-use crate::raster::TriRecord;
-use crate::renderer::{Bins, CullStop, Stats, INVALID, LIT, NEEDS_LIGHT};
+use crate::kernel::records::{
+    Bins, CullCounts, CullStop, ScreenVertex, TriRecord, FLAGS_OFFSET, INVALID, LIT, NEEDS_CLIP,
+    NEEDS_LIGHT,
+};
 
 /// The routine's argument block (`repr(C)`: it reads and updates the fields by offset).
 #[repr(C)]
@@ -41,12 +42,12 @@ struct CullCtx {
     vh: i32,
     /// The store index of the object's first vertex.
     base: u32,
-    /// The frame's statistics and the count of triangles needed.
-    stats: *mut Stats,
+    /// The counts and the count of triangles needed.
+    stats: *mut CullCounts,
     needed: *mut usize,
 }
 
-/// Increments the [`Stats`] field at byte offset `$off` (the context in r7). Uses r0, r1.
+/// Increments the [`CullCounts`] field at byte offset `$off` (the context in r7). Uses r0, r1.
 macro_rules! count {
     ($off:literal) => {
         concat!(
@@ -314,11 +315,11 @@ core::arch::global_asm!(
     base = const core::mem::offset_of!(CullCtx, base),
     stats = const core::mem::offset_of!(CullCtx, stats),
     needed = const core::mem::offset_of!(CullCtx, needed),
-    outside = const core::mem::offset_of!(Stats, outside),
-    culled = const core::mem::offset_of!(Stats, culled),
-    degenerate = const core::mem::offset_of!(Stats, degenerate),
-    empty = const core::mem::offset_of!(Stats, empty),
-    drawn = const core::mem::offset_of!(Stats, drawn),
+    outside = const core::mem::offset_of!(CullCounts, outside),
+    culled = const core::mem::offset_of!(CullCounts, culled),
+    degenerate = const core::mem::offset_of!(CullCounts, degenerate),
+    empty = const core::mem::offset_of!(CullCounts, empty),
+    drawn = const core::mem::offset_of!(CullCounts, drawn),
     flags = const FLAGS_OFFSET,
     lit_shift = const 31 - LIT.trailing_zeros(),
     needs_light_bit = const NEEDS_LIGHT.trailing_zeros(),
@@ -327,21 +328,20 @@ core::arch::global_asm!(
 // The flag tests above: invalid and the clipper's planes are bits 4..=7, the outcode bits
 // 0..=5; a record is three 16-bit indices; x and y are a vertex's first word.
 const _: () = {
-    use crate::clip::NEEDS_CLIP;
     assert!(INVALID as u32 | NEEDS_CLIP as u32 == 0xf0);
     assert!(core::mem::size_of::<TriRecord>() == 6 && core::mem::size_of::<ScreenVertex>() == 12);
     assert!(core::mem::offset_of!(ScreenVertex, x) == 0);
     assert!(core::mem::offset_of!(ScreenVertex, y) == 2);
     assert!(FLAGS_OFFSET <= 62 && FLAGS_OFFSET % 2 == 0);
-    assert!(core::mem::size_of::<CullCtx>() <= 124 && core::mem::size_of::<Stats>() <= 124);
+    assert!(core::mem::size_of::<CullCtx>() <= 124 && core::mem::size_of::<CullCounts>() <= 124);
 };
 
 extern "C" {
     fn scanline3d_cull_push(ctx: *mut CullCtx) -> u32;
 }
 
-/// `renderer::cull_push` by [`scanline3d_cull_push`]; the same arguments and results as
-/// [`crate::renderer::cull_push_portable`].
+/// `kernel::cull_push` by [`scanline3d_cull_push`]; the same arguments and results as the
+/// portable twin.
 #[inline(always)]
 pub(crate) fn cull_push<const T: usize>(
     tris: &[[u16; 3]],
@@ -349,7 +349,7 @@ pub(crate) fn cull_push<const T: usize>(
     verts: &mut [ScreenVertex],
     base: u16,
     bins: Bins<'_, T>,
-    stats: &mut Stats,
+    stats: &mut CullCounts,
     needed: &mut usize,
 ) -> CullStop {
     let Some(rest) = tris.get(*k..) else {
@@ -378,7 +378,7 @@ pub(crate) fn cull_push<const T: usize>(
     // SAFETY: the routine reads triangles in `rest`, vertices whose indices it checked against
     // `verts.len()`, writes records below the store's capacity (and only then raises the
     // length, which is what `set_len` gets), and counts at rows below `vh`, in the five
-    // counters' `Stats` fields and in `needed`.
+    // `CullCounts` fields and in `needed`.
     let r = unsafe { scanline3d_cull_push(&mut ctx) };
     unsafe { bins.store.set_len(ctx.len as usize) };
     // SAFETY: the cursor stays within `rest` (or at its end), at a whole triangle.

@@ -1,0 +1,369 @@
+#![allow(unused_imports)]
+//! The renderer's errors and capacity reports: what a frame needs, what was short, and what
+//! to do when a frame does not fit.
+
+use core::marker::PhantomData;
+
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Dimensions, OriginDimensions, Point, Size};
+use embedded_graphics_core::pixelcolor::raw::ToBytes;
+use embedded_graphics_core::pixelcolor::PixelColor;
+use embedded_graphics_core::primitives::Rectangle;
+use embedded_graphics_core::{Drawable, Pixel};
+use heapless::Vec;
+
+use crate::clip::{clip_triangle, outcode, ClipVertex, NEEDS_CLIP};
+use crate::color::{rgb565_word, rgb565_words_mut, TargetColor};
+use crate::cull::{facing, Facing};
+use crate::math::{normalize, sub, Mat4, Vec3};
+use crate::mesh::face_normal;
+use crate::project::{
+    pack_channels, pack_flat_channels, unpack_channels, ScreenVertex, Viewport, COORD_LIMIT,
+    MAX_SCREEN,
+};
+use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
+use crate::scalar::Scalar;
+use crate::scene::{Object, Scene};
+use crate::shade::{lit_color, lit_diffuse, PreparedLight, Shading};
+
+use crate::kernel;
+use crate::kernel::records::{bucket_row, Bins, CullCounts, CullStop};
+pub(crate) use crate::kernel::records::{INVALID, LIT, NEEDS_LIGHT, PROJECTED};
+use crate::renderer::*;
+
+/// One of the renderer's three compile-time capacities (see [`Needs`]).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Capacity {
+    /// `VERTS`: mesh vertices of all objects plus vertices made by clipping.
+    Vertices,
+    /// `TRIS`: triangles that survive culling and clipping (a clipped triangle may become up
+    /// to seven).
+    Triangles,
+    /// `ACTIVE`: triangles crossing one pixel row.
+    ActiveTriangles,
+}
+
+/// Why a frame was not (completely) drawn.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Error<E> {
+    /// The draw target returned an error; the frame is drawn up to the failing strip.
+    Target(E),
+    /// The scene needs more room than the renderer was given in one capacity. No longer
+    /// returned by the renderer: [`Error::Shortfall`] reports every capacity that is short at
+    /// once.
+    Capacity {
+        /// The capacity.
+        what: Capacity,
+        /// Its compile-time value.
+        capacity: usize,
+        /// What this frame needed (for triangles: at least this many).
+        needed: usize,
+    },
+    /// Object `object` asks for Gouraud shading but its mesh has no vertex normals. Nothing
+    /// was drawn.
+    MissingNormals {
+        /// Index of the object in the scene.
+        object: usize,
+    },
+    /// The scene's camera fails [`crate::Camera::validate`] (its fields are public and may
+    /// have been changed after [`crate::Camera::look_at`]). Nothing was drawn.
+    Camera(crate::CameraError),
+    /// The frame needs more room than the renderer has, in one or more of its capacities:
+    /// every capacity that is short, with what the frame needed, is in the [`Shortfall`]
+    /// ([`Shortfall::iter`]). Returned under [`OverflowPolicy::Error`] (the default); nothing
+    /// was drawn. This replaces [`Error::Capacity`], which the renderer no longer returns.
+    Shortfall(Shortfall),
+    /// The draw target does not contain the viewport: the renderer draws `viewport` pixels at
+    /// the target's origin (`W × H` unless changed by [`Renderer::set_viewport`]) and the
+    /// target's bounding box is `target`. Checked before anything is drawn (by
+    /// [`Renderer::render`] and its variants once per frame, by [`Renderer::render_strip`] at
+    /// each call); a larger target is fine (the rest of it is left as it was). Set the
+    /// viewport to the target's size to draw into a smaller one.
+    TargetTooSmall {
+        /// The viewport, in pixels.
+        viewport: Size,
+        /// The target's bounding box.
+        target: Rectangle,
+    },
+    /// [`Renderer::render_passes`] needs one strip over the whole viewport (the colour and
+    /// depth lines keep every pass's pixels until the frame is sent): `LINES` is `lines`, the
+    /// viewport is `height` rows high. Nothing was drawn.
+    StripTooShort {
+        /// The renderer's `LINES`.
+        lines: usize,
+        /// The viewport's height.
+        height: usize,
+    },
+}
+
+impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Error::Target(e) => write!(f, "draw target error: {e}"),
+            Error::Capacity {
+                what,
+                capacity,
+                needed,
+            } => {
+                let (name, what) = match what {
+                    Capacity::Vertices => ("VERTS", "vertices"),
+                    Capacity::Triangles => ("TRIS", "triangles"),
+                    Capacity::ActiveTriangles => ("ACTIVE", "triangles active on one row"),
+                };
+                write!(
+                    f,
+                    "scene needs {needed} {what} but the renderer's {name} capacity is \
+                     {capacity}; nothing was drawn"
+                )
+            }
+            Error::MissingNormals { object } => write!(
+                f,
+                "object {object} is Gouraud-shaded but its mesh has no vertex normals; nothing \
+                 was drawn"
+            ),
+            Error::Camera(e) => write!(f, "{e}; nothing was drawn"),
+            Error::Shortfall(s) => {
+                write!(f, "frame does not fit the renderer: {s}; nothing was drawn")
+            }
+            Error::TargetTooSmall { viewport, target } => write!(
+                f,
+                "the draw target ({} × {} px at ({}, {})) does not contain the {} × {} px \
+                 viewport; nothing was drawn",
+                target.size.width,
+                target.size.height,
+                target.top_left.x,
+                target.top_left.y,
+                viewport.width,
+                viewport.height
+            ),
+            Error::StripTooShort { lines, height } => write!(
+                f,
+                "drawing in passes needs one strip over the whole viewport, but the renderer's \
+                 strip has {lines} lines for a viewport {height} rows high (LINES must be at \
+                 least the viewport's height); nothing was drawn"
+            ),
+        }
+    }
+}
+
+/// What a frame needs of the renderer's three capacities, or (as [`Renderer::CAPACITY`]) what
+/// a renderer has.
+///
+/// | field | capacity | [`Stats`] field of a frame that fit |
+/// |---|---|---|
+/// | `vertices` | `VERTS` | [`Stats::vertices`] |
+/// | `triangles` | `TRIS` | [`Stats::drawn`] |
+/// | `active` | `ACTIVE` | [`Stats::max_active`] |
+///
+/// To size a renderer for an animation built in code, measure every frame on the host with a
+/// renderer of generous capacities ([`Renderer::needs`]) and keep the largest figures
+/// ([`Needs::max`]); then check the device's renderer with [`Needs::fits`]:
+///
+/// ```
+/// # use embedded_graphics::pixelcolor::Rgb565;
+/// # use scanline3d::prelude::*;
+/// # use scanline3d::Needs;
+/// # type Q = Fx<scanline3d::fixed::types::I16F16>;
+/// let torus = scanline3d::demo::torus::<Q>().unwrap();
+/// // The host's measuring renderer: the device's size, large capacities (in a `Box` or a
+/// // `static`, see `Renderer::const_new`, when they are large).
+/// let mut measure = Box::new(Renderer::<Q, Rgb565, 240, 240, 2048, 2048, 256>::new());
+/// let mut worst = Needs::default();
+/// for frame in 0..12 {
+///     let objects = [Object {
+///         mesh: torus.mesh(),
+///         transform: Mat4::rotate_y(Q::lit(0.5 * frame as f64)),
+///         material: scanline3d::demo::torus_material(),
+///     }];
+///     let scene = Scene::new(&objects, scanline3d::demo::camera().unwrap(), scanline3d::demo::lights());
+///     worst = worst.max(measure.needs(&scene).unwrap());
+/// }
+/// type Device = Renderer<Q, Rgb565, 240, 240, 512, 480, 64>;
+/// assert!(worst.fits(&Device::CAPACITY), "{worst:?}");
+/// ```
+///
+/// `Needs`, [`Stats`] and [`Shortfall`] are `#[non_exhaustive]`: they may gain fields, so
+/// outside this crate they are read, and built only by their functions ([`Needs::new`],
+/// `Default`), not by struct expressions:
+///
+/// ```compile_fail
+/// let n = scanline3d::Needs { vertices: 512, triangles: 480, active: 64 };
+/// ```
+///
+/// ```compile_fail
+/// let s = scanline3d::Stats { drawn: 1, ..Default::default() };
+/// ```
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub struct Needs {
+    /// Vertices (`VERTS`): mesh vertices of every object, vertices made by clipping, and one
+    /// face-colour vertex per drawn flat-shaded triangle.
+    pub vertices: usize,
+    /// Triangles stored for the row pass (`TRIS`): those that survive culling and clipping
+    /// and cover a pixel (a clipped triangle may become up to seven).
+    pub triangles: usize,
+    /// Triangles crossing one pixel row at once, at the busiest row (`ACTIVE`).
+    pub active: usize,
+}
+
+impl Needs {
+    /// Needs (or capacities) of `vertices`, `triangles` and `active` triangles.
+    #[must_use]
+    pub const fn new(vertices: usize, triangles: usize, active: usize) -> Self {
+        Needs {
+            vertices,
+            triangles,
+            active,
+        }
+    }
+
+    /// The needs of a frame that fit, from its statistics ([`Stats::vertices`],
+    /// [`Stats::drawn`], [`Stats::max_active`]).
+    #[must_use]
+    pub const fn from_stats(stats: &Stats) -> Self {
+        Needs {
+            vertices: stats.vertices as usize,
+            triangles: stats.drawn as usize,
+            active: stats.max_active as usize,
+        }
+    }
+
+    /// The larger of each figure: accumulates the needs of an animation's frames.
+    #[must_use]
+    pub const fn max(self, other: Needs) -> Self {
+        const fn m(a: usize, b: usize) -> usize {
+            if a > b {
+                a
+            } else {
+                b
+            }
+        }
+        Needs {
+            vertices: m(self.vertices, other.vertices),
+            triangles: m(self.triangles, other.triangles),
+            active: m(self.active, other.active),
+        }
+    }
+
+    /// Whether these needs fit `capacity` (e.g. a renderer's [`Renderer::CAPACITY`]).
+    #[must_use]
+    pub const fn fits(&self, capacity: &Needs) -> bool {
+        self.vertices <= capacity.vertices
+            && self.triangles <= capacity.triangles
+            && self.active <= capacity.active
+    }
+
+    /// The figure for one capacity.
+    #[must_use]
+    pub const fn get(&self, what: Capacity) -> usize {
+        match what {
+            Capacity::Vertices => self.vertices,
+            Capacity::Triangles => self.triangles,
+            Capacity::ActiveTriangles => self.active,
+        }
+    }
+}
+
+impl<E: core::fmt::Debug + core::fmt::Display> core::error::Error for Error<E> {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        match self {
+            Error::Camera(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+/// A frame that did not fit the renderer: what it needed against what the renderer has, for
+/// all three capacities at once ([`Error::Shortfall`], or [`Renderer::shortfall`] under
+/// [`OverflowPolicy::DrawWhatFits`]).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub struct Shortfall {
+    /// What the frame needed (see `exact`).
+    pub needed: Needs,
+    /// The renderer's capacities ([`Renderer::CAPACITY`]).
+    pub capacity: Needs,
+    /// Whether `needed` is exact. It is not when the vertex or the triangle store overflowed:
+    /// the objects whose vertices did not fit are neither culled nor clipped, so all of their
+    /// triangles count as needed and none of them toward `active`, and the triangles that did
+    /// not fit the store do not count toward `active` either. Measure with larger capacities
+    /// ([`Renderer::needs`]) for exact figures.
+    pub exact: bool,
+    /// Under [`OverflowPolicy::DrawWhatFits`], the triangles left out of the frame for lack of
+    /// room (complete once the frame is drawn): the triangles counted in `needed.triangles`
+    /// that were not stored (for an object whose vertices did not fit: all of its triangles),
+    /// and each stored triangle dropped because the active list was full on its first row.
+    /// 0 in an [`Error::Shortfall`] (nothing is drawn).
+    pub skipped: usize,
+}
+
+impl Shortfall {
+    /// Whether the frame needed more than `what`'s capacity.
+    #[must_use]
+    pub const fn is_short(&self, what: Capacity) -> bool {
+        self.needed.get(what) > self.capacity.get(what)
+    }
+
+    /// Every capacity that is short: `(capacity, needed, available)`, in the order vertices,
+    /// triangles, active triangles.
+    pub fn iter(&self) -> impl Iterator<Item = (Capacity, usize, usize)> + '_ {
+        [
+            Capacity::Vertices,
+            Capacity::Triangles,
+            Capacity::ActiveTriangles,
+        ]
+        .into_iter()
+        .filter(|&c| self.is_short(c))
+        .map(|c| (c, self.needed.get(c), self.capacity.get(c)))
+    }
+}
+
+impl core::fmt::Display for Shortfall {
+    /// `vertices: needs 530, has 512; triangles active on one row: needs 66, has 64`, with
+    /// `at least` before figures that are not exact.
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        for (k, (what, needed, capacity)) in self.iter().enumerate() {
+            let name = match what {
+                Capacity::Vertices => "vertices (VERTS)",
+                Capacity::Triangles => "triangles (TRIS)",
+                Capacity::ActiveTriangles => "triangles active on one row (ACTIVE)",
+            };
+            let sep = if k > 0 { "; " } else { "" };
+            let about = if self.exact { "" } else { "about " };
+            write!(f, "{sep}{name}: needs {about}{needed}, has {capacity}")?;
+        }
+        if self.skipped > 0 {
+            write!(f, "; {} triangles skipped", self.skipped)?;
+        }
+        Ok(())
+    }
+}
+
+/// What the renderer does with a frame that does not fit its capacities
+/// ([`Renderer::with_overflow`]).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum OverflowPolicy {
+    /// The frame fails with [`Error::Shortfall`] before anything is drawn (the default): on a
+    /// display without a framebuffer the previous image stays on the panel.
+    #[default]
+    Error,
+    /// The frame is drawn without what does not fit, and [`Renderer::shortfall`] says what was
+    /// needed and how many triangles were left out: objects whose vertices do not fit the
+    /// vertex store (in scene order, the later ones), triangles that do not fit the triangle
+    /// store (the later ones), and triangles that start on a row where the active list is
+    /// full (each dropped as a whole, never drawn in part). The frame is never an error for
+    /// its capacities and never panics; the image has holes where triangles were left out.
+    DrawWhatFits,
+}
+
+/// [`Renderer::render_strip_be`]'s error: the buffer cannot hold one row of the viewport.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct StripBufferTooSmall {
+    /// Bytes one row needs.
+    pub needed: usize,
+    /// Bytes given.
+    pub given: usize,
+}

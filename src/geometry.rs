@@ -1,0 +1,696 @@
+//! The geometry stage: for every object, its vertices transformed, tested against the view
+//! volume and projected (runs of them by the vertex kernel where it runs), its triangles culled
+//! and binned (the cull kernel), clipped where they cross the near or far plane or the guard
+//! band, and its vertices lit (runs of them by the lighting kernel).
+
+use heapless::Vec;
+
+use crate::clip::{clip_triangle, outcode, ClipVertex, NEEDS_CLIP};
+use crate::color::TargetColor;
+use crate::cull::{facing, Facing};
+use crate::math::{normalize, sub, Mat4, Vec3};
+use crate::mesh::face_normal;
+use crate::project::{
+    pack_channels, pack_flat_channels, unpack_channels, ScreenVertex, Viewport, COORD_LIMIT,
+};
+use crate::raster::{TriRecord, FLAT_BIT};
+use crate::scalar::Scalar;
+use crate::scene::{Object, Scene};
+use crate::shade::{lit_color, lit_diffuse, PreparedLight, Shading};
+
+use crate::error::*;
+use crate::kernel;
+use crate::kernel::records::{Bins, CullCounts, CullStop};
+pub(crate) use crate::kernel::records::{INVALID, LIT, NEEDS_LIGHT, PROJECTED};
+use crate::renderer::*;
+use crate::stats::*;
+
+/// What the lighting routine ([`kernel::light_run`]) needs of an object: its mesh's
+/// normals, its one light's direction (in the object's space) and colour fraction.
+pub(crate) type QuickLight<'n, S> = (&'n [Vec3<S>], Vec3<S>, S);
+
+/// Per-object state of the geometry stage.
+pub(crate) struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
+    obj: &'o Object<'a, S>,
+    mvp: Mat4<S>,
+    normal_matrix: Mat4<S>,
+    similar: bool,
+    /// The lights: in world space, or in the object's space when `in_object` holds
+    /// ([`PreparedLight::in_object_space`]; then vertex normals are used as they are).
+    lights: &'o [PreparedLight<S>; L],
+    /// Gouraud shading (so no face normals, which are in world space), a normal matrix that
+    /// is a rotation (`similar`) and no specular term (which would need the eye direction).
+    in_object: bool,
+    /// The transform mirrors (negative determinant): the triangle loop swaps each triangle's
+    /// winding, so the outside stays the front.
+    mirrored: bool,
+    eye: Vec3<S>,
+    base: usize,
+}
+
+impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
+    pub(crate) fn to_eye(&self, p: Vec3<S>) -> Vec3<S> {
+        if self.obj.material.specular > S::ZERO {
+            let w = self.obj.transform.transform_point(p);
+            normalize(sub(self.eye, [w[0], w[1], w[2]]))
+        } else {
+            [S::ZERO; 3]
+        }
+    }
+
+    pub(crate) fn world_normal(&self, n: Vec3<S>, force: bool) -> Vec3<S> {
+        let n = self.normal_matrix.transform_dir(n);
+        if self.similar && !force {
+            n
+        } else {
+            normalize(n)
+        }
+    }
+
+    /// What [`kernel::light_run`] needs when it can light this object's vertices: the
+    /// number type has the routine, the target is RGB565, the lights are in the object's space
+    /// (no specular term), there is one light and it is grey, and the mesh has normals. Then
+    /// the normals, the light's direction and its colour fraction.
+    pub(crate) fn quick_light<C: TargetColor>(&self) -> Option<QuickLight<'_, S>> {
+        if !(kernel::LIGHT_RUN && self.in_object && C::CHANNEL_MAX == [31, 63, 31]) {
+            return None;
+        }
+        let [l] = self.lights.as_slice() else {
+            return None;
+        };
+        let (dir, frac) = l.grey()?;
+        Some((self.obj.mesh.normals()?, dir, frac))
+    }
+
+    /// Lights record `v` as mesh vertex `i` ([`Self::vertex_color`]) and marks it [`LIT`].
+    #[inline(always)]
+    pub(crate) fn light<C: TargetColor>(&self, v: &mut ScreenVertex, i: usize) {
+        v.set_color(self.vertex_color::<C>(i));
+        v.flags |= LIT;
+    }
+
+    /// Lit colour of mesh vertex `i`, in the vertex format ([`ScreenVertex::color`]).
+    pub(crate) fn vertex_color<C: TargetColor>(&self, i: usize) -> [u16; 3] {
+        let mesh = &self.obj.mesh;
+        let p = mesh.positions()[i];
+        let n = mesh.normals().map_or([S::ZERO; 3], |ns| ns[i]);
+        let lit = if self.in_object {
+            // The same dot products without a normal transform per vertex (and no specular
+            // term: `in_object` requires none).
+            lit_diffuse(&self.obj.material, self.lights, n)
+        } else {
+            lit_color(
+                &self.obj.material,
+                self.lights,
+                self.world_normal(n, false),
+                self.to_eye(p),
+            )
+        };
+        pack_channels(C::vertex_channels(lit), C::CHANNEL_MAX)
+    }
+
+    /// Lit colour of a face, in the target's channel units (8.8).
+    /// `tri` in screen winding (swapped for a mirrored object, whose mesh order is restored
+    /// here for the face normal).
+    pub(crate) fn face_color<C: TargetColor>(&self, tri: [u16; 3]) -> [u16; 3] {
+        let [a, b, c] = tri.map(|i| self.obj.mesh.positions()[i as usize]);
+        let (b, c) = if self.mirrored { (c, b) } else { (b, c) };
+        let n = self.world_normal(face_normal(a, b, c), true);
+        let k = S::from_f64(1.0 / 3.0);
+        let centroid = [0, 1, 2].map(|j| (a[j] + b[j] + c[j]) * k);
+        let lit = lit_color(&self.obj.material, self.lights, n, self.to_eye(centroid));
+        C::vertex_channels(lit)
+    }
+}
+
+impl<
+        S: Scalar,
+        C: TargetColor,
+        const W: usize,
+        const H: usize,
+        const VERTS: usize,
+        const TRIS: usize,
+        const ACTIVE: usize,
+        const LINES: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES>
+{
+    pub(crate) fn geometry<E, P: Probe, const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        probe: &mut P,
+    ) -> Result<Stats, Error<E>> {
+        self.verts.clear();
+        self.tris.clear();
+        self.active.clear();
+        self.heads = [0; H];
+        self.starts = [0; H];
+        self.next_row = self.vh;
+        let mut stats = Stats::default();
+        for (i, o) in scene.objects.iter().enumerate() {
+            if o.material.shading == Shading::Gouraud && o.mesh.normals().is_none() {
+                return Err(Error::MissingNormals { object: i });
+            }
+        }
+        let vp = Viewport {
+            width: self.vw as u32,
+            height: self.vh as u32,
+        };
+        let g = S::from_i32(vp.guard_band());
+        // The camera's fields are public: checked every frame (a few dozen comparisons).
+        scene.camera.validate().map_err(Error::Camera)?;
+        let pv = scene
+            .camera
+            .projection
+            .matrix(vp.aspect())
+            .mul(&scene.camera.view);
+        let mut need = (0usize, 0usize);
+        // NaN, infinite or (fixed point) saturated inputs are skipped and counted per object,
+        // the same for every number type (a float NaN would poison every vertex).
+        let ok = |v: &S| v.is_valid();
+        let lights_ok = scene.lights.iter().all(|l| l.direction.iter().all(ok));
+        for obj in scene.objects {
+            let m = &obj.material;
+            if !(lights_ok
+                && obj.transform.m.iter().all(|r| r.iter().all(ok))
+                && [m.ambient, m.diffuse, m.specular].iter().all(ok))
+            {
+                let n = obj.mesh.indices().len() as u32;
+                need.0 += obj.mesh.positions().len();
+                stats.triangles_in = stats.triangles_in.wrapping_add(n);
+                stats.invalid += n;
+                continue;
+            }
+            let (normal_matrix, similar, mirrored) = obj.transform.normal_matrix_mirrored();
+            let in_object = similar
+                && obj.material.shading == Shading::Gouraud
+                && obj.material.specular <= S::ZERO;
+            // Prepared per object, in place (one array of lights on the stack: a 16 KB part
+            // has no room for a second).
+            let mut lights = scene.lights.map(|l| PreparedLight::new(&l));
+            if in_object {
+                for l in &mut lights {
+                    *l = l.in_object_space(&normal_matrix);
+                }
+            }
+            let setup = ObjectSetup {
+                obj,
+                mvp: pv.mul(&obj.transform),
+                normal_matrix,
+                similar,
+                lights: &lights,
+                in_object,
+                mirrored,
+                eye: scene.camera.eye,
+                base: self.verts.len(),
+            };
+            self.object(&setup, &vp, g, &mut stats, &mut need, probe);
+        }
+        stats.vertices = need.0 as u32;
+        let mut cur = 0i32;
+        let mut max = 0i32;
+        for &s in self.starts.iter() {
+            cur += s as i32;
+            max = max.max(cur);
+        }
+        stats.max_active = max as u32;
+        // Triangles needed but not stored (only when the store or the vertices overflowed).
+        let store_skipped = need.1.saturating_sub(self.tris.len());
+        if need.0 > VERTS || need.1 > TRIS || max as usize > ACTIVE {
+            // Every capacity at once: what the frame needed against all three.
+            let needed = Needs::new(need.0, need.1, max as usize);
+            if self.overflow == OverflowPolicy::Error {
+                return Err(Error::Shortfall(Shortfall {
+                    needed,
+                    capacity: Self::CAPACITY,
+                    exact: need.0 <= VERTS && need.1 <= TRIS,
+                    skipped: 0,
+                }));
+            }
+        }
+        self.store_skipped = store_skipped.min(u32::MAX as usize) as u32;
+        self.active_skipped = 0;
+        self.sort_buckets();
+        self.background = crate::color::quantize::<C>(scene.background);
+        self.next_row = 0;
+        self.stats = stats;
+        Ok(stats)
+    }
+
+    /// Transforms, lights, clips, projects, culls and buckets one object.
+    pub(crate) fn object<P: Probe, const L: usize>(
+        &mut self,
+        o: &ObjectSetup<'_, '_, S, L>,
+        vp: &Viewport,
+        g: S,
+        stats: &mut Stats,
+        need: &mut (usize, usize),
+        probe: &mut P,
+    ) {
+        let mesh = o.obj.mesh;
+        let positions = mesh.positions();
+        need.0 += positions.len();
+        if o.base + positions.len() > VERTS {
+            // Count what the object would need; nothing of it can be stored.
+            stats.triangles_in += mesh.indices().len() as u32;
+            need.1 += mesh.indices().len();
+            return;
+        }
+        probe.enter(Stage::Vertices);
+        if kernel::PROJECT_RUN && S::q16_words(positions).is_some() && !mesh.has_invalid_positions()
+        {
+            let (sx, sy) = (8 * vp.width, 8 * vp.height);
+            let mut i = 0;
+            loop {
+                // A run of vertices the number type stores itself (Q16.16 on a Cortex-M0),
+                // then the probe's snapping for them (if it snaps); then one vertex here.
+                let first = self.verts.len();
+                let rest = positions.get(i..).unwrap_or(&[]);
+                let run = project_run(&o.mvp.m, rest, g, sx, sy, &mut self.verts);
+                let snaps = if P::SNAPS { run } else { 0 };
+                for (k, v) in self.verts.iter_mut().enumerate().skip(first).take(snaps) {
+                    if v.flags & PROJECTED != 0 {
+                        let index = k - stats.color_vertices as usize;
+                        (v.x, v.y) = snapped(probe, index, *v);
+                    }
+                }
+                i += run;
+                let Some(&p) = positions.get(i) else {
+                    break;
+                };
+                i += 1;
+                self.push_vertex(o, vp, g, p, stats, probe);
+            }
+        } else if !mesh.has_invalid_positions() {
+            for &p in positions {
+                self.push_vertex(o, vp, g, p, stats, probe);
+            }
+        } else {
+            // A position NaN, infinite or at a fixed-point rail (known when the mesh was
+            // built): its record is invalid, as a float NaN's clip coordinates make it.
+            for &p in positions {
+                self.push_vertex(o, vp, g, p, stats, probe);
+                if !p.iter().all(|v| v.is_valid()) {
+                    if let Some(v) = self.verts.last_mut() {
+                        v.flags |= INVALID;
+                    }
+                }
+            }
+        }
+        let flat = o.obj.material.shading == Shading::Flat;
+        probe.enter(Stage::Triangles);
+        // The triangles' ids follow on from the earlier objects' (counted once, not per
+        // triangle through `stats`).
+        let first_id = stats.triangles_in;
+        let tris = mesh.indices();
+        stats.triangles_in = first_id.wrapping_add(tris.len() as u32);
+        let (base, n) = (o.base, positions.len());
+        // Gouraud triangles of real colours go through `cull_push` (the common cases: cull,
+        // count and bucket; vertices of stored front faces are marked for lighting), which
+        // stops at a triangle that needs this loop's full path; flat ones and triangle ids
+        // take the full path throughout.
+        let fast = !flat && C::triangle_id(0).is_none() && !o.mirrored;
+        let mut k = 0;
+        loop {
+            if fast {
+                let view = (self.vw, self.vh);
+                let (store, heads, starts) = (&mut self.tris, &mut self.heads, &mut self.starts);
+                let Some(vs) = self.verts.get_mut(base..base + n) else {
+                    break;
+                };
+                let bins = Bins {
+                    store,
+                    heads,
+                    starts,
+                    view,
+                };
+                let mut counts = CullCounts::default();
+                let stop = kernel::cull_push(
+                    tris,
+                    &mut k,
+                    vs,
+                    base as u16,
+                    bins,
+                    &mut counts,
+                    &mut need.1,
+                );
+                stats.add_culling(&counts);
+                if stop == CullStop::Done {
+                    break;
+                }
+            }
+            let Some(&tri) = tris.get(k) else {
+                break;
+            };
+            // A mirrored object's triangles in screen winding.
+            let tri = &if o.mirrored {
+                [tri[0], tri[2], tri[1]]
+            } else {
+                tri
+            };
+            let id = first_id.wrapping_add(k as u32) as u16;
+            k += 1;
+            // This object's vertices (all stored above; flat triangles' colour vertices
+            // follow them): an index check against them is also the store's bounds check.
+            let Some(vs) = self.verts.get(base..base + n) else {
+                return;
+            };
+            // Element by element: on a Cortex-M0 `array::map` stays a call (`try_from_fn`).
+            let (Some(a), Some(b), Some(c)) = (
+                vs.get(tri[0] as usize),
+                vs.get(tri[1] as usize),
+                vs.get(tri[2] as usize),
+            ) else {
+                stats.invalid += 1;
+                continue;
+            };
+            let vi = [
+                base + tri[0] as usize,
+                base + tri[1] as usize,
+                base + tri[2] as usize,
+            ];
+            let f = [a.flags, b.flags, c.flags];
+            if (f[0] | f[1] | f[2]) & INVALID != 0 {
+                stats.invalid += 1;
+                continue;
+            }
+            if f[0] & f[1] & f[2] & 0x3f != 0 {
+                stats.outside += 1;
+                continue;
+            }
+            if (f[0] | f[1] | f[2]) & NEEDS_CLIP as u16 == 0 {
+                match facing(a, b, c) {
+                    Facing::Degenerate => {
+                        stats.degenerate += 1;
+                        continue;
+                    }
+                    Facing::Back => {
+                        stats.culled += 1;
+                        continue;
+                    }
+                    Facing::Front => {}
+                }
+                probe.enter(Stage::Lighting);
+                let color = if let Some(c) = C::triangle_id(id) {
+                    Some(c)
+                } else if flat {
+                    Some(o.face_color::<C>(*tri))
+                } else {
+                    for (k, &v) in vi.iter().enumerate() {
+                        if self.verts[v].flags & LIT == 0 {
+                            o.light::<C>(&mut self.verts[v], tri[k] as usize);
+                        }
+                    }
+                    None
+                };
+                probe.enter(Stage::Triangles);
+                let mut v = [vi[0] as u16, vi[1] as u16, vi[2] as u16];
+                if let Some(rgb) = color {
+                    // A copy of the first vertex with the face colour carries it.
+                    need.0 += 1;
+                    let mut colour_vertex = self.verts[vi[0]];
+                    colour_vertex.set_color(pack_flat_channels(rgb, C::CHANNEL_MAX));
+                    v[0] = self.verts.len() as u16 | FLAT_BIT;
+                    if self.verts.push(colour_vertex).is_err() {
+                        need.1 += 1;
+                        continue;
+                    }
+                    if !self.push_tri(v, stats, need) {
+                        // Not stored (empty or off-screen): the colour vertex is not needed.
+                        self.verts.pop();
+                        need.0 -= 1;
+                        continue;
+                    }
+                    stats.color_vertices += 1;
+                    continue;
+                }
+                self.push_tri(v, stats, need);
+            } else {
+                self.clipped(o, tri, vi, flat, vp, g, id, stats, need, probe);
+            }
+        }
+        if fast {
+            // The vertices `cull_push` marked: lit once each, as the full path lights them;
+            // runs of them by `kernel::light_run` where it applies.
+            probe.enter(Stage::Lighting);
+            self.light_pass(o, n);
+            probe.enter(Stage::Triangles);
+        }
+    }
+
+    /// The lighting pass over the `n` vertices of object `o`: each vertex the triangle loop
+    /// marked, lit once, by runs of [`kernel::light_run`] where it applies. Out of line:
+    /// its locals stay out of the frame of [`Self::object`], which is on the deepest stack of
+    /// a frame (on a 16 KB part the stack has no room to spare).
+    #[inline(never)]
+    pub(crate) fn light_pass<const L: usize>(&mut self, o: &ObjectSetup<'_, '_, S, L>, n: usize) {
+        let base = o.base;
+        if let Some(quick) = o.quick_light::<C>() {
+            let mut runs = true;
+            let mut i = 0;
+            while i < n {
+                if runs {
+                    match self.light_quick(o, i, n, quick) {
+                        Some(j) => i = j,
+                        None => runs = false,
+                    }
+                    if i >= n {
+                        break;
+                    }
+                }
+                if let Some(v) = self.verts.get_mut(base + i) {
+                    if v.flags & (LIT | NEEDS_LIGHT) == NEEDS_LIGHT {
+                        o.light::<C>(v, i);
+                    }
+                }
+                i += 1;
+            }
+        } else {
+            for (i, v) in self.verts.iter_mut().skip(base).take(n).enumerate() {
+                if v.flags & (LIT | NEEDS_LIGHT) == NEEDS_LIGHT {
+                    o.light::<C>(v, i);
+                }
+            }
+        }
+    }
+
+    /// One run of [`kernel::light_run`] over vertices `i..n` of object `o` (with `quick`
+    /// from [`ObjectSetup::quick_light`]): the index of the first vertex it leaves to the
+    /// lighting pass (`n` when none), or `None` when it takes none for this object's light and
+    /// material. Out of line, and the pass lights the vertices a run leaves outside it: the
+    /// deepest stack of a frame does not grow (on a 16 KB part it has no room).
+    #[inline(never)]
+    pub(crate) fn light_quick<const L: usize>(
+        &mut self,
+        o: &ObjectSetup<'_, '_, S, L>,
+        i: usize,
+        n: usize,
+        quick: QuickLight<'_, S>,
+    ) -> Option<usize> {
+        let (normals, dir, frac) = quick;
+        let m = &o.obj.material;
+        let vs = self.verts.get_mut(o.base + i..o.base + n)?;
+        let ns = normals.get(i..)?;
+        let w = |v: S| v.q16_bits();
+        let (ns, dir) = (S::q16_words(ns)?, S::q16_words(&[dir])?[0]);
+        let (frac, ambient, diffuse) = (w(frac)?, w(m.ambient)?, w(m.diffuse)?);
+        Some(i + kernel::light_run(vs, ns, dir, frac, ambient, diffuse, m.color)?)
+    }
+
+    /// The vertex loop's step: the record of position `p` of object `o` ([`vertex_record`]),
+    /// with the probe's snapping, stored (room was checked).
+    #[inline(always)]
+    pub(crate) fn push_vertex<P: Probe, const L: usize>(
+        &mut self,
+        o: &ObjectSetup<'_, '_, S, L>,
+        vp: &Viewport,
+        g: S,
+        p: Vec3<S>,
+        stats: &Stats,
+        probe: &mut P,
+    ) {
+        let mut sv = vertex_record(&o.mvp, vp, g, p);
+        if sv.flags & PROJECTED != 0 {
+            let index = self.verts.len() - stats.color_vertices as usize;
+            (sv.x, sv.y) = snapped(probe, index, sv);
+        }
+        // Cannot fail: room was checked.
+        let _ = self.verts.push(sv);
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    pub(crate) fn clipped<P: Probe, const L: usize>(
+        &mut self,
+        o: &ObjectSetup<'_, '_, S, L>,
+        tri: &[u16; 3],
+        vi: [usize; 3],
+        flat: bool,
+        vp: &Viewport,
+        g: S,
+        id: u16,
+        stats: &mut Stats,
+        need: &mut (usize, usize),
+        probe: &mut P,
+    ) {
+        let positions = o.obj.mesh.positions();
+        let face = if let Some(c) = C::triangle_id(id) {
+            Some(c)
+        } else if flat {
+            Some(o.face_color::<C>(*tri))
+        } else {
+            None
+        };
+        let mut input = [ClipVertex {
+            pos: [S::ZERO; 4],
+            rgb: [0; 3],
+        }; 3];
+        for k in 0..3 {
+            let v = vi[k];
+            let rgb = match face {
+                Some(c) => c,
+                None => {
+                    if self.verts[v].flags & LIT == 0 {
+                        o.light::<C>(&mut self.verts[v], tri[k] as usize);
+                    }
+                    unpack_channels(self.verts[v].color(), C::CHANNEL_MAX)
+                }
+            };
+            input[k] = ClipVertex {
+                pos: o.mvp.transform_point(positions[tri[k] as usize]),
+                rgb,
+            };
+        }
+        let codes =
+            (self.verts[vi[0]].flags | self.verts[vi[1]].flags | self.verts[vi[2]].flags) as u8;
+        let poly = clip_triangle(input, codes, g);
+        if poly.v.is_empty() {
+            stats.outside += 1;
+            return;
+        }
+        stats.clipped += 1;
+        need.0 += poly.v.len();
+        if self.verts.len() + poly.v.len() > VERTS {
+            need.1 += poly.v.len() - 2;
+            return;
+        }
+        let first = self.verts.len();
+        for v in &poly.v {
+            let rgb = if face.is_some() {
+                pack_flat_channels(v.rgb, C::CHANNEL_MAX)
+            } else {
+                pack_channels(v.rgb, C::CHANNEL_MAX)
+            };
+            match vp.project_out_of_line(v.pos, rgb) {
+                Some(mut sv) => {
+                    sv.flags |= PROJECTED | LIT;
+                    let index = self.verts.len() - stats.color_vertices as usize;
+                    (sv.x, sv.y) = snapped(probe, index, sv);
+                    let _ = self.verts.push(sv);
+                }
+                None => {
+                    // w ≤ 0 after near clipping can only come from rounding at w ≈ 0 with a
+                    // degenerate near plane; skip the polygon.
+                    self.verts.truncate(first);
+                    stats.invalid += 1;
+                    return;
+                }
+            }
+        }
+        for k in 1..poly.v.len() - 1 {
+            let t = [first, first + k, first + k + 1];
+            match facing(&self.verts[t[0]], &self.verts[t[1]], &self.verts[t[2]]) {
+                Facing::Degenerate => stats.degenerate += 1,
+                Facing::Back => stats.culled += 1,
+                Facing::Front => {
+                    // Every polygon vertex has the face colour: the first one carries it.
+                    let mut v = t.map(|v| v as u16);
+                    if face.is_some() {
+                        v[0] |= FLAT_BIT;
+                    }
+                    self.push_tri(v, stats, need);
+                }
+            }
+        }
+    }
+
+    /// Buckets a triangle by its first covered row, or counts it as empty or off-screen.
+    /// Returns whether the triangle is stored (or counted as needed when the store is full).
+    pub(crate) fn push_tri(
+        &mut self,
+        v: [u16; 3],
+        stats: &mut Stats,
+        need: &mut (usize, usize),
+    ) -> bool {
+        let t = TriRecord { v };
+        // The three positions only (not 12-byte vertex copies through `array::map`, which
+        // stays a call on a Cortex-M0).
+        let [i, j, k] = t.indices();
+        let (a, b, c) = (&self.verts[i], &self.verts[j], &self.verts[k]);
+        let mut bins = Bins {
+            store: &mut self.tris,
+            heads: &mut self.heads,
+            starts: &mut self.starts,
+            view: (self.vw, self.vh),
+        };
+        let mut counts = CullCounts::default();
+        let stored = bins.push(t, [a, b, c], &mut counts, &mut need.1);
+        stats.add_culling(&counts);
+        stored
+    }
+}
+
+/// The vertex store's record of position `p` transformed by `mvp`: its outcode (guard band
+/// `g`) and flags, and, unless it is to be clipped, invalid or has w ≤ 0, its projection on
+/// `vp` (before the probe's snapping) with no colour.
+#[inline(always)]
+pub(crate) fn vertex_record<S: Scalar>(
+    mvp: &Mat4<S>,
+    vp: &Viewport,
+    g: S,
+    p: Vec3<S>,
+) -> ScreenVertex {
+    let clip = mvp.transform_point(p);
+    let mut flags = outcode(clip, g) as u16;
+    let mut sv = ScreenVertex::default();
+    if !clip.iter().all(|v| v.is_valid()) {
+        flags |= INVALID;
+    } else if flags & NEEDS_CLIP as u16 == 0 {
+        if let Some(v) = vp.project(clip, [0; 3]) {
+            sv = v;
+            flags |= PROJECTED;
+        }
+    }
+    sv.flags = flags;
+    sv
+}
+
+/// The snapped position of a projected vertex, as the probe wants it, within the coordinate
+/// range.
+pub(crate) fn snapped<P: Probe>(probe: &mut P, index: usize, v: ScreenVertex) -> (i16, i16) {
+    let (x, y) = probe.snap(index as u32, v.x as i32, v.y as i32);
+    (
+        x.clamp(-COORD_LIMIT, COORD_LIMIT) as i16,
+        y.clamp(-COORD_LIMIT, COORD_LIMIT) as i16,
+    )
+}
+
+/// The vertex kernel ([`kernel::project_run`]) over the Q16.16 words of `m`, `ps` and `g`: the
+/// length of the run it stored, 0 for a number type that is not Q16.16.
+#[inline(always)]
+pub(crate) fn project_run<S: Scalar, const V: usize>(
+    m: &[[S; 4]; 4],
+    ps: &[[S; 3]],
+    g: S,
+    sx: u32,
+    sy: u32,
+    out: &mut Vec<ScreenVertex, V>,
+) -> usize {
+    let (Some(mw), Some(pw), Some(gw)) = (S::q16_words(&m[..]), S::q16_words(ps), g.q16_bits())
+    else {
+        return 0;
+    };
+    match <&[[i32; 4]; 4]>::try_from(mw) {
+        Ok(mw) => kernel::project_run(mw, pw, gw, sx, sy, out),
+        Err(_) => 0,
+    }
+}

@@ -1,0 +1,73 @@
+//! Kernel tests: every kernel of `kernel` against its portable twin on pseudo-random inputs.
+//!
+//! The benchmark firmware (`mcu-bench`) runs them on every Cortex-M core before it measures,
+//! and the Pico firmware runs the RP2040's own row routine at start-up; each returns the first
+//! input on which a kernel and its twin differ, or `None`. The generators and the oracles are
+//! plain portable code and compile on every target: on the host, where every kernel is its
+//! portable implementation, the unit tests run them too (the kernels decline there, so the
+//! comparisons pass; what the host run checks is that the generators and the oracles work).
+
+mod geometry;
+mod raster;
+
+pub use geometry::{cull_self_test, light_self_test, projection_self_test, vertex_self_test};
+pub use raster::{
+    dither_fits_self_test, dither_rows_self_test, dither_span_self_test, edge_setup_self_test,
+    gouraud_setup_self_test, triangle_setup_self_test,
+};
+
+use crate::color::{rgb565_words_mut, TargetColor};
+use crate::kernel;
+use crate::kernel::records::{
+    first_pixel, ActiveList, ActiveTri, Bins, CullCounts, ScreenVertex, Sorted, TriRecord,
+    DITHER_OK, FAST, FLAT, LIT, NEEDS_LIGHT,
+};
+use crate::kernel::records::{CullStop, Edge};
+use crate::math::Mat4;
+use crate::project::{pack_channels, Viewport};
+use crate::raster::{DepthTest, SpanMode};
+use crate::renderer::vertex_record;
+use crate::scalar::Scalar;
+use crate::setup::attribute_words;
+use crate::shade::lit_diffuse;
+use crate::shade::PreparedLight;
+use crate::span::{span_packed_dither_portable, LESS};
+use heapless::Vec;
+
+/// A signed value of 1 to `max_bits`
+/// bits (the count from `next`'s top bits, the sign from its lowest) from the generator `next`.
+pub fn signed_bits(next: &mut impl FnMut() -> u32, max_bits: u32) -> i32 {
+    let r = next();
+    let bits = (r >> 27) % max_bits + 1;
+    let v = (next() >> (32 - bits)) as i32;
+    if r & 1 == 0 {
+        -v
+    } else {
+        v
+    }
+}
+
+/// For the benchmark firmware's self-tests (Cortex-M) and the unit tests: a xorshift32
+/// generator from `seed` (nonzero), the same sequence on every core.
+pub fn xorshift32(seed: u32) -> impl FnMut() -> u32 {
+    let mut state = seed;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state
+    }
+}
+
+/// For the self-tests: any depth and any 10-bit colour channels for `p`.
+fn random_depth_and_colour(p: &mut ScreenVertex, next: &mut impl FnMut() -> u32) {
+    let d = next();
+    p.z = d as u16;
+    p.zf = (d >> 16) as u8;
+    let c = next();
+    p.set_color([
+        (c & 1023) as u16,
+        (c >> 10 & 1023) as u16,
+        (c >> 20 & 1023) as u16,
+    ]);
+}
