@@ -119,7 +119,7 @@ fn div255(x: u32) -> u32 {
         let q0 = (x + (x >> 8) + 1) >> 8;
         return (x + q0 + 1) >> 8;
     }
-    (crate::scalar::mul_wide_u(x, 0x8080_8081) >> 39) as u32
+    (crate::wide::mul_wide_u(x, 0x8080_8081) >> 39) as u32
 }
 
 /// ITU-R BT.601 luma of 8.8 channels, with the weights embedded-graphics uses (77, 150, 29)/256.
@@ -233,8 +233,7 @@ pub fn quantize<C: TargetColor>(rgb8: [u8; 3]) -> C {
     ])
 }
 
-/// The 4×4 Bayer matrix, `BAYER[y & 3][x & 3]` in 0..16.
-pub const BAYER: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+pub use crate::kernel::records::BAYER;
 
 #[cfg(test)]
 mod tests {

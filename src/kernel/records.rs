@@ -8,8 +8,6 @@
 
 use heapless::Vec;
 
-use crate::color::BAYER;
-
 /// Fraction bits of snapped screen positions: 4, i.e. 1/16 px.
 pub const SUBPIXEL_BITS: u32 = 4;
 /// Subpixels per pixel.
@@ -594,3 +592,7 @@ pub(crate) fn bucket_row(y_min: i32) -> usize {
 /// The smallest `shift − l` (`raster::attribute_words`) for which a triangle's colour
 /// gradients come from the 20-bit coefficients (the Thumb attribute setup uses it too).
 pub(crate) const COARSE_MIN: i32 = 16;
+
+/// The 4×4 Bayer matrix of the ordered dither, `BAYER[y & 3][x & 3]` in 0..16 (the dithered
+/// span kernels read it through [`DITHER565`]).
+pub const BAYER: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
