@@ -19,9 +19,9 @@ use common::Frame;
 use embedded_graphics::pixelcolor::{PixelColor, Rgb565, Rgb888, RgbColor};
 use scanline3d::demo::{self, deg};
 use scanline3d::fixed::types::I16F16;
+use scanline3d::internals::ram_formula;
 use scanline3d::metrics::Metrics;
 use scanline3d::prelude::*;
-use scanline3d::renderer::ram_formula;
 use scanline3d::{Capacity, Error, Needs, Stats};
 
 /// Largest preview size and capacities (host only; `--budget` prints what a device needs): the
@@ -361,7 +361,7 @@ fn setup(args: &Args, m: &Model) -> Result<Setup, String> {
         let (_, _, c, r) = bounds(&m.positions);
         let r = r.max(1e-9);
         s.centre = c;
-        let dir = scanline3d::math::normalize(scanline3d::math::sub(args.eye, args.target));
+        let dir = scanline3d::normalize(scanline3d::sub(args.eye, args.target));
         let dir = if dir == [0.0; 3] {
             [0.0, 0.0, 1.0]
         } else {
@@ -969,7 +969,7 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
     let metrics = compare(
         &tested.frames,
         &reference.frames,
-        scanline3d::color::quantize::<C>(args.background),
+        scanline3d::quantize::<C>(args.background),
     );
     write_image(&args.out, &tested.frames, 40).map_err(|e| (e, 1))?;
     if let Some(note) = &m.simplified {
@@ -1155,9 +1155,9 @@ fn budget<C: TargetColor>(
     println!(
         "  renderer RAM: {ram} bytes = {lines}·{w}·({} + 2) + {}·{verts} + {}·{tris} + {}·{active} + 4·{h} (+ ≤ 128 state)",
         core::mem::size_of::<C>(),
-        scanline3d::renderer::VERTEX_BYTES,
-        scanline3d::renderer::TRIANGLE_BYTES,
-        scanline3d::renderer::ACTIVE_BYTES
+        scanline3d::internals::VERTEX_BYTES,
+        scanline3d::internals::TRIANGLE_BYTES,
+        scanline3d::internals::ACTIVE_BYTES
     );
     println!("  renderer type: Renderer<Fx<I16F16>, {color}, {w}, {h}, {verts}, {tris}, {active}, {lines}>");
     // Work the scene does not need.
@@ -1204,11 +1204,11 @@ fn is_closed_convex(m: &Model) -> bool {
     let (_, _, _, r) = bounds(&m.positions);
     m.indices.iter().all(|t| {
         let [a, b, c] = t.map(|i| m.positions[i as usize]);
-        let n = scanline3d::math::cross(scanline3d::math::sub(b, a), scanline3d::math::sub(c, a));
-        let len = scanline3d::math::length(n);
+        let n = scanline3d::cross(scanline3d::sub(b, a), scanline3d::sub(c, a));
+        let len = scanline3d::length(n);
         len == 0.0
-            || m.positions.iter().all(|p| {
-                scanline3d::math::dot(n, scanline3d::math::sub(*p, a)) / len <= 1e-9 * r.max(1.0)
-            })
+            || m.positions
+                .iter()
+                .all(|p| scanline3d::dot(n, scanline3d::sub(*p, a)) / len <= 1e-9 * r.max(1.0))
     })
 }

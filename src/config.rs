@@ -314,12 +314,12 @@ macro_rules! renderer_type {
         $crate::Renderer<
             $s,
             $c,
-            { $crate::config::__macro::width($crate::config::__macro::caps($caps).width) },
-            { $crate::config::__macro::height($crate::config::__macro::caps($caps).height) },
-            { $crate::config::__macro::vertices($crate::config::__macro::caps($caps).vertices) },
-            { $crate::config::__macro::triangles($crate::config::__macro::caps($caps).triangles) },
-            { $crate::config::__macro::active($crate::config::__macro::caps($caps).active) },
-            { $crate::config::__macro::lines($crate::config::__macro::caps($caps).lines) },
+            { $crate::__renderer_type::width($crate::__renderer_type::caps($caps).width) },
+            { $crate::__renderer_type::height($crate::__renderer_type::caps($caps).height) },
+            { $crate::__renderer_type::vertices($crate::__renderer_type::caps($caps).vertices) },
+            { $crate::__renderer_type::triangles($crate::__renderer_type::caps($caps).triangles) },
+            { $crate::__renderer_type::active($crate::__renderer_type::caps($caps).active) },
+            { $crate::__renderer_type::lines($crate::__renderer_type::caps($caps).lines) },
         >
     };
     ($($other:tt)*) => {
@@ -366,12 +366,12 @@ macro_rules! __renderer_type_named {
         $crate::Renderer<
             $s,
             $c,
-            { $crate::config::__macro::width($w) },
-            { $crate::config::__macro::height($h) },
-            { $crate::config::__macro::vertices($v) },
-            { $crate::config::__macro::triangles($t) },
-            { $crate::config::__macro::active($a) },
-            { $crate::config::__macro::lines($l) },
+            { $crate::__renderer_type::width($w) },
+            { $crate::__renderer_type::height($h) },
+            { $crate::__renderer_type::vertices($v) },
+            { $crate::__renderer_type::triangles($t) },
+            { $crate::__renderer_type::active($a) },
+            { $crate::__renderer_type::lines($l) },
         >
     };
     ($s:ty, $c:ty, [] $h:tt $v:tt $t:tt $a:tt $l:tt;) => {

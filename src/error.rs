@@ -1,35 +1,10 @@
-#![allow(unused_imports)]
 //! The renderer's errors and capacity reports: what a frame needs, what was short, and what
 //! to do when a frame does not fit.
 
-use core::marker::PhantomData;
-
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Dimensions, OriginDimensions, Point, Size};
-use embedded_graphics_core::pixelcolor::raw::ToBytes;
-use embedded_graphics_core::pixelcolor::PixelColor;
+use embedded_graphics_core::geometry::Size;
 use embedded_graphics_core::primitives::Rectangle;
-use embedded_graphics_core::{Drawable, Pixel};
-use heapless::Vec;
 
-use crate::clip::{clip_triangle, outcode, ClipVertex, NEEDS_CLIP};
-use crate::color::{rgb565_word, rgb565_words_mut, TargetColor};
-use crate::cull::{facing, Facing};
-use crate::math::{normalize, sub, Mat4, Vec3};
-use crate::mesh::face_normal;
-use crate::project::{
-    pack_channels, pack_flat_channels, unpack_channels, ScreenVertex, Viewport, COORD_LIMIT,
-    MAX_SCREEN,
-};
-use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
-use crate::scalar::Scalar;
-use crate::scene::{Object, Scene};
-use crate::shade::{lit_color, lit_diffuse, PreparedLight, Shading};
-
-use crate::kernel;
-use crate::kernel::records::{bucket_row, Bins, CullCounts, CullStop};
-pub(crate) use crate::kernel::records::{INVALID, LIT, NEEDS_LIGHT, PROJECTED};
-use crate::renderer::*;
+use crate::stats::Stats;
 
 /// One of the renderer's three compile-time capacities (see [`Needs`]).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -76,9 +51,9 @@ pub enum Error<E> {
     /// was drawn. This replaces [`Error::Capacity`], which the renderer no longer returns.
     Shortfall(Shortfall),
     /// The draw target does not contain the viewport: the renderer draws `viewport` pixels at
-    /// the target's origin (`W × H` unless changed by [`Renderer::set_viewport`]) and the
+    /// the target's origin (`W × H` unless changed by [`Renderer::set_viewport`](crate::Renderer::set_viewport)) and the
     /// target's bounding box is `target`. Checked before anything is drawn (by
-    /// [`Renderer::render`] and its variants once per frame, by [`Renderer::render_strip`] at
+    /// [`Renderer::render`](crate::Renderer::render) and its variants once per frame, by [`Renderer::render_strip`](crate::Renderer::render_strip) at
     /// each call); a larger target is fine (the rest of it is left as it was). Set the
     /// viewport to the target's size to draw into a smaller one.
     TargetTooSmall {
@@ -87,7 +62,7 @@ pub enum Error<E> {
         /// The target's bounding box.
         target: Rectangle,
     },
-    /// [`Renderer::render_passes`] needs one strip over the whole viewport (the colour and
+    /// [`Renderer::render_passes`](crate::Renderer::render_passes) needs one strip over the whole viewport (the colour and
     /// depth lines keep every pass's pixels until the frame is sent): `LINES` is `lines`, the
     /// viewport is `height` rows high. Nothing was drawn.
     StripTooShort {
@@ -148,7 +123,7 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
     }
 }
 
-/// What a frame needs of the renderer's three capacities, or (as [`Renderer::CAPACITY`]) what
+/// What a frame needs of the renderer's three capacities, or (as [`Renderer::CAPACITY`](crate::Renderer::CAPACITY)) what
 /// a renderer has.
 ///
 /// | field | capacity | [`Stats`] field of a frame that fit |
@@ -158,7 +133,7 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
 /// | `active` | `ACTIVE` | [`Stats::max_active`] |
 ///
 /// To size a renderer for an animation built in code, measure every frame on the host with a
-/// renderer of generous capacities ([`Renderer::needs`]) and keep the largest figures
+/// renderer of generous capacities ([`Renderer::needs`](crate::Renderer::needs)) and keep the largest figures
 /// ([`Needs::max`]); then check the device's renderer with [`Needs::fits`]:
 ///
 /// ```
@@ -247,7 +222,7 @@ impl Needs {
         }
     }
 
-    /// Whether these needs fit `capacity` (e.g. a renderer's [`Renderer::CAPACITY`]).
+    /// Whether these needs fit `capacity` (e.g. a renderer's [`Renderer::CAPACITY`](crate::Renderer::CAPACITY)).
     #[must_use]
     pub const fn fits(&self, capacity: &Needs) -> bool {
         self.vertices <= capacity.vertices
@@ -276,20 +251,20 @@ impl<E: core::fmt::Debug + core::fmt::Display> core::error::Error for Error<E> {
 }
 
 /// A frame that did not fit the renderer: what it needed against what the renderer has, for
-/// all three capacities at once ([`Error::Shortfall`], or [`Renderer::shortfall`] under
+/// all three capacities at once ([`Error::Shortfall`], or [`Renderer::shortfall`](crate::Renderer::shortfall) under
 /// [`OverflowPolicy::DrawWhatFits`]).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub struct Shortfall {
     /// What the frame needed (see `exact`).
     pub needed: Needs,
-    /// The renderer's capacities ([`Renderer::CAPACITY`]).
+    /// The renderer's capacities ([`Renderer::CAPACITY`](crate::Renderer::CAPACITY)).
     pub capacity: Needs,
     /// Whether `needed` is exact. It is not when the vertex or the triangle store overflowed:
     /// the objects whose vertices did not fit are neither culled nor clipped, so all of their
     /// triangles count as needed and none of them toward `active`, and the triangles that did
     /// not fit the store do not count toward `active` either. Measure with larger capacities
-    /// ([`Renderer::needs`]) for exact figures.
+    /// ([`Renderer::needs`](crate::Renderer::needs)) for exact figures.
     pub exact: bool,
     /// Under [`OverflowPolicy::DrawWhatFits`], the triangles left out of the frame for lack of
     /// room (complete once the frame is drawn): the triangles counted in `needed.triangles`
@@ -342,7 +317,7 @@ impl core::fmt::Display for Shortfall {
 }
 
 /// What the renderer does with a frame that does not fit its capacities
-/// ([`Renderer::with_overflow`]).
+/// ([`Renderer::with_overflow`](crate::Renderer::with_overflow)).
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum OverflowPolicy {
@@ -350,7 +325,7 @@ pub enum OverflowPolicy {
     /// display without a framebuffer the previous image stays on the panel.
     #[default]
     Error,
-    /// The frame is drawn without what does not fit, and [`Renderer::shortfall`] says what was
+    /// The frame is drawn without what does not fit, and [`Renderer::shortfall`](crate::Renderer::shortfall) says what was
     /// needed and how many triangles were left out: objects whose vertices do not fit the
     /// vertex store (in scene order, the later ones), triangles that do not fit the triangle
     /// store (the later ones), and triangles that start on a row where the active list is
@@ -359,7 +334,7 @@ pub enum OverflowPolicy {
     DrawWhatFits,
 }
 
-/// [`Renderer::render_strip_be`]'s error: the buffer cannot hold one row of the viewport.
+/// [`Renderer::render_strip_be`](crate::Renderer::render_strip_be)'s error: the buffer cannot hold one row of the viewport.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub struct StripBufferTooSmall {
     /// Bytes one row needs.

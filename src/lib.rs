@@ -70,7 +70,7 @@
 //! (any order, each name required but `lines`; a missing, repeated or unknown name is a compile
 //! error that says which), or from a [`Capacities`] constant (a struct with named fields),
 //! `renderer_type!(S, C, CAPS)`. Both expand to the positional type and check each value's
-//! range by name where the type is written ([`config`] has the details).
+//! range by name where the type is written ([`Capacities`] has the details).
 //!
 //! A frame that needs more than `VERTS`, `TRIS` or `ACTIVE` fails with [`Error::Shortfall`],
 //! which names every capacity that is short, before anything is drawn; or, with
@@ -112,31 +112,38 @@
 // that more plainly than zipped iterators.
 #![allow(clippy::needless_range_loop)]
 
+// Every module is private; what users name is re-exported below (tiny-skia's layout). Four
+// tool modules stay public as namespaces: `demo` (the built-in scenes of the examples and
+// benchmarks), `hash` (hashing and null draw targets), `metrics` (error metrics between two
+// renderings) and `overlay` (text composed into strips). The stages, in pipeline order:
+// scene → geometry (camera, math, clip, project, shade; the cull kernel) → bin → strip (setup,
+// span, with the raster formats) → the target. Architecture-specific code lives in `kernel`
+// only (see "Cortex-M kernels" above).
 mod bin;
-pub mod camera;
-pub mod clip;
-pub mod color;
-pub mod config;
-pub mod cull;
+mod camera;
+mod clip;
+mod color;
+mod config;
+mod cull;
 pub mod demo;
 mod error;
 mod geometry;
 pub mod hash;
 mod kernel;
-pub mod math;
-pub mod mesh;
+mod math;
+mod mesh;
 pub mod metrics;
 pub mod overlay;
-pub mod project;
-pub mod raster;
-pub mod renderer;
-pub mod scalar;
-pub mod scene;
+mod project;
+mod raster;
+mod renderer;
+mod scalar;
+mod scene;
 #[doc(hidden)]
 pub mod selftest;
 mod setup;
-pub mod shade;
-pub mod shapes;
+mod shade;
+mod shapes;
 mod span;
 mod stats;
 mod strip;
@@ -144,27 +151,42 @@ mod wide;
 
 pub use fixed;
 
-pub use camera::{Camera, CameraError, Projection};
-pub use color::{TargetColor, TriangleId};
+pub use camera::{Camera, CameraError, Projection, MAX_DEPTH_RATIO};
+pub use clip::{BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP};
+pub use color::{luma, quantize, scale_channels, TargetColor, TriangleId, BAYER};
+#[doc(hidden)]
+pub use config::__macro as __renderer_type;
 pub use config::Capacities;
-pub use math::{Mat4, Vec3};
-pub use mesh::{Mesh, MeshError};
-pub use raster::DepthTest;
+pub use cull::{facing, signed_area2, Facing};
+pub use math::{add, cross, dot, length, normalize, scale, sub, Mat4, Vec3};
+pub use mesh::{face_normal, vertex_normals, Mesh, MeshError};
+pub use project::{ScreenVertex, COORD_LIMIT, DEPTH_FRAC_BITS, MAX_SCREEN, SUBPIXEL_BITS};
+pub use raster::{DepthTest, COLOR_FRAC_BITS};
 pub use renderer::{
     Capacity, Error, Needs, NoProbe, OverflowPolicy, Probe, Renderer, Shortfall, Stage, Stats,
-    StripBufferTooSmall, StripCanvas,
+    StripBufferTooSmall,
 };
-pub use scalar::{Fx, Scalar};
+pub use scalar::{Fx, FxRecip, Scalar, NDC_FRAC_BITS};
 pub use scene::{Object, Scene};
 pub use shade::{Light, Material, Shading};
 pub use shapes::{ParamValue, Shape, ShapeError};
+pub use strip::StripCanvas;
 
 #[doc(inline)]
 pub use embedded_graphics_core::draw_target::DrawTarget;
 
+/// Internals the crate's own integration tests and tools check directly (the RAM formula, the
+/// vertex colour packing, the normalized reciprocal). Not API: no stability promise.
+#[doc(hidden)]
+pub mod internals {
+    pub use crate::project::{pack_channels, Viewport};
+    pub use crate::renderer::{ram_formula, ACTIVE_BYTES, TRIANGLE_BYTES, VERTEX_BYTES};
+    pub use crate::wide::recip_norm;
+}
+
 /// The types and traits a typical user needs.
 pub mod prelude {
-    pub use crate::mesh::vertex_normals;
+    pub use crate::vertex_normals;
     pub use crate::{
         renderer_type, Camera, Capacities, DepthTest, Fx, Light, Mat4, Material, Mesh, Needs,
         Object, OverflowPolicy, Projection, Renderer, Scalar, Scene, Shading, Shape, TargetColor,

@@ -17,9 +17,7 @@ use crate::scalar::Scalar;
 use crate::scene::Scene;
 
 pub use crate::error::{Capacity, Error, Needs, OverflowPolicy, Shortfall, StripBufferTooSmall};
-pub(crate) use crate::geometry::vertex_record;
 pub use crate::stats::{NoProbe, Probe, Stage, Stats};
-pub use crate::strip::StripCanvas;
 
 /// A scanline Z-buffer renderer with a strip of `LINES` lines of `W` pixels.
 ///

@@ -11,7 +11,7 @@
 //! vertex with the vertex normal; Gouraud colours are then interpolated linearly in screen space.
 
 use crate::math::{dot, normalize, scale, sub, Mat4, Vec3};
-use crate::scalar::Scalar;
+use crate::scalar::{channel_8_8, Scalar};
 
 /// How a surface is shaded.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
@@ -295,14 +295,6 @@ fn add_diffuse<S: Scalar>(diffuse: &mut [S; 3], m: &Material<S>, l: &PreparedLig
             }
         }
     }
-}
-
-/// A lit channel (0..=255 in channel units) clamped and rounded to 8.8 fixed point
-/// (0..=65280).
-#[inline(always)]
-pub(crate) fn channel_8_8<S: Scalar>(v: S) -> u16 {
-    let v = v.max(S::ZERO).min(S::from_i32(255));
-    v.to_fixed_i32(8).clamp(0, 255 << 8) as u16
 }
 
 #[cfg(test)]

@@ -47,7 +47,7 @@ pub struct Shape<S, const V: usize, const T: usize> {
 }
 
 /// Why a shape could not be built: a bad parameter, a shape the number type cannot hold, or too
-/// little storage. See the [module documentation](self) for the order of the checks.
+/// little storage.
 #[derive(Copy, Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum ShapeError {

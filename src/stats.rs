@@ -1,33 +1,6 @@
-#![allow(unused_imports)]
 //! The frame's statistics and the probe that reports the pipeline's stages.
 
-use core::marker::PhantomData;
-
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Dimensions, OriginDimensions, Point, Size};
-use embedded_graphics_core::pixelcolor::raw::ToBytes;
-use embedded_graphics_core::pixelcolor::PixelColor;
-use embedded_graphics_core::primitives::Rectangle;
-use embedded_graphics_core::{Drawable, Pixel};
-use heapless::Vec;
-
-use crate::clip::{clip_triangle, outcode, ClipVertex, NEEDS_CLIP};
-use crate::color::{rgb565_word, rgb565_words_mut, TargetColor};
-use crate::cull::{facing, Facing};
-use crate::math::{normalize, sub, Mat4, Vec3};
-use crate::mesh::face_normal;
-use crate::project::{
-    pack_channels, pack_flat_channels, unpack_channels, ScreenVertex, Viewport, COORD_LIMIT,
-    MAX_SCREEN,
-};
-use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
-use crate::scalar::Scalar;
-use crate::scene::{Object, Scene};
-use crate::shade::{lit_color, lit_diffuse, PreparedLight, Shading};
-
-use crate::kernel;
-use crate::kernel::records::{bucket_row, Bins, CullCounts, CullStop};
-pub(crate) use crate::kernel::records::{INVALID, LIT, NEEDS_LIGHT, PROJECTED};
+use crate::kernel::records::CullCounts;
 
 /// A pipeline stage, as reported to a [`Probe`].
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

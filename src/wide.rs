@@ -90,6 +90,7 @@ pub(crate) fn shr_words(x: i64, k: u32) -> (i32, u32) {
 /// 64-bit shift by a variable amount is a library call on a Cortex-M0.
 #[inline(always)]
 #[must_use]
+#[cfg(test)]
 pub fn shr_to_i32(x: i64, s: u32) -> i32 {
     shr_words(x, s).1 as i32
 }
@@ -100,6 +101,7 @@ pub fn shr_to_i32(x: i64, s: u32) -> i32 {
 /// have after the clamp.
 #[inline]
 #[must_use]
+#[cfg(test)]
 pub fn round_shr_sat(x: i64, s: u32, limit: i32) -> i32 {
     let (thi, tlo) = shr_words(x, s - 1);
     if thi != (tlo as i32) >> 31 {

@@ -1052,13 +1052,13 @@ fn normalization_and_reciprocals<S: Scalar>() {
                 let l = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
                 f.map(|x| x / l)
             };
-            let got = scanline3d::math::normalize(v);
+            let got = scanline3d::normalize(v);
             for i in 0..3 {
                 worst_norm = worst_norm.max((got[i].to_f64() - exact[i]).abs());
             }
         }
     }
-    assert_eq!(scanline3d::math::normalize([S::ZERO; 3]), [S::ZERO; 3]);
+    assert_eq!(scanline3d::normalize([S::ZERO; 3]), [S::ZERO; 3]);
     // 1/w over the type's range (for Q16.16 every power of two from 2^-16 to 2^14), through
     // the perspective divide: v/w for v = w·0.75 must come back as 0.75.
     let mut worst_recip = 0.0f64;
@@ -1102,7 +1102,7 @@ fn reciprocal_of_the_doubled_area_over_its_full_range() {
     let mut a = 1u64;
     while a < 1 << 62 {
         for v in [a, a + 1, a / 2 * 3 + 7, a / 4 * 5 + 3] {
-            let (m, e) = scanline3d::scalar::recip_norm(v);
+            let (m, e) = scanline3d::internals::recip_norm(v);
             let got = m as f64 * 2f64.powi(-(e as i32));
             worst = worst.max((got * v as f64 - 1.0).abs());
         }

@@ -12,9 +12,9 @@ use std::time::Duration;
 use common::Frame;
 use embedded_graphics::pixelcolor::{Gray8, GrayColor, Rgb565, RgbColor};
 use embedded_graphics::prelude::*;
-use scanline3d::camera::MAX_DEPTH_RATIO;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
+use scanline3d::MAX_DEPTH_RATIO;
 use scanline3d::{CameraError, Error, MeshError, Stats};
 
 type Q = Fx<I16F16>;

@@ -23,7 +23,7 @@ use std::sync::mpsc;
 use std::time::Duration;
 
 use scanline3d::fixed::types::{I12F20, I16F16};
-use scanline3d::shapes::ParamValue;
+use scanline3d::ParamValue;
 use scanline3d::{Fx, Scalar, Shape, ShapeError};
 
 type Q = Fx<I16F16>;

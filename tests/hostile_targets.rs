@@ -33,10 +33,10 @@ use embedded_graphics::pixelcolor::{
 };
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use scanline3d::camera::MAX_DEPTH_RATIO;
-use scanline3d::color::quantize;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
+use scanline3d::quantize;
+use scanline3d::MAX_DEPTH_RATIO;
 use scanline3d::{CameraError, Capacity, Error, Stats, TriangleId};
 
 type Q = Fx<I16F16>;

@@ -825,8 +825,8 @@ fn colour_within_vertex_colours_at_1024() {
 /// channel units and packed into the vertex format) for every input, RGB565 and RGB888.
 #[test]
 fn vertex_colour_conversion_is_the_crates() {
-    use scanline3d::color::scale_channels;
-    use scanline3d::project::pack_channels;
+    use scanline3d::internals::pack_channels;
+    use scanline3d::scale_channels;
     for max in [[31u8, 63, 31], [255; 3]] {
         for c in 0..=1020u16 {
             let lit = [64 * c; 3];

@@ -11,7 +11,7 @@
 
 use scanline3d::fixed::types::{I12F20, I16F16};
 use scanline3d::prelude::*;
-use scanline3d::shapes::ParamValue;
+use scanline3d::ParamValue;
 use scanline3d::{Shape, ShapeError};
 
 const V: usize = 289;

@@ -536,7 +536,7 @@ fn transform_matches_rows() -> bool {
         Fx(I16F16::from_bits(if bits == 32 { state as i32 } else { v }))
     };
     for case in 0..4096 {
-        let m = scanline3d::math::Mat4 {
+        let m = scanline3d::Mat4 {
             m: core::array::from_fn(|_| core::array::from_fn(|_| next())),
         };
         let p = [next(), next(), next()];

@@ -594,5 +594,5 @@ pub(crate) fn bucket_row(y_min: i32) -> usize {
 pub(crate) const COARSE_MIN: i32 = 16;
 
 /// The 4×4 Bayer matrix of the ordered dither, `BAYER[y & 3][x & 3]` in 0..16 (the dithered
-/// span kernels read it through [`DITHER565`]).
+/// span kernels read it through `DITHER565`).
 pub const BAYER: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];

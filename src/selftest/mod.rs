@@ -17,6 +17,7 @@ pub use raster::{
 };
 
 use crate::color::{rgb565_words_mut, TargetColor};
+use crate::geometry::vertex_record;
 use crate::kernel;
 use crate::kernel::records::{
     first_pixel, ActiveList, ActiveTri, Bins, CullCounts, ScreenVertex, Sorted, TriRecord,
@@ -26,7 +27,6 @@ use crate::kernel::records::{CullStop, Edge};
 use crate::math::Mat4;
 use crate::project::{pack_channels, Viewport};
 use crate::raster::{DepthTest, SpanMode};
-use crate::renderer::vertex_record;
 use crate::scalar::Scalar;
 use crate::setup::attribute_words;
 use crate::shade::lit_diffuse;

@@ -390,12 +390,12 @@ pub fn bounds(positions: &[[f64; 3]]) -> ([f64; 3], [f64; 3], [f64; 3], f64) {
 pub fn vertex_normals(mesh: &ObjMesh, use_file: bool) -> Vec<[f64; 3]> {
     if use_file {
         if let Some(ns) = &mesh.normals {
-            return ns.iter().map(|n| scanline3d::math::normalize(*n)).collect();
+            return ns.iter().map(|n| scanline3d::normalize(*n)).collect();
         }
     }
     let mut out = vec![[0.0; 3]; mesh.positions.len()];
     // The library's own averaging, in f64.
-    let _ = scanline3d::mesh::vertex_normals(&mesh.positions, &mesh.indices, &mut out);
+    let _ = scanline3d::vertex_normals(&mesh.positions, &mesh.indices, &mut out);
     out
 }
 
@@ -673,8 +673,8 @@ fn one_sided(from: &BigMesh, to: &BigMesh, samples: usize) -> Result<f64, String
     let mut total = 0.0;
     for t in &from.indices {
         let [a, b, c] = t.map(|i| from.positions[i as usize]);
-        let n = scanline3d::math::cross(scanline3d::math::sub(b, a), scanline3d::math::sub(c, a));
-        total += scanline3d::math::length(n);
+        let n = scanline3d::cross(scanline3d::sub(b, a), scanline3d::sub(c, a));
+        total += scanline3d::length(n);
         cum.push(total);
     }
     if total <= 0.0 {

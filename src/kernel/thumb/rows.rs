@@ -97,15 +97,15 @@ macro_rules! span_run_dither {
 /// depth word's stored depth), and on a pop the accumulator takes lane 1's result; lane 1:
 /// lane 0's accumulator plus BASE1 unshifted (the depth word plus its step).
 #[cfg(feature = "rp2040")]
-const INTERP0_LANE0: u32 = 16 | 15 << 10 | 1 << 17;
+pub(super) const INTERP0_LANE0: u32 = 16 | 15 << 10 | 1 << 17;
 #[cfg(feature = "rp2040")]
-const INTERP0_LANE1: u32 = 31 << 10 | 1 << 16 | 1 << 18;
+pub(super) const INTERP0_LANE1: u32 = 31 << 10 | 1 << 16 | 1 << 18;
 /// Interpolator 1, lane 0: bits 27–31 of the red-blue word at bits 11–15 (red); lane 1, from
 /// the same accumulator: bits 11–15 at bits 0–4 (blue). The full result (BASE2 = 0) is both.
 #[cfg(feature = "rp2040")]
-const INTERP1_LANE0: u32 = 16 | 11 << 5 | 15 << 10;
+pub(super) const INTERP1_LANE0: u32 = 16 | 11 << 5 | 15 << 10;
 #[cfg(feature = "rp2040")]
-const INTERP1_LANE1: u32 = 11 | 4 << 10 | 1 << 16;
+pub(super) const INTERP1_LANE1: u32 = 11 | 4 << 10 | 1 << 16;
 
 /// The interpolators' register base, 0xd000_0080, into low register `$r`.
 #[cfg(feature = "rp2040")]

@@ -4,6 +4,8 @@
 
 use super::offsets as o;
 use super::rows::{RowCtx, INV21};
+#[cfg(feature = "rp2040")]
+use super::rows::{INTERP0_LANE0, INTERP0_LANE1, INTERP1_LANE0, INTERP1_LANE1};
 use crate::kernel::records::ActiveTri;
 
 /// A dithered row routine `$name` (r1 = the eight offsets of the row's Bayer row in
