@@ -277,7 +277,7 @@ impl ActiveTri {
 pub(crate) fn span_flat<C: TargetColor, const T: u8>(
     zs: &mut [u16],
     cs: &mut [C],
-    mut z: i32,
+    z: i32,
     gz: i32,
     color: C,
 ) -> u32 {
@@ -288,6 +288,18 @@ pub(crate) fn span_flat<C: TargetColor, const T: u8>(
             }
         }
     }
+    span_flat_portable::<C, T>(zs, cs, z, gz, color)
+}
+
+/// [`span_flat`]'s portable loop (the flat span kernel's twin).
+#[inline(always)]
+pub(crate) fn span_flat_portable<C: TargetColor, const T: u8>(
+    zs: &mut [u16],
+    cs: &mut [C],
+    mut z: i32,
+    gz: i32,
+    color: C,
+) -> u32 {
     let mut written = 0;
     for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
         let z16 = (z >> DEPTH_FRAC_BITS) as u16;
@@ -320,6 +332,18 @@ pub(crate) fn span_packed<C: TargetColor, const T: u8>(
             }
         }
     }
+    span_packed_portable::<C, T>(zs, cs, z, rb, g)
+}
+
+/// [`span_packed`]'s portable loop (the Gouraud span kernel's twin).
+#[inline(always)]
+pub(crate) fn span_packed_portable<C: TargetColor, const T: u8>(
+    zs: &mut [u16],
+    cs: &mut [C],
+    z: [i32; 2],
+    rb: [u32; 2],
+    g: [i32; 2],
+) -> u32 {
     let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
     let mut written = 0;
     for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {

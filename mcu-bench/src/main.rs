@@ -519,60 +519,23 @@ fn main() -> ! {
     }
 }
 
-/// The point and direction transforms (which on Cortex-M take the assembly path for Q16.16
-/// values within ±2³⁰) give exactly the portable `dot3_add` of each row, on matrices and points of every
-/// magnitude up to the saturation rails: 4096 pseudo-random cases. Prints the first mismatch.
-/// Not inlined, so that its locals are not part of `main`'s frame during the renders.
+/// The point and direction transforms (the Q16.16 transform kernel where it runs) give exactly
+/// `dot3_add` of each row on 4096 pseudo-random cases (`selftest::transform_self_test`).
+/// Prints the first mismatch. Not inlined, so that its locals are not part of `main`'s frame
+/// during the renders.
 #[inline(never)]
 fn transform_matches_rows() -> bool {
-    let mut state = 0x2545_f491_u32;
-    let mut next = || {
-        // xorshift32, then a random magnitude: from a few bits to the whole word.
-        state ^= state << 13;
-        state ^= state >> 17;
-        state ^= state << 5;
-        let bits = state % 33;
-        let v = (state.rotate_left(7) as i32) >> (32 - bits.max(1));
-        Fx(I16F16::from_bits(if bits == 32 { state as i32 } else { v }))
-    };
-    for case in 0..4096 {
-        let m = scanline3d::Mat4 {
-            m: core::array::from_fn(|_| core::array::from_fn(|_| next())),
-        };
-        let p = [next(), next(), next()];
-        let got = m.transform_point(p);
-        let want: [Fx<I16F16>; 4] = core::array::from_fn(|i| {
-            let r = m.m[i];
-            Fx::dot3_add([r[0], r[1], r[2]], p, r[3])
-        });
-        if got != want {
-            hprintln!(
-                "TRANSFORM MISMATCH case={} got={:?} want={:?}",
-                case,
-                got,
-                want
-            );
-            return false;
-        }
-        let got = m.transform_dir(p);
-        let want: [Fx<I16F16>; 3] = core::array::from_fn(|i| {
-            let r = m.m[i];
-            Fx::dot3_add([r[0], r[1], r[2]], p, Fx::ZERO)
-        });
-        if got != want {
-            hprintln!(
-                "DIRECTION MISMATCH case={} got={:?} want={:?}",
-                case,
-                got,
-                want
-            );
-            return false;
-        }
+    if let Some(case) = scanline3d::selftest::transform_self_test(4096) {
+        hprintln!("TRANSFORM MISMATCH case={}", case);
+        return false;
     }
     true
 }
 
-/// The assembly edge setup gives the portable one's edges on 20 000 pseudo-random edges, the
+/// Every kernel against its portable twin (`scanline3d::selftest`): the plain and flat span
+/// kernels and the line clear on 20 000 pseudo-random spans, the row kernel without dithering
+/// on 2 000 strips; the assembly edge setup gives the portable one's edges on 20 000
+/// pseudo-random edges, the
 /// assembly projection the portable one's screen words on 20 000 pseudo-random points, and the
 /// assembly Gouraud setup the portable attribute words on 20 000 pseudo-random triangles, and
 /// the assembly dithered span the portable one on 20 000 pseudo-random spans and the
@@ -586,6 +549,14 @@ fn transform_matches_rows() -> bool {
 /// renders (on the 16 KB part every byte of it counts).
 #[inline(never)]
 fn assembly_matches_portable() -> bool {
+    if let Some(e) = scanline3d::selftest::span_self_test(20_000) {
+        hprintln!("SPAN MISMATCH {:?}", e);
+        return false;
+    }
+    if let Some(case) = scanline3d::selftest::rows_self_test(2_000) {
+        hprintln!("ROWS MISMATCH case {}", case);
+        return false;
+    }
     if let Some(e) = scanline3d::selftest::edge_setup_self_test(20_000) {
         hprintln!("EDGE MISMATCH {:?}", e);
         return false;

@@ -288,3 +288,40 @@ pub fn projection_self_test(n: u32) -> Option<([i32; 4], u32)> {
     }
     None
 }
+
+/// The Q16.16 point and direction transform kernels (`kernel::transform_q16`,
+/// `kernel::transform_dir_q16`, reached through `Mat4::transform_point` and
+/// `Mat4::transform_dir`) against `Scalar::dot3_add` of each row, on `n` pseudo-random
+/// matrices and points of every magnitude up to the saturation rails. Returns the first
+/// mismatching case.
+pub fn transform_self_test(n: u32) -> Option<u32> {
+    use crate::scalar::Fx;
+    use fixed::types::I16F16;
+    type Q = Fx<I16F16>;
+    let mut next = xorshift32(0x2545_f491);
+    let mut value = || {
+        // A random magnitude: from a few bits to the whole word.
+        let r = next();
+        let bits = r % 33;
+        let v = (r.rotate_left(7) as i32) >> (32 - bits.max(1));
+        Fx(I16F16::from_bits(if bits == 32 { r as i32 } else { v }))
+    };
+    for case in 0..n {
+        let m = Mat4::<Q> {
+            m: core::array::from_fn(|_| core::array::from_fn(|_| value())),
+        };
+        let p = [value(), value(), value()];
+        let want: [Q; 4] = core::array::from_fn(|i| {
+            let r = m.m[i];
+            Q::dot3_add([r[0], r[1], r[2]], p, r[3])
+        });
+        let want_dir: [Q; 3] = core::array::from_fn(|i| {
+            let r = m.m[i];
+            Q::dot3_add([r[0], r[1], r[2]], p, Q::ZERO)
+        });
+        if m.transform_point(p) != want || m.transform_dir(p) != want_dir {
+            return Some(case);
+        }
+    }
+    None
+}

@@ -10,10 +10,12 @@
 mod geometry;
 mod raster;
 
-pub use geometry::{cull_self_test, light_self_test, projection_self_test, vertex_self_test};
+pub use geometry::{
+    cull_self_test, light_self_test, projection_self_test, transform_self_test, vertex_self_test,
+};
 pub use raster::{
     dither_fits_self_test, dither_rows_self_test, dither_span_self_test, edge_setup_self_test,
-    gouraud_setup_self_test, triangle_setup_self_test,
+    gouraud_setup_self_test, rows_self_test, span_self_test, triangle_setup_self_test,
 };
 
 use crate::color::{rgb565_words_mut, TargetColor};
@@ -31,7 +33,7 @@ use crate::scalar::Scalar;
 use crate::setup::attribute_words;
 use crate::shade::lit_diffuse;
 use crate::shade::PreparedLight;
-use crate::span::{span_packed_dither_portable, LESS};
+use crate::span::{span_flat_portable, span_packed_dither_portable, span_packed_portable, LESS};
 use heapless::Vec;
 
 /// A signed value of 1 to `max_bits`
@@ -70,4 +72,36 @@ fn random_depth_and_colour(p: &mut ScreenVertex, next: &mut impl FnMut() -> u32)
         (c >> 10 & 1023) as u16,
         (c >> 20 & 1023) as u16,
     ]);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On the host every kernel is its portable implementation (or declines), so every
+    /// comparison must pass; this runs the generators and the oracles the firmware runs.
+    #[test]
+    fn every_kernel_comparison_runs_and_passes_on_the_host() {
+        assert_eq!(edge_setup_self_test(500), None);
+        assert_eq!(projection_self_test(500), None);
+        assert_eq!(gouraud_setup_self_test(500), None);
+        assert_eq!(triangle_setup_self_test(500), None);
+        assert_eq!(dither_fits_self_test(500), None);
+        assert_eq!(dither_span_self_test(500), None);
+        assert_eq!(span_self_test(500), None);
+        assert_eq!(dither_rows_self_test(50), None);
+        assert_eq!(rows_self_test(50), None);
+        assert_eq!(cull_self_test(200), None);
+        assert_eq!(vertex_self_test(200), None);
+        assert_eq!(light_self_test(200), None);
+        assert_eq!(transform_self_test(500), None);
+    }
+
+    /// The generator is the same xorshift32 sequence everywhere (the firmware's cases are the
+    /// host's).
+    #[test]
+    fn the_generator_is_xorshift32() {
+        let mut g = xorshift32(1);
+        assert_eq!([g(), g(), g()], [270_369, 67_634_689, 2_647_435_461]);
+    }
 }

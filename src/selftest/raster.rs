@@ -291,11 +291,23 @@ pub fn dither_span_self_test(n: u32) -> Option<[u32; 4]> {
 /// their first row), row by row. Returns the first mismatching case.
 #[doc(hidden)]
 pub fn dither_rows_self_test(n: u32) -> Option<u32> {
+    rows_case(n, true)
+}
+
+/// The row kernel without dithering (`kernel::rows565`, the renderer's path) against
+/// `draw_row` alone, on `n` pseudo-random strips as in [`dither_rows_self_test`]. Returns the
+/// first mismatching case.
+pub fn rows_self_test(n: u32) -> Option<u32> {
+    rows_case(n, false)
+}
+
+/// The strips of [`dither_rows_self_test`] and [`rows_self_test`].
+fn rows_case(n: u32, dither: bool) -> Option<u32> {
     use embedded_graphics_core::pixelcolor::Rgb565;
     const W: usize = 96;
     const H: i32 = 48;
     let mut next = xorshift32(0xa54f_f53au32);
-    let mode = SpanMode::new::<Rgb565>(DepthTest::Less, true);
+    let mode = SpanMode::new::<Rgb565>(DepthTest::Less, dither);
     for case in 0..n {
         let mut v = [ScreenVertex::default(); 12];
         for p in &mut v {
@@ -327,7 +339,7 @@ pub fn dither_rows_self_test(n: u32) -> Option<u32> {
             loop {
                 let words = rgb565_words_mut(&mut ca)?;
                 if let Some((next_i, _, _)) =
-                    kernel::rows565(&mut a, i, words, &mut za, row as usize, true)
+                    kernel::rows565(&mut a, i, words, &mut za, row as usize, dither)
                 {
                     i = next_i;
                 }
@@ -336,7 +348,7 @@ pub fn dither_rows_self_test(n: u32) -> Option<u32> {
                 }
                 let (_, _, done) =
                     a.get_mut(i)
-                        .draw_row(row, &mut ca, &mut za, DepthTest::Less, true);
+                        .draw_row(row, &mut ca, &mut za, DepthTest::Less, dither);
                 if done {
                     a.swap_remove(i);
                 } else {
@@ -347,7 +359,7 @@ pub fn dither_rows_self_test(n: u32) -> Option<u32> {
             while i < b.len() {
                 let (_, _, done) =
                     b.get_mut(i)
-                        .draw_row(row, &mut cb, &mut zb, DepthTest::Less, true);
+                        .draw_row(row, &mut cb, &mut zb, DepthTest::Less, dither);
                 if done {
                     b.swap_remove(i);
                 } else {
@@ -357,6 +369,72 @@ pub fn dither_rows_self_test(n: u32) -> Option<u32> {
             if ca != cb || za != zb || a.len() != b.len() {
                 return Some(case);
             }
+        }
+    }
+    None
+}
+
+/// The plain and flat RGB565 span kernels (`kernel::span565_less`, `kernel::span565_flat_less`)
+/// and the line clear (`kernel::clear_line565`) against the span stage's portable loops, on `n`
+/// pseudo-random spans: any packed start values and steps (steps of every magnitude), any
+/// stored depths and colours, 1 to 40 pixels. Returns the first mismatching case and length.
+pub fn span_self_test(n: u32) -> Option<[u32; 2]> {
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    let mut next = xorshift32(0x9e37_79b9u32);
+    for case in 0..n {
+        let len = 1 + (next() % 40) as usize;
+        let mut word_and_step = || {
+            let (v, s, k) = (next(), next(), next() % 32);
+            [v, s >> k]
+        };
+        let [z0, gz] = word_and_step();
+        let rb = word_and_step();
+        let [g0, gg] = word_and_step();
+        let (z, g) = ([z0 as i32, gz as i32], [g0 as i32, gg as i32]);
+        let mut za = [0u16; 40];
+        let mut ca = [Rgb565::new(0, 0, 0); 40];
+        for (zp, cp) in za.iter_mut().zip(ca.iter_mut()) {
+            let r = next();
+            *zp = r as u16;
+            *cp = Rgb565::new((r >> 16) as u8 & 31, (r >> 21) as u8 & 63, (r >> 27) as u8);
+        }
+        let fail = Some([case, len as u32]);
+        // Gouraud.
+        let (mut zk, mut ck, mut zp, mut cp) = (za, ca, za, ca);
+        let words = rgb565_words_mut(&mut ck[..len])?;
+        if let Some(wk) = kernel::span565_less(&mut zk[..len], words, z, rb, g) {
+            let wp = span_packed_portable::<Rgb565, LESS>(&mut zp[..len], &mut cp[..len], z, rb, g);
+            if wk != wp || zk != zp || ck != cp {
+                return fail;
+            }
+        }
+        // Flat (16.12 depth with any bias, any colour).
+        let color = Rgb565::new(
+            (g0 >> 3) as u8 & 31,
+            (g0 >> 9) as u8 & 63,
+            (g0 >> 17) as u8 & 31,
+        );
+        let (zf, gzf) = ((z0 >> 4) as i32, gz as i32 >> 4);
+        let (mut zk, mut ck, mut zp, mut cp) = (za, ca, za, ca);
+        let word = crate::color::rgb565_word(color)?;
+        let words = rgb565_words_mut(&mut ck[..len])?;
+        if let Some(wk) = kernel::span565_flat_less(&mut zk[..len], words, zf, gzf, word) {
+            let wp =
+                span_flat_portable::<Rgb565, LESS>(&mut zp[..len], &mut cp[..len], zf, gzf, color);
+            if wk != wp || zk != zp || ck != cp {
+                return fail;
+            }
+        }
+        // Clear.
+        let (mut zk, mut ck) = (za, ca);
+        let words = rgb565_words_mut(&mut ck[..len])?;
+        kernel::clear_line565(words, &mut zk[..len], word);
+        if zk[..len].iter().any(|&d| d != u16::MAX)
+            || ck[..len].iter().any(|&c| c != color)
+            || zk[len..] != za[len..]
+            || ck[len..] != ca[len..]
+        {
+            return fail;
         }
     }
     None
