@@ -8,7 +8,7 @@
 //! instead; `--baseline=PATH` compares with (or updates) another file.
 //!
 //! `cargo run --release --example mcu_report -- [--enforce-budget] [--update-baseline]
-//! [--baseline=PATH] m0=LOG m4f=LOG [microbit=LOG]`
+//! [--baseline=PATH] m0=LOG m4f=LOG [m33=LOG] [microbit=LOG]`
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -48,10 +48,11 @@ fn host_hash_small_part() -> Result<u64, String> {
     Ok(t.hash())
 }
 
-/// The emulated machine and core of a log label (`m0`, `m4f`, `microbit`).
+/// The emulated machine and core of a log label (`m0`, `m4f`, `m33`, `microbit`).
 fn machine(label: &str) -> (&'static str, &'static str) {
     match label {
         "m4f" => ("m4f", "mps2-an386"),
+        "m33" => ("m33", "mps2-an505"),
         "microbit" => ("m0", "microbit"),
         _ => ("m0", "mps2-an385"),
     }
@@ -103,12 +104,13 @@ fn run() -> Result<(), String> {
     }
     if logs.is_empty() {
         return Err(
-            "usage: mcu_report [--enforce-budget] [--update-baseline] [--baseline=PATH] m0=LOG m4f=LOG [microbit=LOG]"
+            "usage: mcu_report [--enforce-budget] [--update-baseline] [--baseline=PATH] m0=LOG m4f=LOG [m33=LOG] [microbit=LOG]"
                 .into(),
         );
     }
     let mut rows: Vec<Value> = Vec::new();
-    let mut mem: BTreeMap<String, (u64, u64, u64)> = BTreeMap::new();
+    // Memory figures per log label, in the order of the logs (the order of the tables).
+    let mut mem: Vec<(String, (u64, u64, u64))> = Vec::new();
     let mut failures = Vec::new();
     let mut small: Vec<Value> = Vec::new();
     // The torus with a taller strip (`STRIP` lines), checked against the one-line frame below.
@@ -181,10 +183,10 @@ fn run() -> Result<(), String> {
             }
             if line.starts_with("MEM ") {
                 let f = parse_fields(line);
-                mem.insert(
+                mem.push((
                     core.clone(),
                     (num(&f, "static")?, num(&f, "stack")?, num(&f, "flash")?),
-                );
+                ));
             }
         }
         for line in text.lines().filter(|l| l.starts_with("BENCH ")) {
@@ -247,7 +249,11 @@ fn run() -> Result<(), String> {
     }
     for r in rows.iter_mut() {
         let core = r["label"].as_str().unwrap_or_default().to_string();
-        let (st, stack, flash) = mem.get(&core).copied().unwrap_or_default();
+        let (st, stack, flash) = mem
+            .iter()
+            .find(|(c, _)| *c == core)
+            .map(|(_, m)| *m)
+            .unwrap_or_default();
         r["static_ram_bytes"] = json!(st);
         r["stack_bytes"] = json!(stack);
         r["flash_bytes"] = json!(flash);
@@ -514,7 +520,7 @@ fn breakdown(t: &Value, strip: Option<&Value>) -> Result<String, String> {
 
 fn markdown(
     rows: &[Value],
-    mem: &BTreeMap<String, (u64, u64, u64)>,
+    mem: &[(String, (u64, u64, u64))],
     budget: Option<(u64, u64, bool)>,
     small: &[Value],
 ) -> String {
@@ -526,7 +532,7 @@ fn markdown(
     );
     let _ = writeln!(
         s,
-        "Exact **instruction** counts (not cycles: a Cortex-M0+ spends about 1.3 cycles per instruction on this kind of code) for one 240 × 240 RGB565 frame of each benchmark scene, measured in QEMU 7.2 with `-icount shift=7,align=off,sleep=off` (one instruction = 128 ns of virtual time, read from the board timer). `m0` is `thumbv6m-none-eabi` code (the Cortex-M0 instruction set) on `mps2-an385`; `m4f` is `thumbv7em-none-eabihf` code on `mps2-an386`.\n"
+        "Exact **instruction** counts (not cycles: a Cortex-M0+ spends about 1.3 cycles per instruction on this kind of code) for one 240 × 240 RGB565 frame of each benchmark scene, measured in QEMU 7.2 with `-icount shift=7,align=off,sleep=off` (one instruction = 128 ns of virtual time, read from the board timer). `m0` is `thumbv6m-none-eabi` code (the Cortex-M0 instruction set) on `mps2-an385`; `m4f` is `thumbv7em-none-eabihf` code on `mps2-an386`; `m33` is `thumbv8m.main-none-eabihf` code (the Cortex-M33 of the RP2350) on `mps2-an505`, run in the secure state.\n"
     );
     let _ = writeln!(
         s,

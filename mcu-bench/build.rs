@@ -43,6 +43,8 @@ fn main() {
     let out = PathBuf::from(env::var("OUT_DIR").expect("OUT_DIR"));
     let layout = if env::var_os("CARGO_FEATURE_MICROBIT").is_some() {
         "layouts/microbit.x"
+    } else if env::var_os("CARGO_FEATURE_AN505").is_some() {
+        "layouts/an505.x"
     } else {
         "layouts/mps2.x"
     };

@@ -78,16 +78,22 @@ fn every_regressed_row_is_listed() {
     let base = vec![
         row("torus", "I16F16", "m0", 100),
         row("torus", "I16F16", "m4f", 100),
+        row("torus", "I16F16", "m33", 100),
         row("torus", "I16F16", "microbit", 100),
     ];
     let now = vec![
         row("torus", "I16F16", "m0", 102),
         row("torus", "I16F16", "m4f", 101),
+        row("torus", "I16F16", "m33", 103),
         row("torus", "I16F16", "microbit", 150),
     ];
     let c = compare(&base, &now);
     let msg = c.failure("b").unwrap();
-    assert!(msg.contains("2 row(s) cost more"), "{msg}");
+    assert!(msg.contains("3 row(s) cost more"), "{msg}");
+    assert!(
+        msg.contains("torus | I16F16 | m33: baseline 100, measured 103"),
+        "{msg}"
+    );
     assert!(
         msg.contains("torus | I16F16 | m0: baseline 100, measured 102"),
         "{msg}"
@@ -190,8 +196,14 @@ fn the_committed_baseline_parses_and_covers_every_fixed_point_scene() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/mcu-bench/baseline.txt");
     let rows = parse(&std::fs::read_to_string(path).unwrap()).unwrap();
     let scenes = scanline3d::demo::Bench::ALL.map(|b| b.name());
-    for core in ["m0", "m4f"] {
-        for scene in scenes.iter().copied().chain(["torus, dithered"]) {
+    // Cortex-M0 (mps2-an385), Cortex-M4F (mps2-an386) and Cortex-M33 (mps2-an505): every scene,
+    // the dithered torus and the torus with a strip of 8 lines.
+    for core in ["m0", "m4f", "m33"] {
+        for scene in scenes
+            .iter()
+            .copied()
+            .chain(["torus, dithered", "torus, strip of 8 lines"])
+        {
             let k = Key::new(scene, "I16F16", core);
             assert!(rows.iter().any(|(r, _)| *r == k), "{k} missing from {path}");
         }

@@ -20,7 +20,7 @@ pub const UPDATE_COMMAND: &str = "scripts/mcu-bench --update-baseline";
 pub const TOLERANCE_PERCENT: u64 = 1;
 
 /// One measured frame: a benchmark scene, its number type and the core (the log's label:
-/// `m0`, `m4f`, `microbit`).
+/// `m0`, `m4f`, `m33`, `microbit`).
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct Key {
     pub scene: String,

@@ -24,8 +24,14 @@ use scanline3d::{Fx, NoProbe, Probe, Scalar, Stage};
 
 #[cfg(not(feature = "microbit"))]
 mod timer {
-    //! CMSDK APB TIMER0 of the mps2 boards: a 32-bit down-counter at 25 MHz.
+    //! CMSDK APB TIMER0 of the mps2 boards: a 32-bit down-counter at the board's clock
+    //! (mps2-an385/an386: 25 MHz; mps2-an505: the IoTKit's, at 20 MHz).
+    #[cfg(not(feature = "an505"))]
     const BASE: usize = 0x4000_0000;
+    /// The IoTKit's TIMER0 through its secure alias (0x4000_0000 non-secure): the core runs
+    /// secure.
+    #[cfg(feature = "an505")]
+    const BASE: usize = 0x5000_0000;
     pub fn start() {
         // SAFETY: MMIO registers of the emulated board's timer, used by nothing else.
         unsafe {
@@ -41,8 +47,14 @@ mod timer {
         u32::MAX - unsafe { core::ptr::read_volatile((BASE + 0x4) as *const u32) }
     }
     /// Instructions in `ticks`: 25 MHz ticks of 40 ns, 128 ns per instruction.
+    #[cfg(not(feature = "an505"))]
     pub fn instructions(ticks: u64) -> u64 {
         (ticks * 5 + 8) / 16
+    }
+    /// Instructions in `ticks`: 20 MHz ticks of 50 ns, 128 ns per instruction.
+    #[cfg(feature = "an505")]
+    pub fn instructions(ticks: u64) -> u64 {
+        (ticks * 25 + 32) / 64
     }
 }
 
@@ -160,6 +172,7 @@ impl Probe for StageProbe {
 const PAINT: u32 = 0x5ca1_ab1e;
 
 extern "C" {
+    static __vector_table: u32;
     static mut __sheap: u32;
     static _stack_start: u32;
     static mut __sdata: u32;
@@ -211,9 +224,10 @@ fn static_ram() -> usize {
 }
 
 fn flash_used() -> usize {
-    // Flash holds vectors, .text and .rodata up to __sidata, then the initial values of .data.
+    // Flash holds vectors, .text and .rodata from the vector table (the start of flash: 0, or
+    // 0x1000_0000 on mps2-an505) up to __sidata, then the initial values of .data.
     let data = core::ptr::addr_of!(__edata) as usize - core::ptr::addr_of!(__sdata) as usize;
-    core::ptr::addr_of!(__sidata) as usize + data
+    core::ptr::addr_of!(__sidata) as usize - core::ptr::addr_of!(__vector_table) as usize + data
 }
 
 #[cfg(feature = "profile-torus")]
@@ -295,7 +309,12 @@ fn bench<S: Scalar, const DITHER: bool>(scene: Bench) {
     let frame = match r {
         Ok(f) => f,
         Err(e) => {
-            hprintln!("ERROR scene={} number={} {}", scene.name(), S::NAME, bench_error(&e));
+            hprintln!(
+                "ERROR scene={} number={} {}",
+                scene.name(),
+                S::NAME,
+                bench_error(&e)
+            );
             return;
         }
     };
