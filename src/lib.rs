@@ -91,11 +91,35 @@
 //! | depth | 16.8 at vertices, 16.12 interpolated, `u16` stored (0 = near) | |
 //! | colour | channel units, 10-bit at vertices (RGB565: 5.5 / 6.4), 20 fraction bits in spans | rounding to RGB565 happens once, per pixel, by a shift |
 //!
+//! ## Cortex-M kernels
+//!
+//! On Cortex-M targets (`target_os = "none"`) the hot path runs **hand-written Thumb-1
+//! assembly**: the RGB565 span and row loops, the strip-line clear, the Q16.16 transforms and
+//! the cull loop on every core, and on ARMv6-M (Cortex-M0/M0+) also the vertex run, the
+//! lighting run, the projection, the edge and triangle setup and the dither check. It lives in
+//! one module (`src/kernel`, one file per kernel), behind entry points that each do a prefix
+//! of their work and leave the rest to portable Rust, so every other stage is portable code and
+//! a case a kernel does not handle (another colour type, another depth test, a new shading mode)
+//! simply takes the portable path. `build.rs` chooses the kernels from the target; no other
+//! module names an architecture.
+//!
+//! **How they are tested.** Each kernel computes exactly what its portable twin computes (the
+//! same roundings and wrap-arounds), so the image is bit-identical on every target: the QEMU
+//! benchmark (`scripts/mcu-bench`) compares every scene's frame hash on Cortex-M0, M4F and M33
+//! with the host's, and before measuring compares each kernel with its twin on thousands of
+//! pseudo-random inputs ([`selftest`]; the generators and oracles also run on the host in
+//! `cargo test`). The Pico firmware's frames are compared with the host's in an RP2040
+//! emulator (`scripts/pico-emu`).
+//!
+//! **Opting out.** The `portable` feature turns every kernel off: portable Rust on every
+//! target, with the same pixels (and more instructions).
+//!
 //! ## Crate features
 //!
 //! The number type is a type parameter, not a feature, so fixed and float render side by side
-//! in one build. One feature:
+//! in one build. Two features:
 //!
+//! - `portable` (off by default): no assembly on any target (see "Cortex-M kernels").
 //! - `rp2040` (off by default): on a Raspberry Pi Pico's RP2040 (`thumbv6m-none-eabi`), the
 //!   dithered RGB565 row routine uses the SIO interpolators of the core that renders (24
 //!   cycles per written pixel instead of 28). Only for an RP2040: other Cortex-M0 chips have

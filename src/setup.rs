@@ -392,7 +392,7 @@ impl ActiveTri {
         })
     }
 
-    /// [`ActiveTri::setup`] in portable code (on ARMv6-M, for what `span_thumb::setup565`
+    /// [`ActiveTri::setup`] in portable code (on ARMv6-M, for what `kernel::setup565`
     /// declines).
     #[inline]
     pub(crate) fn setup_portable<C: TargetColor>(

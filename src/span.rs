@@ -366,7 +366,7 @@ pub(crate) fn span_packed_portable<C: TargetColor, const T: u8>(
 /// read, so each channel is `floor(v + (2·B + 1)/32)` of the packed value `v` (the ½ bias
 /// the start values carry and the offset `d` add up to the threshold). The accumulators step
 /// as in [`span_packed`]. This is the definition the Cortex-M routine
-/// (`span_thumb::span565_less_dither`, and the row routine's dithered variant) equals bit
+/// (`kernel::span565_less_dither`, and the row routine's dithered variant) equals bit
 /// for bit.
 #[inline(never)]
 pub(crate) fn span_packed_dither<C: TargetColor, const T: u8>(

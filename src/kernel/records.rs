@@ -50,7 +50,7 @@ pub struct ScreenVertex {
 }
 
 /// Byte offsets of [`ScreenVertex::rgb_hi`] and [`ScreenVertex::flags`], for the Cortex-M0
-/// triangle setup (`span_thumb`).
+/// triangle setup (`kernel::thumb`).
 #[cfg_attr(not(scanline3d_thumb_v6m), allow(dead_code))]
 pub(crate) const RGB_HI_OFFSET: usize = core::mem::offset_of!(ScreenVertex, rgb_hi);
 #[cfg_attr(not(scanline3d_thumb), allow(dead_code))]
@@ -155,7 +155,7 @@ pub fn facing(a: &ScreenVertex, b: &ScreenVertex, c: &ScreenVertex) -> Facing {
 /// `e = floor(numerator / 16)` exactly and the test `numerator < 0` is `e < 0`: all five
 /// fields fit 16 bits. Rows step it in the packed form [`EdgeDda`] ([`Edge::dda`]).
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-#[repr(C)] // field offsets are used by the Cortex-M edge setup (`span_thumb`)
+#[repr(C)] // field offsets are used by the Cortex-M edge setup (`kernel::thumb`)
 pub(crate) struct Edge {
     /// Current pixel boundary (column index; |c| ≤ 1025 on every row the edge is used).
     pub c: i16,
@@ -186,7 +186,7 @@ pub(crate) const C_BIAS: i32 = 1 << 15;
 /// negative, adding `dy·2¹⁶ + 1` gives `e − sr + dy` and `c + sq + 1`, as [`Edge`]'s step.
 /// `dy` (≤ 32 766) is kept beside the words ([`ActiveTri::dy`]). Size: 8 bytes.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-#[repr(C)] // field offsets are used by the Cortex-M row loop (`span_thumb`)
+#[repr(C)] // field offsets are used by the Cortex-M row loop (`kernel::thumb`)
 pub(crate) struct EdgeDda {
     pub(crate) w: u32,
     pub(crate) s: u32,
@@ -292,7 +292,7 @@ pub(crate) const DITHER_OK: u8 = 32;
 /// range, and two's-complement arithmetic is exact modulo 2³², so intermediate wrap-arounds
 /// (far outside the triangle) cannot change it.
 #[derive(Clone, Debug)]
-#[repr(C)] // field offsets are used by the Cortex-M row loop (`span_thumb`)
+#[repr(C)] // field offsets are used by the Cortex-M row loop (`kernel::thumb`)
 pub(crate) struct ActiveTri {
     /// [`MID_LEFT`], [`FLAT`], [`FAST`], [`LAST_IN_ROUTINE`], [`SWITCH_IN_ROUTINE`],
     /// [`DITHER_OK`].
@@ -448,7 +448,7 @@ impl<const N: usize> ActiveList<N> {
 }
 
 /// A triangle's vertices sorted by y, with what [`attribute_words`] needs of its setup
-/// (seven words in this order: the Cortex-M0 setup, `span_thumb::gouraud_setup`, reads them).
+/// (seven words in this order: the Cortex-M0 setup, `kernel::gouraud_setup`, reads them).
 #[repr(C)]
 pub(crate) struct Sorted<'v> {
     /// The vertices, top to bottom.

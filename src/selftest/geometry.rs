@@ -147,7 +147,7 @@ pub fn light_self_test(n: u32) -> Option<u32> {
 }
 
 /// Cortex-M only, for the benchmark firmware: the assembly triangle loop
-/// (`cull_thumb::cull_push`) against [`cull_push_portable`] on `n` pseudo-random objects of
+/// (`kernel::cull_push`) against the portable `kernel::portable::cull_push` on `n` pseudo-random objects of
 /// 24 triangles over 16 vertices (indices out of range, invalid, clipped, outside, unlit and
 /// lit vertices; coordinates across the whole range and near one another; off-screen, empty
 /// and degenerate triangles; a store that fills up; viewports of every height up to 64 rows).

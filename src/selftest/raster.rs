@@ -33,7 +33,7 @@ pub fn edge_setup_self_test(n: u32) -> Option<[i32; 5]> {
 }
 
 /// Cortex-M only, for the benchmark firmware: the assembly Gouraud setup
-/// (`span_thumb::gouraud_setup`) against the portable [`attribute_words`] for RGB565 on `n`
+/// (`kernel::gouraud_setup`) against the portable [`attribute_words`] for RGB565 on `n`
 /// pseudo-random triangles (small and large, every orientation, any depths and colours,
 /// first rows and left edges at and around the first vertex). Returns the first mismatching
 /// triangle's vertices `[x, y, depth, colour]` (the colour's three 10-bit channels packed)
@@ -129,7 +129,7 @@ fn random_triangle(
 }
 
 /// Cortex-M0 only, for the benchmark firmware: the assembly triangle setup
-/// (`span_thumb::setup565`) against [`ActiveTri::setup_portable`] for RGB565 on `n`
+/// (`kernel::setup565`) against [`ActiveTri::setup_portable`] for RGB565 on `n`
 /// pseudo-random Gouraud triangles (small, tall and wide ones, equal ys, first rows before,
 /// at and after the middle vertex, short screens), without and with the dither check. Returns
 /// the first mismatch's vertices `[x, y]` and `[row, height]` (height negated when the
@@ -191,7 +191,7 @@ pub fn triangle_setup_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
 }
 
 /// ARMv6-M only, for the benchmark firmware: the assembly dither check
-/// (`span_thumb::dither_fits565`) against the portable [`ActiveTri::dither_fits`] for RGB565
+/// (`kernel::dither_fits565`) against the portable [`ActiveTri::dither_fits`] for RGB565
 /// on `n` pseudo-random fast Gouraud triangles (small to the largest fast size, so that the
 /// packed rows drift; colours anywhere in half the cases and inside the RGB565 range in the
 /// other half, so that both answers occur; first rows at and below the first vertex). Returns
@@ -236,7 +236,7 @@ pub fn dither_fits_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
 }
 
 /// Cortex-M only, for the benchmark firmware: the assembly dithered span
-/// (`span_thumb::span565_less_dither`) against [`span_packed_dither_portable`] (RGB565,
+/// (`kernel::span565_less_dither`) against [`span_packed_dither_portable`] (RGB565,
 /// `DepthTest::Less`) on `n` pseudo-random spans: any start words and steps (small and large),
 /// lengths 1 to 40, every column phase and Bayer row, depth lines that hide about half the
 /// pixels. Returns the first mismatch's `[case, length, x0, row]`.
@@ -285,7 +285,7 @@ pub fn dither_span_self_test(n: u32) -> Option<[u32; 4]> {
 }
 
 /// Cortex-M only, for the benchmark firmware: the dithered row routine
-/// (`span_thumb::rows565` with dithering, the renderer's path) against `draw_row` alone on `n`
+/// (`kernel::rows565` with dithering, the renderer's path) against `draw_row` alone on `n`
 /// pseudo-random strips of four Gouraud triangles (RGB565, 96 × 48 px, some across the left
 /// border, any depths and colours, set up while dithering as the renderer sets them up: on
 /// their first row), row by row. Returns the first mismatching case.

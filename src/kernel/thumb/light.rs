@@ -1,5 +1,5 @@
 //! Thumb-1 assembly for the common case of the lighting pass on ARMv6-M with Q16.16 values
-//! (`Scalar::light_run_565`): the vertices the triangle loop marked (`NEEDS_LIGHT`), lit in
+//! (`kernel::light_run`): the vertices the triangle loop marked (`NEEDS_LIGHT`), lit in
 //! the object's space by one grey directional light without a specular term, for RGB565
 //! channels — what the pass computes for them (`shade::lit_diffuse`, `color::scale_channels`,
 //! `project::pack_channels`), stored with the `LIT` flag as the pass stores it.

@@ -1,5 +1,5 @@
 //! Thumb-1 assembly for the common case of an object's vertex loop on ARMv6-M with Q16.16
-//! coordinates (`Scalar::project_run`): a run of vertices transformed
+//! coordinates (`kernel::project_run`): a run of vertices transformed
 //! (`scanline3d_xform_q16`), given their outcode and projected (`scanline3d_project_q16`)
 //! straight into the vertex store, without the loop's copies and checks in between.
 //!
