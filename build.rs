@@ -1,8 +1,11 @@
 //! Chooses the kernels (`src/kernel`): sets the cfg aliases `scanline3d_thumb` (a Cortex-M
 //! target: `target_arch = "arm"` and `target_os = "none"`) and `scanline3d_thumb_v6m` (the
-//! same without 32-bit atomics, i.e. ARMv6-M: Cortex-M0/M0+), both unless the `portable`
-//! feature is on, and `scanline3d_no_divide` (ARMv6-M, whatever the features: no divide
-//! instruction). This is the one place the target's architecture is looked at.
+//! same without 32-bit atomics, i.e. ARMv6-M: Cortex-M0/M0+) and `scanline3d_thumb2` (the same
+//! on a core with the full Thumb-2 instruction set: ARMv7-M, ARMv7E-M, ARMv8-M Mainline), all
+//! unless the `portable` feature is on; and the capability cfgs `scanline3d_no_divide` (no
+//! divide instruction), `scanline3d_no_mul64` (no 32 × 32 → 64-bit multiply) and
+//! `scanline3d_no_clz` (no count-leading-zeros instruction), all three ARMv6-M whatever the
+//! features. This is the one place the target's architecture is looked at.
 //!
 //! Also puts the Raspberry Pi Pico's `memory.x` on the linker path — only for this package's
 //! examples (the firmware example `pico_st7789`) and only when building for the RP2040's target,
@@ -16,22 +19,33 @@ fn main() {
     println!("cargo::rustc-check-cfg=cfg(scanline3d_thumb)");
     println!("cargo::rustc-check-cfg=cfg(scanline3d_thumb_v6m)");
     println!("cargo::rustc-check-cfg=cfg(scanline3d_no_divide)");
+    println!("cargo::rustc-check-cfg=cfg(scanline3d_no_mul64)");
+    println!("cargo::rustc-check-cfg=cfg(scanline3d_no_clz)");
+    println!("cargo::rustc-check-cfg=cfg(scanline3d_thumb2)");
     let cfg = |k: &str| env::var(k).unwrap_or_default();
     let cortex_m = cfg("CARGO_CFG_TARGET_ARCH") == "arm" && cfg("CARGO_CFG_TARGET_OS") == "none";
     let atomics32 = cfg("CARGO_CFG_TARGET_HAS_ATOMIC")
         .split(',')
         .any(|w| w == "32");
     let portable = env::var_os("CARGO_FEATURE_PORTABLE").is_some();
+    let target = env::var("TARGET").unwrap_or_default();
+    // The full Thumb-2 instruction set (ARMv7-M, ARMv7E-M, ARMv8-M Mainline; not ARMv8-M
+    // Baseline, which has 32-bit atomics but only a few 32-bit instructions).
+    let thumb2 = target.starts_with("thumbv7") || target.starts_with("thumbv8m.main");
     if cortex_m && !atomics32 {
         println!("cargo::rustc-cfg=scanline3d_no_divide");
+        println!("cargo::rustc-cfg=scanline3d_no_mul64");
+        println!("cargo::rustc-cfg=scanline3d_no_clz");
     }
     if cortex_m && !portable {
         println!("cargo::rustc-cfg=scanline3d_thumb");
         if !atomics32 {
             println!("cargo::rustc-cfg=scanline3d_thumb_v6m");
         }
+        if thumb2 {
+            println!("cargo::rustc-cfg=scanline3d_thumb2");
+        }
     }
-    let target = env::var("TARGET").unwrap_or_default();
     if target != "thumbv6m-none-eabi" {
         return;
     }

@@ -34,6 +34,9 @@ impl Reciprocal {
 /// coefficients: about 20 instructions fewer each on a Cortex-M0).
 #[inline(always)]
 pub(crate) fn mul_shr_16(m: i32, v: i32, l: u32) -> i32 {
+    if !cfg!(scanline3d_no_mul64) {
+        return ((m as i64 * v as i64) >> l) as i32; // one long multiply
+    }
     let (mh, ml) = (m >> 15, m & 0x7fff);
     if l <= 15 {
         ((mh * v) << (15 - l)) + ((ml * v) >> l)
@@ -216,6 +219,9 @@ pub(crate) fn attribute_words<C: TargetColor>(
 /// range) or any `d` (a 64-bit multiply).
 #[inline(always)]
 pub(crate) fn wide_plane(g: i64, d: i32) -> i64 {
+    if !cfg!(scanline3d_no_mul64) {
+        return g.wrapping_mul(d as i64);
+    }
     if g == g as i32 as i64 && d == d as i16 as i32 {
         mul_wide16(g as i32, d)
     } else {

@@ -25,11 +25,15 @@ pub(crate) fn halves(v: i32) -> (u32, i32) {
 #[inline(always)]
 #[must_use]
 pub(crate) fn mul_q16_small(a: i32, b: i32) -> i32 {
-    let ((al, ah), (bl, bh)) = (halves(a), halves(b));
-    let low = ((al * bl + (1 << 15)) >> 16) as i32;
-    low.wrapping_add((al as i32).wrapping_mul(bh))
-        .wrapping_add(ah.wrapping_mul(bl as i32))
-        .wrapping_add(ah.wrapping_mul(bh) << 16)
+    if cfg!(scanline3d_no_mul64) {
+        let ((al, ah), (bl, bh)) = (halves(a), halves(b));
+        let low = ((al * bl + (1 << 15)) >> 16) as i32;
+        low.wrapping_add((al as i32).wrapping_mul(bh))
+            .wrapping_add(ah.wrapping_mul(bl as i32))
+            .wrapping_add(ah.wrapping_mul(bh) << 16)
+    } else {
+        ((a as i64 * b as i64 + (1 << 15)) >> 16) as i32
+    }
 }
 
 /// `(a·b + 2^15) >> 16` for the dot product of two 3-vectors with every component in
@@ -39,20 +43,28 @@ pub(crate) fn mul_q16_small(a: i32, b: i32) -> i32 {
 #[inline(always)]
 #[must_use]
 pub(crate) fn dot3_q16_small(a: [i32; 3], b: [i32; 3]) -> i32 {
-    let mut high = 0i32;
-    let mut low = 1u32 << 15;
-    let mut rest = 0i32;
-    for k in 0..3 {
-        let ((al, ah), (bl, bh)) = (halves(a[k]), halves(b[k]));
-        let t = al * bl;
-        high = high.wrapping_add((t >> 16) as i32);
-        low += t & 0xffff;
-        rest = rest
-            .wrapping_add((al as i32).wrapping_mul(bh))
-            .wrapping_add(ah.wrapping_mul(bl as i32))
-            .wrapping_add(ah.wrapping_mul(bh) << 16);
+    if cfg!(scanline3d_no_mul64) {
+        let mut high = 0i32;
+        let mut low = 1u32 << 15;
+        let mut rest = 0i32;
+        for k in 0..3 {
+            let ((al, ah), (bl, bh)) = (halves(a[k]), halves(b[k]));
+            let t = al * bl;
+            high = high.wrapping_add((t >> 16) as i32);
+            low += t & 0xffff;
+            rest = rest
+                .wrapping_add((al as i32).wrapping_mul(bh))
+                .wrapping_add(ah.wrapping_mul(bl as i32))
+                .wrapping_add(ah.wrapping_mul(bh) << 16);
+        }
+        high.wrapping_add((low >> 16) as i32).wrapping_add(rest)
+    } else {
+        ((a[0] as i64 * b[0] as i64
+            + a[1] as i64 * b[1] as i64
+            + a[2] as i64 * b[2] as i64
+            + (1 << 15))
+            >> 16) as i32
     }
-    high.wrapping_add((low >> 16) as i32).wrapping_add(rest)
 }
 
 /// The exact 64-bit product of two `i32`, from four 16 × 16-bit products.
@@ -62,13 +74,17 @@ pub(crate) fn dot3_q16_small(a: [i32; 3], b: [i32; 3]) -> i32 {
 #[inline(always)]
 #[must_use]
 pub fn mul_wide(a: i32, b: i32) -> i64 {
-    let (al, ah) = ((a & 0xffff) as u32, a >> 16);
-    let (bl, bh) = ((b & 0xffff) as u32, b >> 16);
-    let lo = al * bl; // < 2^32
-    let m1 = ah * bl as i32; // |.| < 2^31
-    let m2 = al as i32 * bh; // |.| < 2^31
-    let hi = ah * bh; // |.| ≤ 2^30
-    ((hi as i64) << 32) + (((m1 as i64) + (m2 as i64)) << 16) + lo as i64
+    if cfg!(scanline3d_no_mul64) {
+        let (al, ah) = ((a & 0xffff) as u32, a >> 16);
+        let (bl, bh) = ((b & 0xffff) as u32, b >> 16);
+        let lo = al * bl; // < 2^32
+        let m1 = ah * bl as i32; // |.| < 2^31
+        let m2 = al as i32 * bh; // |.| < 2^31
+        let hi = ah * bh; // |.| ≤ 2^30
+        ((hi as i64) << 32) + (((m1 as i64) + (m2 as i64)) << 16) + lo as i64
+    } else {
+        a as i64 * b as i64
+    }
 }
 
 /// `x >> k` (arithmetic, `k ≤ 63`) as its high and low 32-bit words, from 32-bit shifts: a
@@ -132,23 +148,31 @@ pub fn round_shr64(x: i64, s: u32) -> i64 {
 #[inline(always)]
 #[must_use]
 pub fn mul_wide16(a: i32, b: i32) -> i64 {
-    let (al, ah) = (a & 0xffff, a >> 16);
-    // |al·b| ≤ 65535·2¹⁵ < 2³¹, |ah·b| ≤ 2³⁰.
-    (((ah * b) as i64) << 16) + (al * b) as i64
+    if cfg!(scanline3d_no_mul64) {
+        let (al, ah) = (a & 0xffff, a >> 16);
+        // |al·b| ≤ 65535·2¹⁵ < 2³¹, |ah·b| ≤ 2³⁰.
+        (((ah * b) as i64) << 16) + (al * b) as i64
+    } else {
+        a as i64 * b as i64
+    }
 }
 
 /// The exact product of two `u32`, from four 16 × 16-bit products (see [`mul_wide`]).
 #[inline(always)]
 #[must_use]
 pub fn mul_wide_u(a: u32, b: u32) -> u64 {
-    let (al, ah) = (a & 0xffff, a >> 16);
-    let (bl, bh) = (b & 0xffff, b >> 16);
-    // Summed in 32-bit words with explicit carries: written as one 64-bit expression, LLVM
-    // folds it back into a library 64 × 64-bit multiply on a Cortex-M0.
-    let (mid, c1) = (ah * bl).overflowing_add(al * bh);
-    let (low, c2) = (al * bl).overflowing_add(mid << 16);
-    let high = ah * bh + (mid >> 16) + ((c1 as u32) << 16) + c2 as u32;
-    ((high as u64) << 32) | low as u64
+    if cfg!(scanline3d_no_mul64) {
+        let (al, ah) = (a & 0xffff, a >> 16);
+        let (bl, bh) = (b & 0xffff, b >> 16);
+        // Summed in 32-bit words with explicit carries: written as one 64-bit expression, LLVM
+        // folds it back into a library 64 × 64-bit multiply on a Cortex-M0.
+        let (mid, c1) = (ah * bl).overflowing_add(al * bh);
+        let (low, c2) = (al * bl).overflowing_add(mid << 16);
+        let high = ah * bh + (mid >> 16) + ((c1 as u32) << 16) + c2 as u32;
+        ((high as u64) << 32) | low as u64
+    } else {
+        a as u64 * b as u64
+    }
 }
 
 /// Significant bits of each byte value (0 for 0): the last step of [`bitlen32`]. 256 bytes
@@ -169,28 +193,36 @@ const BITLEN8: [u8; 256] = {
 #[inline(always)]
 #[must_use]
 pub fn bitlen32(x: u32) -> u32 {
-    let (mut n, mut x) = (0, x);
-    if x >> 16 != 0 {
-        n = 16;
-        x >>= 16;
+    if cfg!(scanline3d_no_clz) {
+        let (mut n, mut x) = (0, x);
+        if x >> 16 != 0 {
+            n = 16;
+            x >>= 16;
+        }
+        if x >> 8 != 0 {
+            n += 8;
+            x >>= 8;
+        }
+        // At most 24 + 8; the `min` tells the compiler so (shifts by the result then need no
+        // masking or 64-bit library calls).
+        (n + BITLEN8[(x & 0xff) as usize] as u32).min(32)
+    } else {
+        32 - x.leading_zeros()
     }
-    if x >> 8 != 0 {
-        n += 8;
-        x >>= 8;
-    }
-    // At most 24 + 8; the `min` tells the compiler so (shifts by the result then need no
-    // masking or 64-bit library calls).
-    (n + BITLEN8[(x & 0xff) as usize] as u32).min(32)
 }
 
 /// Number of significant bits of a `u64` (0 for 0), from [`bitlen32`].
 #[inline]
 pub(crate) fn bitlen64(a: u64) -> u32 {
-    let hi = (a >> 32) as u32;
-    if hi != 0 {
-        32 + bitlen32(hi)
+    if cfg!(scanline3d_no_clz) {
+        let hi = (a >> 32) as u32;
+        if hi != 0 {
+            32 + bitlen32(hi)
+        } else {
+            bitlen32(a as u32)
+        }
     } else {
-        bitlen32(a as u32)
+        64 - a.leading_zeros()
     }
 }
 

@@ -8,10 +8,10 @@
 //!
 //! - `scanline3d_thumb`: a Cortex-M target (`target_arch = "arm"`, `target_os = "none"`) and
 //!   the `portable` feature off. The Thumb kernels of [`thumb`] that pay off on every Cortex-M
-//!   core run: the RGB565 span loops, the row routine, the line clear, the Q16.16 transforms and
-//!   the cull loop.
+//!   core run: the RGB565 span loops, the row routine, the line clear and the cull loop.
 //! - `scanline3d_thumb_v6m`: the same on ARMv6-M (Cortex-M0/M0+: no 32 × 32 → 64-bit multiply,
-//!   no divide instruction). The kernels that only pay off there run too: the vertex run, the
+//!   no divide instruction). The kernels that only pay off there run too: the Q16.16
+//!   transforms, the vertex run, the
 //!   lighting run, the projection, the edge setup, the triangle setup, the Gouraud attribute
 //!   setup, the dither check and the flat span.
 //!
@@ -25,7 +25,7 @@
 //! | [`cull_push`] | `thumb::cull` (all Cortex-M) | `portable::cull_push` |
 //! | [`edge_new`] | `thumb::edge` (ARMv6-M) | `Edge::new_portable` |
 //! | [`clear_line565`] | `thumb::fill` (all Cortex-M) | `portable::clear_line` |
-//! | [`transform_q16`], [`transform_dir_q16`] | `thumb::xform` (all Cortex-M) | declines; `Scalar::dot3_add` rows |
+//! | [`transform_q16`], [`transform_dir_q16`] | `thumb::xform` (ARMv6-M; elsewhere the native 64-bit multiply-accumulate is faster) | declines; `Scalar::dot3_add` rows |
 //! | [`project_q16`] | `thumb::project` (ARMv6-M) | declines; `Viewport::project` |
 //! | [`project_run`] | `thumb::vertex` (ARMv6-M) | declines; the geometry stage's vertex loop |
 //! | [`light_run`] | `thumb::light` (ARMv6-M) | declines; the lighting stage's vertex loop |
@@ -110,15 +110,15 @@ pub(crate) const SETUP_KERNELS: bool = cfg!(scanline3d_thumb_v6m);
 
 /// Whether [`transform_q16`] and [`transform_dir_q16`] can do anything (a caller keeps its
 /// fallback out of line only then).
-pub(crate) const TRANSFORM: bool = cfg!(scanline3d_thumb);
+pub(crate) const TRANSFORM: bool = cfg!(scanline3d_thumb_v6m);
 
 /// `m · (p, 1)` in Q16.16 words, as four `Scalar::dot3_add` rows of `Fx<I16F16>` give it,
 /// when every entry is in [−2³⁰, 2³⁰); `None` where it declines.
 #[inline(always)]
 pub(crate) fn transform_q16(m: &[[i32; 4]; 4], p: [i32; 3]) -> Option<[i32; 4]> {
-    #[cfg(scanline3d_thumb)]
+    #[cfg(scanline3d_thumb_v6m)]
     return thumb::transform_q16(m, p);
-    #[cfg(not(scanline3d_thumb))]
+    #[cfg(not(scanline3d_thumb_v6m))]
     {
         let _ = (m, p);
         None
@@ -129,9 +129,9 @@ pub(crate) fn transform_q16(m: &[[i32; 4]; 4], p: [i32; 3]) -> Option<[i32; 4]> 
 /// [`transform_q16`]); `None` where it declines.
 #[inline(always)]
 pub(crate) fn transform_dir_q16(m: &[[i32; 4]; 4], v: [i32; 3]) -> Option<[i32; 3]> {
-    #[cfg(scanline3d_thumb)]
+    #[cfg(scanline3d_thumb_v6m)]
     return thumb::transform_dir_q16(m, v);
-    #[cfg(not(scanline3d_thumb))]
+    #[cfg(not(scanline3d_thumb_v6m))]
     {
         let _ = (m, v);
         None

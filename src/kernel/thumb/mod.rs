@@ -79,6 +79,7 @@ mod span;
 mod rows;
 mod fill;
 mod rows_dither;
+#[cfg(scanline3d_thumb_v6m)]
 #[macro_use]
 mod xform;
 #[cfg(scanline3d_thumb_v6m)]
@@ -120,6 +121,7 @@ pub(crate) use span::span565_flat_less;
 pub(crate) use span::{span565_less, span565_less_dither};
 #[cfg(scanline3d_thumb_v6m)]
 pub(crate) use vertex::project_run;
+#[cfg(scanline3d_thumb_v6m)]
 pub(crate) use xform::{transform_dir_q16, transform_q16};
 
 /// Byte offsets of the fields the Thumb kernels read and write (some only on ARMv6-M).
