@@ -21,6 +21,7 @@ extern "C" {
 /// r0 = r12 = the triangle. Reads the stack frame of `scanline3d_rows565`. On a row it draws,
 /// `right.c ≥ left.c ≥ 0`, so both biased columns (`raster::EdgeDda`) give twice the column
 /// as `(w << 17) >> 16`.
+#[cfg(not(scanline3d_thumb2))]
 macro_rules! row_span {
     ($run:ident) => {
         concat!(
@@ -33,6 +34,30 @@ macro_rules! row_span {
             "mov r9, r1\n",
             "mov r10, r2\n",
             "mov r3, r12\n",
+            // In bytes: xe = min(right.c, width); an empty span draws nothing.
+            "ldr r5, [r3, #{rw}]\n",
+            "lsls r5, r5, #17\n",
+            "lsrs r5, r5, #16\n",
+            clamp_right!(),
+            "subs r6, r5, r4\n",
+            "ble 5f\n",
+            "adds r3, #{row0}\n",
+            "ldm r3, {{r2, r3, r4}}\n",
+            $run!(),
+        )
+    };
+}
+
+/// [`row_span`] in Thumb-2 (ARMv7-M and later): the steps loaded straight into r8–r10 and the
+/// left column by `ubfx` (4 instructions instead of 9).
+#[cfg(scanline3d_thumb2)]
+macro_rules! row_span {
+    ($run:ident) => {
+        concat!(
+            "mov r12, r3\n",
+            "ubfx r4, r5, #15, #16\n",
+            "add r0, r3, #{gx0}\n",
+            "ldm r0, {{r8, r9, r10}}\n",
             // In bytes: xe = min(right.c, width); an empty span draws nothing.
             "ldr r5, [r3, #{rw}]\n",
             "lsls r5, r5, #17\n",
