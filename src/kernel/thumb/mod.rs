@@ -75,6 +75,9 @@ macro_rules! restore_registers_and_return {
 // Modules that define assembly macros their successors use come first (`macro_use`).
 #[macro_use]
 mod span;
+#[cfg(scanline3d_thumb2)]
+#[macro_use]
+mod rows_t2;
 #[macro_use]
 mod rows;
 mod fill;

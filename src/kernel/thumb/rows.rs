@@ -48,32 +48,9 @@ macro_rules! row_span {
     };
 }
 
-/// [`row_span`] in Thumb-2 (ARMv7-M and later): the steps loaded straight into r8–r10 and the
-/// left column by `ubfx` (4 instructions instead of 9).
-#[cfg(scanline3d_thumb2)]
-macro_rules! row_span {
-    ($run:ident) => {
-        concat!(
-            "mov r12, r3\n",
-            "ubfx r4, r5, #15, #16\n",
-            "add r0, r3, #{gx0}\n",
-            "ldm r0, {{r8, r9, r10}}\n",
-            // In bytes: xe = min(right.c, width); an empty span draws nothing.
-            "ldr r5, [r3, #{rw}]\n",
-            "lsls r5, r5, #17\n",
-            "lsrs r5, r5, #16\n",
-            clamp_right!(),
-            "subs r6, r5, r4\n",
-            "ble 5f\n",
-            "adds r3, #{row0}\n",
-            "ldm r3, {{r2, r3, r4}}\n",
-            $run!(),
-        )
-    };
-}
-
 /// The end of [`row_span`]: the run of r6 bytes ending at byte column r5 of both lines, with
 /// r2–r4 and r8–r10 loaded; counts the fragments (lr) and ends with r0 = r12.
+#[cfg(not(scanline3d_thumb2))]
 macro_rules! span_run {
     () => {
         concat!(
@@ -334,9 +311,49 @@ macro_rules! row_step_at {
     };
 }
 
+/// After a drawn row of the triangle in r0 = r12: both edges step (as `edge_step!`), loaded
+/// and stored with one `ldm` and one `stm` (r1, r2 = left w, s; r3, r4 = right w, s), and the
+/// packed rows with them: row += inc, and + gx (still in r8–r10) when the left edge carried;
+/// one path for each. Label 17; each path ends with [`next_triangle`].
+#[cfg(not(scanline3d_thumb2))]
+macro_rules! both_edges_step {
+    () => {
+        concat!(
+            "17:\n",
+            "adds r5, r0, #{lw}\n",
+            "ldm r5!, {{r1, r2, r3, r4}}\n",
+            "adds r3, r3, r4\n",
+            "bpl 7f\n",
+            "ldrh r6, [r0, #{rdy}]\n",
+            "lsls r6, r6, #16\n",
+            "adds r6, #1\n",
+            "adds r3, r3, r6\n",
+            "7:\n",
+            "adds r1, r1, r2\n",
+            "bmi 9f\n",
+            "subs r5, #16\n",
+            "stm r5!, {{r1, r2, r3, r4}}\n",
+            "adds r5, #{row_after_edges}\n",
+            row_step_at!("r5", "r4", ""),
+            next_triangle!(),
+            "9:\n",
+            "ldrh r6, [r0, #{ldy}]\n",
+            "lsls r6, r6, #16\n",
+            "adds r6, #1\n",
+            "adds r1, r1, r6\n",
+            "subs r5, #16\n",
+            "stm r5!, {{r1, r2, r3, r4}}\n",
+            "adds r5, #{row_after_edges}\n",
+            row_step_at!("r5", "r4", "add r0, r8\nadd r1, r9\nadd r2, r10\n"),
+            next_triangle!(),
+        )
+    };
+}
+
 /// The row routine's move to the next entry of the active list (slot address i += 84) and
 /// back to its loop head, label 15. Repeated after each row step rather than branched to:
 /// a branch fewer a row.
+#[cfg(not(scanline3d_thumb2))]
 macro_rules! next_triangle {
     () => {
         concat!(
@@ -606,36 +623,8 @@ core::arch::global_asm!(
     "bpl 28b",
     "strb r4, [r3, #{rrows}]",
     $main,
-    // Both edges step (as `edge_step!`), loaded and stored with one `ldm` and one `stm`
-    // (r1, r2 = left w, s; r3, r4 = right w, s), and the packed rows with them: row += inc,
-    // and + gx (still in r8–r10) when the left edge carried; one path for each.
-    "17:",
-    "adds r5, r0, #{lw}",
-    "ldm r5!, {{r1, r2, r3, r4}}",
-    "adds r3, r3, r4",
-    "bpl 7f",
-    "ldrh r6, [r0, #{rdy}]",
-    "lsls r6, r6, #16",
-    "adds r6, #1",
-    "adds r3, r3, r6",
-    "7:",
-    "adds r1, r1, r2",
-    "bmi 9f",
-    "subs r5, #16",
-    "stm r5!, {{r1, r2, r3, r4}}",
-    "adds r5, #{row_after_edges}",
-    row_step_at!("r5", "r4", ""),
-    next_triangle!(),
-    "9:",
-    "ldrh r6, [r0, #{ldy}]",
-    "lsls r6, r6, #16",
-    "adds r6, #1",
-    "adds r1, r1, r6",
-    "subs r5, #16",
-    "stm r5!, {{r1, r2, r3, r4}}",
-    "adds r5, #{row_after_edges}",
-    row_step_at!("r5", "r4", "add r0, r8\nadd r1, r9\nadd r2, r10\n"),
-    next_triangle!(),
+    // Both edges step (as `edge_step!`) and the packed rows with them (label 17).
+    both_edges_step!(),
     // After the switch with the middle vertex right (the right edge is the new one, not
     // stepped): the left edge steps, and the rows with it.
     "29:",
