@@ -1,8 +1,12 @@
 //! Integer arithmetic shared by the number types, the kernels and the rasterizer: exact wide
 //! products, rounding shifts, bit lengths, the normalized reciprocal and floor divisions, in
 //! the 32-bit pieces a Cortex-M0 computes cheaply (no 64-bit multiply or divide instruction;
-//! every `i64` product or division there is a library call, so these split them). Plain
-//! functions on integers: no number type, no record, no target.
+//! every `i64` product or division there is a library call, so these split them). Where the
+//! core has a 32 × 32 → 64-bit multiply and a count-leading-zeros instruction (neither of
+//! the capability cfgs `scanline3d_no_mul64`, `scanline3d_no_clz` of `build.rs`) the products
+//! and bit lengths are the native ones, with the same results (the `*_split` forms are
+//! compared with them by the host tests). Plain functions on integers: no number type, no
+//! record, no target.
 
 /// `v ^ (v >> 31)`: `v` for `v ≥ 0`, `|v| − 1` below; an OR of these is below `2^k` exactly
 /// when every value is in `[−2^k, 2^k)`.
@@ -26,14 +30,22 @@ pub(crate) fn halves(v: i32) -> (u32, i32) {
 #[must_use]
 pub(crate) fn mul_q16_small(a: i32, b: i32) -> i32 {
     if cfg!(scanline3d_no_mul64) {
-        let ((al, ah), (bl, bh)) = (halves(a), halves(b));
-        let low = ((al * bl + (1 << 15)) >> 16) as i32;
-        low.wrapping_add((al as i32).wrapping_mul(bh))
-            .wrapping_add(ah.wrapping_mul(bl as i32))
-            .wrapping_add(ah.wrapping_mul(bh) << 16)
+        mul_q16_small_split(a, b)
     } else {
         ((a as i64 * b as i64 + (1 << 15)) >> 16) as i32
     }
+}
+
+/// [`mul_q16_small`] in 32-bit products, for cores without a 32 × 32 → 64-bit multiply (the
+/// `scanline3d_no_mul64` cfg); compared with the native form by the host tests.
+#[inline(always)]
+#[must_use]
+pub(crate) fn mul_q16_small_split(a: i32, b: i32) -> i32 {
+    let ((al, ah), (bl, bh)) = (halves(a), halves(b));
+    let low = ((al * bl + (1 << 15)) >> 16) as i32;
+    low.wrapping_add((al as i32).wrapping_mul(bh))
+        .wrapping_add(ah.wrapping_mul(bl as i32))
+        .wrapping_add(ah.wrapping_mul(bh) << 16)
 }
 
 /// `(a·b + 2^15) >> 16` for the dot product of two 3-vectors with every component in
@@ -44,20 +56,7 @@ pub(crate) fn mul_q16_small(a: i32, b: i32) -> i32 {
 #[must_use]
 pub(crate) fn dot3_q16_small(a: [i32; 3], b: [i32; 3]) -> i32 {
     if cfg!(scanline3d_no_mul64) {
-        let mut high = 0i32;
-        let mut low = 1u32 << 15;
-        let mut rest = 0i32;
-        for k in 0..3 {
-            let ((al, ah), (bl, bh)) = (halves(a[k]), halves(b[k]));
-            let t = al * bl;
-            high = high.wrapping_add((t >> 16) as i32);
-            low += t & 0xffff;
-            rest = rest
-                .wrapping_add((al as i32).wrapping_mul(bh))
-                .wrapping_add(ah.wrapping_mul(bl as i32))
-                .wrapping_add(ah.wrapping_mul(bh) << 16);
-        }
-        high.wrapping_add((low >> 16) as i32).wrapping_add(rest)
+        dot3_q16_small_split(a, b)
     } else {
         ((a[0] as i64 * b[0] as i64
             + a[1] as i64 * b[1] as i64
@@ -65,6 +64,27 @@ pub(crate) fn dot3_q16_small(a: [i32; 3], b: [i32; 3]) -> i32 {
             + (1 << 15))
             >> 16) as i32
     }
+}
+
+/// [`dot3_q16_small`] in 32-bit products, for cores without a 32 × 32 → 64-bit multiply (the
+/// `scanline3d_no_mul64` cfg); compared with the native form by the host tests.
+#[inline(always)]
+#[must_use]
+pub(crate) fn dot3_q16_small_split(a: [i32; 3], b: [i32; 3]) -> i32 {
+    let mut high = 0i32;
+    let mut low = 1u32 << 15;
+    let mut rest = 0i32;
+    for k in 0..3 {
+        let ((al, ah), (bl, bh)) = (halves(a[k]), halves(b[k]));
+        let t = al * bl;
+        high = high.wrapping_add((t >> 16) as i32);
+        low += t & 0xffff;
+        rest = rest
+            .wrapping_add((al as i32).wrapping_mul(bh))
+            .wrapping_add(ah.wrapping_mul(bl as i32))
+            .wrapping_add(ah.wrapping_mul(bh) << 16);
+    }
+    high.wrapping_add((low >> 16) as i32).wrapping_add(rest)
 }
 
 /// The exact 64-bit product of two `i32`, from four 16 × 16-bit products.
@@ -75,16 +95,24 @@ pub(crate) fn dot3_q16_small(a: [i32; 3], b: [i32; 3]) -> i32 {
 #[must_use]
 pub fn mul_wide(a: i32, b: i32) -> i64 {
     if cfg!(scanline3d_no_mul64) {
-        let (al, ah) = ((a & 0xffff) as u32, a >> 16);
-        let (bl, bh) = ((b & 0xffff) as u32, b >> 16);
-        let lo = al * bl; // < 2^32
-        let m1 = ah * bl as i32; // |.| < 2^31
-        let m2 = al as i32 * bh; // |.| < 2^31
-        let hi = ah * bh; // |.| ≤ 2^30
-        ((hi as i64) << 32) + (((m1 as i64) + (m2 as i64)) << 16) + lo as i64
+        mul_wide_split(a, b)
     } else {
         a as i64 * b as i64
     }
+}
+
+/// [`mul_wide`] in 32-bit products, for cores without a 32 × 32 → 64-bit multiply (the
+/// `scanline3d_no_mul64` cfg); compared with the native form by the host tests.
+#[inline(always)]
+#[must_use]
+pub(crate) fn mul_wide_split(a: i32, b: i32) -> i64 {
+    let (al, ah) = ((a & 0xffff) as u32, a >> 16);
+    let (bl, bh) = ((b & 0xffff) as u32, b >> 16);
+    let lo = al * bl; // < 2^32
+    let m1 = ah * bl as i32; // |.| < 2^31
+    let m2 = al as i32 * bh; // |.| < 2^31
+    let hi = ah * bh; // |.| ≤ 2^30
+    ((hi as i64) << 32) + (((m1 as i64) + (m2 as i64)) << 16) + lo as i64
 }
 
 /// `x >> k` (arithmetic, `k ≤ 63`) as its high and low 32-bit words, from 32-bit shifts: a
@@ -149,12 +177,20 @@ pub fn round_shr64(x: i64, s: u32) -> i64 {
 #[must_use]
 pub fn mul_wide16(a: i32, b: i32) -> i64 {
     if cfg!(scanline3d_no_mul64) {
-        let (al, ah) = (a & 0xffff, a >> 16);
-        // |al·b| ≤ 65535·2¹⁵ < 2³¹, |ah·b| ≤ 2³⁰.
-        (((ah * b) as i64) << 16) + (al * b) as i64
+        mul_wide16_split(a, b)
     } else {
         a as i64 * b as i64
     }
+}
+
+/// [`mul_wide16`] in 32-bit products, for cores without a 32 × 32 → 64-bit multiply (the
+/// `scanline3d_no_mul64` cfg); compared with the native form by the host tests.
+#[inline(always)]
+#[must_use]
+pub(crate) fn mul_wide16_split(a: i32, b: i32) -> i64 {
+    let (al, ah) = (a & 0xffff, a >> 16);
+    // |al·b| ≤ 65535·2¹⁵ < 2³¹, |ah·b| ≤ 2³⁰.
+    (((ah * b) as i64) << 16) + (al * b) as i64
 }
 
 /// The exact product of two `u32`, from four 16 × 16-bit products (see [`mul_wide`]).
@@ -162,17 +198,25 @@ pub fn mul_wide16(a: i32, b: i32) -> i64 {
 #[must_use]
 pub fn mul_wide_u(a: u32, b: u32) -> u64 {
     if cfg!(scanline3d_no_mul64) {
-        let (al, ah) = (a & 0xffff, a >> 16);
-        let (bl, bh) = (b & 0xffff, b >> 16);
-        // Summed in 32-bit words with explicit carries: written as one 64-bit expression, LLVM
-        // folds it back into a library 64 × 64-bit multiply on a Cortex-M0.
-        let (mid, c1) = (ah * bl).overflowing_add(al * bh);
-        let (low, c2) = (al * bl).overflowing_add(mid << 16);
-        let high = ah * bh + (mid >> 16) + ((c1 as u32) << 16) + c2 as u32;
-        ((high as u64) << 32) | low as u64
+        mul_wide_u_split(a, b)
     } else {
         a as u64 * b as u64
     }
+}
+
+/// [`mul_wide_u`] in 32-bit products, for cores without a 32 × 32 → 64-bit multiply (the
+/// `scanline3d_no_mul64` cfg); compared with the native form by the host tests.
+#[inline(always)]
+#[must_use]
+pub(crate) fn mul_wide_u_split(a: u32, b: u32) -> u64 {
+    let (al, ah) = (a & 0xffff, a >> 16);
+    let (bl, bh) = (b & 0xffff, b >> 16);
+    // Summed in 32-bit words with explicit carries: written as one 64-bit expression, LLVM
+    // folds it back into a library 64 × 64-bit multiply on a Cortex-M0.
+    let (mid, c1) = (ah * bl).overflowing_add(al * bh);
+    let (low, c2) = (al * bl).overflowing_add(mid << 16);
+    let high = ah * bh + (mid >> 16) + ((c1 as u32) << 16) + c2 as u32;
+    ((high as u64) << 32) | low as u64
 }
 
 /// Significant bits of each byte value (0 for 0): the last step of [`bitlen32`]. 256 bytes
@@ -194,35 +238,51 @@ const BITLEN8: [u8; 256] = {
 #[must_use]
 pub fn bitlen32(x: u32) -> u32 {
     if cfg!(scanline3d_no_clz) {
-        let (mut n, mut x) = (0, x);
-        if x >> 16 != 0 {
-            n = 16;
-            x >>= 16;
-        }
-        if x >> 8 != 0 {
-            n += 8;
-            x >>= 8;
-        }
-        // At most 24 + 8; the `min` tells the compiler so (shifts by the result then need no
-        // masking or 64-bit library calls).
-        (n + BITLEN8[(x & 0xff) as usize] as u32).min(32)
+        bitlen32_split(x)
     } else {
         32 - x.leading_zeros()
     }
+}
+
+/// [`bitlen32`] without a count-leading-zeros instruction (the `scanline3d_no_clz` cfg);
+/// compared with the native form by the host tests.
+#[inline(always)]
+#[must_use]
+pub(crate) fn bitlen32_split(x: u32) -> u32 {
+    let (mut n, mut x) = (0, x);
+    if x >> 16 != 0 {
+        n = 16;
+        x >>= 16;
+    }
+    if x >> 8 != 0 {
+        n += 8;
+        x >>= 8;
+    }
+    // At most 24 + 8; the `min` tells the compiler so (shifts by the result then need no
+    // masking or 64-bit library calls).
+    (n + BITLEN8[(x & 0xff) as usize] as u32).min(32)
 }
 
 /// Number of significant bits of a `u64` (0 for 0), from [`bitlen32`].
 #[inline]
 pub(crate) fn bitlen64(a: u64) -> u32 {
     if cfg!(scanline3d_no_clz) {
-        let hi = (a >> 32) as u32;
-        if hi != 0 {
-            32 + bitlen32(hi)
-        } else {
-            bitlen32(a as u32)
-        }
+        bitlen64_split(a)
     } else {
         64 - a.leading_zeros()
+    }
+}
+
+/// [`bitlen64`] without a count-leading-zeros instruction (the `scanline3d_no_clz` cfg);
+/// compared with the native form by the host tests.
+#[inline(always)]
+#[must_use]
+pub(crate) fn bitlen64_split(a: u64) -> u32 {
+    let hi = (a >> 32) as u32;
+    if hi != 0 {
+        32 + bitlen32(hi)
+    } else {
+        bitlen32(a as u32)
     }
 }
 
@@ -380,5 +440,56 @@ pub(crate) fn udiv_shift_subtract(n: u32, d: u32) -> (u32, u32) {
         }
         bit >>= 1;
         dd >>= 1;
+    }
+}
+
+#[cfg(test)]
+mod split_tests {
+    use super::*;
+
+    fn xorshift(s: &mut u32) -> u32 {
+        *s ^= *s << 13;
+        *s ^= *s >> 17;
+        *s ^= *s << 5;
+        *s
+    }
+
+    /// The formulations for cores without a long multiply or CLZ (ARMv6-M) against the native
+    /// ones the host runs, over their documented ranges.
+    #[test]
+    fn split_formulations_equal_native() {
+        let mut s = 0x1234_5678;
+        for i in 0..200_000u32 {
+            let (a, b) = (xorshift(&mut s) as i32, xorshift(&mut s) as i32);
+            let sh = i % 32;
+            let (a, b) = (a >> sh, b >> (31 - sh));
+            assert_eq!(mul_wide_split(a, b), a as i64 * b as i64);
+            assert_eq!(
+                mul_wide16_split(a, b as i16 as i32),
+                a as i64 * b as i16 as i64
+            );
+            assert_eq!(
+                mul_wide_u_split(a as u32, b as u32),
+                a as u32 as u64 * b as u32 as u64
+            );
+            assert_eq!(bitlen32_split(a as u32), 32 - (a as u32).leading_zeros());
+            let w = ((a as u64) << (sh + 1)) ^ b as u32 as u64;
+            assert_eq!(bitlen64_split(w), 64 - w.leading_zeros());
+            let (p, q) = (a >> 8, b >> 8); // [−2²³, 2²³)
+            assert_eq!(
+                mul_q16_small_split(p, q),
+                ((p as i64 * q as i64 + (1 << 15)) >> 16) as i32
+            );
+            let c = [a >> 9, b >> 9, (a ^ b) >> 9]; // [−2²², 2²²)
+            let d = [b >> 10, a >> 9, (a.wrapping_add(b)) >> 9];
+            let want = (c
+                .iter()
+                .zip(d)
+                .map(|(&x, y)| x as i64 * y as i64)
+                .sum::<i64>()
+                + (1 << 15))
+                >> 16;
+            assert_eq!(dot3_q16_small_split(c, d), want as i32);
+        }
     }
 }
