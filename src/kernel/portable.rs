@@ -11,8 +11,10 @@ use crate::kernel::udiv_small;
 use crate::wide::div_floor;
 
 impl Edge {
-    /// [`Edge::new`] in portable code.
-    #[inline(never)]
+    /// [`Edge::new`] in portable code. Out of line where the edge kernel runs (ARMv6-M: it
+    /// is the rare path there, and inlined its spills would grow the setup's frame).
+    #[cfg_attr(scanline3d_no_divide, inline(never))]
+    #[cfg_attr(not(scanline3d_no_divide), inline)]
     pub(crate) fn new_portable(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> Edge {
         let dy = (yb - ya).max(1);
         let dx = xb - xa;
