@@ -3,8 +3,8 @@
 //!
 //! Each entry point does **a prefix of its work and says how far it got** (a count, an index,
 //! an `Option` or a `bool`); the caller finishes the rest with portable code. Which
-//! implementation runs is chosen here and nowhere else, by two cfg aliases that `build.rs`
-//! sets:
+//! implementation runs is chosen here and nowhere else, by the cfg aliases that `build.rs`
+//! sets (a third, `scanline3d_thumb2`, picks Thumb-2 forms inside [`thumb`]):
 //!
 //! - `scanline3d_thumb`: a Cortex-M target (`target_arch = "arm"`, `target_os = "none"`) and
 //!   the `portable` feature off. The Thumb kernels of [`thumb`] that pay off on every Cortex-M
@@ -32,9 +32,9 @@
 //! | [`setup565`] | `thumb::setup` (ARMv6-M) | declines; `ActiveTri::setup` |
 //! | [`gouraud_setup`] | `thumb::gouraud` (ARMv6-M) | declines; `raster::attribute_words` |
 //! | [`dither_fits565`] | `thumb::dither_fits` (ARMv6-M) | declines; `ActiveTri::dither_fits` |
-//! | [`span565_less`], [`span565_less_dither`] | `thumb::span` (all Cortex-M) | declines; the span stage's packed loops |
+//! | [`span565_less`], [`span565_less_dither`] | `thumb::span` (all Cortex-M; Thumb-2 pixel loop where `scanline3d_thumb2`) | declines; the span stage's packed loops |
 //! | [`span565_flat_less`] | `thumb::span` (ARMv6-M) | declines; the span stage's flat loop |
-//! | [`rows565`] | `thumb::rows`, `thumb::rows_dither` (all Cortex-M) | declines; `ActiveTri::draw_row` |
+//! | [`rows565`] | `thumb::rows`, `thumb::rows_dither` (all Cortex-M; hot path in Thumb-2, `thumb::rows_t2`, where `scanline3d_thumb2`) | declines; `ActiveTri::draw_row` |
 //!
 //! Every Thumb kernel computes exactly what its twin computes (the same roundings, the same
 //! wrapping), so the image is bit-identical on every target: the benchmark firmware compares
