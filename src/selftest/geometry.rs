@@ -3,7 +3,7 @@
 
 use super::*;
 
-/// ARMv6-M only, for the benchmark firmware: the assembly vertex run (`kernel::project_run`) against [`vertex_record`] on `n` pseudo-random objects of 16 positions:
+/// For the benchmark firmware (compiled, and run by the host tests, on every target): the assembly vertex run (`kernel::project_run`) against [`vertex_record`] on `n` pseudo-random objects of 16 positions:
 /// matrices and positions from small to near the transform's range, w from negative to
 /// large, points inside and outside the x/y planes, the guard band and the near and far
 /// planes. Runs until every position is done, taking each declined one itself; returns the
@@ -61,7 +61,7 @@ pub fn vertex_self_test(n: u32) -> Option<u32> {
     None
 }
 
-/// ARMv6-M only, for the benchmark firmware: the assembly lighting run
+/// For the benchmark firmware (compiled, and run by the host tests, on every target): the assembly lighting run
 /// (`kernel::light_run`) against the portable lighting of the pass
 /// (`lit_diffuse`, RGB565 scaling and packing, `set_color`, `LIT`) on `n` pseudo-random
 /// objects of 16 vertices: marked, lit and unmarked vertices with any other flag and colour
@@ -146,7 +146,7 @@ pub fn light_self_test(n: u32) -> Option<u32> {
     None
 }
 
-/// Cortex-M only, for the benchmark firmware: the assembly triangle loop
+/// For the benchmark firmware (compiled, and run by the host tests, on every target): the assembly triangle loop
 /// (`kernel::cull_push`) against the portable `kernel::portable::cull_push` on `n` pseudo-random objects of
 /// 24 triangles over 16 vertices (indices out of range, invalid, clipped, outside, unlit and
 /// lit vertices; coordinates across the whole range and near one another; off-screen, empty
@@ -251,7 +251,7 @@ pub fn cull_self_test(n: u32) -> Option<u32> {
     None
 }
 
-/// Cortex-M only, for the benchmark firmware: [`Viewport::project`]'s screen words from
+/// For the benchmark firmware (compiled, and run by the host tests, on every target): [`Viewport::project`]'s screen words from
 /// the Q16.16 assembly routine against the portable ones, on `n` pseudo-random clip-space
 /// points (w from 2⁻¹⁶ to 2¹⁵, coordinates up to 16·w and beyond the guard band, depths
 /// in front of, inside and behind the depth range) and a few screen sizes. Returns the

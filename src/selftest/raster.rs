@@ -3,7 +3,7 @@
 
 use super::*;
 
-/// Cortex-M only, for the benchmark firmware: the assembly edge setup against the portable
+/// For the benchmark firmware (compiled, and run by the host tests, on every target): the assembly edge setup against the portable
 /// one on `n` pseudo-random edges (coordinates over the whole snapped range, rows at and past
 /// the upper vertex). Returns the inputs `[xa, ya, xb, yb, row]` of the first mismatch.
 #[doc(hidden)]
@@ -32,7 +32,7 @@ pub fn edge_setup_self_test(n: u32) -> Option<[i32; 5]> {
     None
 }
 
-/// Cortex-M only, for the benchmark firmware: the assembly Gouraud setup
+/// For the benchmark firmware (compiled, and run by the host tests, on every target): the assembly Gouraud setup
 /// (`kernel::gouraud_setup`) against the portable [`attribute_words`] for RGB565 on `n`
 /// pseudo-random triangles (small and large, every orientation, any depths and colours,
 /// first rows and left edges at and around the first vertex). Returns the first mismatching
@@ -190,7 +190,7 @@ pub fn triangle_setup_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
     None
 }
 
-/// ARMv6-M only, for the benchmark firmware: the assembly dither check
+/// For the benchmark firmware (compiled, and run by the host tests, on every target): the assembly dither check
 /// (`kernel::dither_fits565`) against the portable [`ActiveTri::dither_fits`] for RGB565
 /// on `n` pseudo-random fast Gouraud triangles (small to the largest fast size, so that the
 /// packed rows drift; colours anywhere in half the cases and inside the RGB565 range in the
@@ -235,7 +235,7 @@ pub fn dither_fits_self_test(n: u32) -> Option<([[i16; 2]; 3], [i32; 2])> {
     None
 }
 
-/// Cortex-M only, for the benchmark firmware: the assembly dithered span
+/// For the benchmark firmware (compiled, and run by the host tests, on every target): the assembly dithered span
 /// (`kernel::span565_less_dither`) against [`span_packed_dither_portable`] (RGB565,
 /// `DepthTest::Less`) on `n` pseudo-random spans: any start words and steps (small and large),
 /// lengths 1 to 40, every column phase and Bayer row, depth lines that hide about half the
@@ -248,21 +248,13 @@ pub fn dither_span_self_test(n: u32) -> Option<[u32; 4]> {
         let len = 1 + (next() % 40) as usize;
         let x0 = (next() % 1024) as usize;
         let row = (next() % 1024) as i32;
-        let mut word_and_step = || {
-            let (v, s, k) = (next(), next(), next() % 32);
-            [v, s >> k]
-        };
-        let [z0, gz] = word_and_step();
-        let rb = word_and_step();
-        let [g0, gg] = word_and_step();
-        let (z, g) = ([z0 as i32, gz as i32], [g0 as i32, gg as i32]);
-        let mut za = [0u16; 40];
-        let mut ca = [Rgb565::new(0, 0, 0); 40];
-        for (zp, cp) in za.iter_mut().zip(ca.iter_mut()) {
-            let r = next();
-            *zp = r as u16;
-            *cp = Rgb565::new((r >> 16) as u8 & 31, (r >> 21) as u8 & 63, (r >> 27) as u8);
-        }
+        let RandomSpan {
+            z,
+            rb,
+            g,
+            mut za,
+            mut ca,
+        } = random_span(&mut next);
         let (mut zb, mut cb) = (za, ca);
         let words = rgb565_words_mut(&mut ca[..len])?;
         let Some(wa) = kernel::span565_less_dither(&mut za[..len], words, z, rb, g, x0, row) else {
@@ -284,7 +276,7 @@ pub fn dither_span_self_test(n: u32) -> Option<[u32; 4]> {
     None
 }
 
-/// Cortex-M only, for the benchmark firmware: the dithered row routine
+/// For the benchmark firmware (compiled, and run by the host tests, on every target): the dithered row routine
 /// (`kernel::rows565` with dithering, the renderer's path) against `draw_row` alone on `n`
 /// pseudo-random strips of four Gouraud triangles (RGB565, 96 × 48 px, some across the left
 /// border, any depths and colours, set up while dithering as the renderer sets them up: on
@@ -383,21 +375,7 @@ pub fn span_self_test(n: u32) -> Option<[u32; 2]> {
     let mut next = xorshift32(0x9e37_79b9u32);
     for case in 0..n {
         let len = 1 + (next() % 40) as usize;
-        let mut word_and_step = || {
-            let (v, s, k) = (next(), next(), next() % 32);
-            [v, s >> k]
-        };
-        let [z0, gz] = word_and_step();
-        let rb = word_and_step();
-        let [g0, gg] = word_and_step();
-        let (z, g) = ([z0 as i32, gz as i32], [g0 as i32, gg as i32]);
-        let mut za = [0u16; 40];
-        let mut ca = [Rgb565::new(0, 0, 0); 40];
-        for (zp, cp) in za.iter_mut().zip(ca.iter_mut()) {
-            let r = next();
-            *zp = r as u16;
-            *cp = Rgb565::new((r >> 16) as u8 & 31, (r >> 21) as u8 & 63, (r >> 27) as u8);
-        }
+        let RandomSpan { z, rb, g, za, ca } = random_span(&mut next);
         let fail = Some([case, len as u32]);
         // Gouraud.
         let (mut zk, mut ck, mut zp, mut cp) = (za, ca, za, ca);
@@ -408,7 +386,8 @@ pub fn span_self_test(n: u32) -> Option<[u32; 2]> {
                 return fail;
             }
         }
-        // Flat (16.12 depth with any bias, any colour).
+        // Flat (16.12 depth with any bias, any colour), from the same random words.
+        let (z0, gz, g0) = (z[0] as u32, z[1] as u32, g[0] as u32);
         let color = Rgb565::new(
             (g0 >> 3) as u8 & 31,
             (g0 >> 9) as u8 & 63,
@@ -438,4 +417,41 @@ pub fn span_self_test(n: u32) -> Option<[u32; 2]> {
         }
     }
     None
+}
+
+/// A pseudo-random span for the span tests: packed start words and steps (depth, red-blue,
+/// green; each step shifted right by 0 to 31 bits, so of every magnitude) and the stored depth
+/// and colour lines (40 pixels; a test draws over the first 1 to 40).
+struct RandomSpan {
+    z: [i32; 2],
+    rb: [u32; 2],
+    g: [i32; 2],
+    za: [u16; 40],
+    ca: [embedded_graphics_core::pixelcolor::Rgb565; 40],
+}
+
+/// Draws a [`RandomSpan`] from `next`.
+fn random_span(next: &mut impl FnMut() -> u32) -> RandomSpan {
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    let mut word_and_step = || {
+        let (v, s, k) = (next(), next(), next() % 32);
+        [v, s >> k]
+    };
+    let [z0, gz] = word_and_step();
+    let rb = word_and_step();
+    let [g0, gg] = word_and_step();
+    let mut za = [0u16; 40];
+    let mut ca = [Rgb565::new(0, 0, 0); 40];
+    for (zp, cp) in za.iter_mut().zip(ca.iter_mut()) {
+        let r = next();
+        *zp = r as u16;
+        *cp = Rgb565::new((r >> 16) as u8 & 31, (r >> 21) as u8 & 63, (r >> 27) as u8);
+    }
+    RandomSpan {
+        z: [z0 as i32, gz as i32],
+        rb,
+        g: [g0 as i32, gg as i32],
+        za,
+        ca,
+    }
 }
