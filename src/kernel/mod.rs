@@ -14,6 +14,10 @@
 //!   transforms, the vertex run, the
 //!   lighting run, the projection, the edge setup, the triangle setup, the Gouraud attribute
 //!   setup, the dither check and the flat span.
+//! - `scanline3d_thumb2`: a Cortex-M core with Thumb-2 (ARMv7-M, ARMv7E-M, ARMv8-M Mainline).
+//!   Besides the kernels of every Cortex-M core, the vertex run and the projection run there,
+//!   with Thumb-2 forms of the transform and the projection (`thumb::xform_t2`,
+//!   `thumb::project_t2`: `smlal`, `smull`, `umull`, `clz`).
 //!
 //! With neither (the host, and any target with the `portable` feature) every entry point runs
 //! its portable implementation. A triangle or a colour type the fast kernels do not handle (a
@@ -26,8 +30,8 @@
 //! | [`edge_new`] | `thumb::edge` (ARMv6-M) | `Edge::new_portable` |
 //! | [`clear_line565`] | `thumb::fill` (all Cortex-M) | `portable::clear_line` |
 //! | [`transform_q16`], [`transform_dir_q16`] | `thumb::xform` (ARMv6-M; elsewhere the native 64-bit multiply-accumulate is faster) | declines; `Scalar::dot3_add` rows |
-//! | [`project_q16`] | `thumb::project` (ARMv6-M) | declines; `Viewport::project` |
-//! | [`project_run`] | `thumb::vertex` (ARMv6-M) | declines; the geometry stage's vertex loop |
+//! | [`project_q16`] | `thumb::project` (ARMv6-M; `thumb::project_t2` where `scanline3d_thumb2`) | declines; `Viewport::project` |
+//! | [`project_run`] | `thumb::vertex` (ARMv6-M and `scanline3d_thumb2`, calling `thumb::xform_t2` and `thumb::project_t2` there) | declines; the geometry stage's vertex loop |
 //! | [`light_run`] | `thumb::light` (ARMv6-M) | declines; the lighting stage's vertex loop |
 //! | [`setup565`] | `thumb::setup` (ARMv6-M) | declines; `ActiveTri::setup` |
 //! | [`gouraud_setup`] | `thumb::gouraud` (ARMv6-M) | declines; `raster::attribute_words` |
@@ -143,9 +147,9 @@ pub(crate) fn transform_dir_q16(m: &[[i32; 4]; 4], v: [i32; 3]) -> Option<[i32; 
 /// size); `None` where it declines (scales of 2¹⁶ or more, w ≤ 2⁻¹³, beyond the guard band).
 #[inline(always)]
 pub(crate) fn project_q16(p: &[i32; 4], sx: u32, sy: u32) -> Option<[i32; 3]> {
-    #[cfg(scanline3d_thumb_v6m)]
+    #[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
     return thumb::project_q16(p, sx, sy);
-    #[cfg(not(scanline3d_thumb_v6m))]
+    #[cfg(not(any(scanline3d_thumb_v6m, scanline3d_thumb2)))]
     {
         let _ = (p, sx, sy);
         None
@@ -153,7 +157,7 @@ pub(crate) fn project_q16(p: &[i32; 4], sx: u32, sy: u32) -> Option<[i32; 3]> {
 }
 
 /// Whether [`project_run`] can store anything (the vertex loop asks it only then).
-pub(crate) const PROJECT_RUN: bool = cfg!(scanline3d_thumb_v6m);
+pub(crate) const PROJECT_RUN: bool = cfg!(any(scanline3d_thumb_v6m, scanline3d_thumb2));
 
 /// The vertex kernel: stores the vertex-store records of the longest run of Q16.16 positions
 /// `ps` (at most the store's room) that it handles exactly as the geometry stage's vertex loop
@@ -169,9 +173,9 @@ pub(crate) fn project_run<const V: usize>(
     sy: u32,
     out: &mut Vec<ScreenVertex, V>,
 ) -> usize {
-    #[cfg(scanline3d_thumb_v6m)]
+    #[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
     return thumb::project_run(m, ps, g, sx, sy, out);
-    #[cfg(not(scanline3d_thumb_v6m))]
+    #[cfg(not(any(scanline3d_thumb_v6m, scanline3d_thumb2)))]
     {
         let _ = (m, ps, g, sx, sy, out);
         0

@@ -10,6 +10,7 @@ extern "C" {
 /// mantissa m in [1, 2³⁰], r5 = s, the bit length of `a` (1/a = m·2^-(29 + s)). A table seed,
 /// one Newton step in 32-bit products and one in 64-bit ones, as the portable code. Uses
 /// r0–r3 and r7; about 75 instructions.
+#[cfg_attr(scanline3d_thumb2, allow(unused_macros))]
 macro_rules! recip_norm {
     () => {
         concat!(
@@ -126,6 +127,7 @@ macro_rules! recip_norm {
 /// r4 = low word. Uses r1–r3. With v = vh·2¹⁶ + vl and m likewise (mh ≤ 2¹⁴): vl·ml is
 /// added unsigned, vl·mh (< 2³⁰) unsigned and vh·ml (|·| < 2³¹) signed, each shifted by 16,
 /// and vh·mh to the high word. 29 instructions, four of them `muls`.
+#[cfg_attr(scanline3d_thumb2, allow(unused_macros))]
 macro_rules! ndc_words {
     ($off:literal) => {
         concat!(
@@ -170,6 +172,7 @@ macro_rules! ndc_words {
 /// offset `$out` of the result (frame word 2): `clamp(hi·k + ((lo·k + 2³¹) >> 32) + k,
 /// ±COORD_LIMIT)` (the limit in frame word 3), as `Viewport::project` computes it through `scalar::mul_q32_short`; a high word
 /// beyond the `i16` range branches to label 9 (declined). Uses r1–r3.
+#[cfg_attr(scanline3d_thumb2, allow(unused_macros))]
 macro_rules! screen_coordinate {
     ($k:literal, $out:literal) => {
         concat!(
@@ -211,6 +214,8 @@ macro_rules! screen_coordinate {
     };
 }
 
+// Thumb-1; on Thumb-2 cores `project_t2` assembles the same routine from Thumb-2 forms.
+#[cfg(not(scanline3d_thumb2))]
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
@@ -313,6 +318,7 @@ core::arch::global_asm!(
 /// beyond the guard band: points that are clipped before they are projected), and the
 /// portable code computes them.
 #[inline(always)]
+#[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
 pub(crate) fn project_q16(p: &[i32; 4], sx: u32, sy: u32) -> Option<[i32; 3]> {
     if (sx | sy) >> 16 != 0 {
         return None;

@@ -1,5 +1,6 @@
-//! Thumb-1 assembly for the common case of an object's vertex loop on ARMv6-M with Q16.16
-//! coordinates (`kernel::project_run`): a run of vertices transformed
+//! Thumb-1 assembly for the common case of an object's vertex loop with Q16.16 coordinates,
+//! on ARMv6-M and on Thumb-2 cores (where the routines it calls are the Thumb-2 forms of
+//! `xform_t2` and `project_t2`) (`kernel::project_run`): a run of vertices transformed
 //! (`scanline3d_xform_q16`), given their outcode and projected (`scanline3d_project_q16`)
 //! straight into the vertex store, without the loop's copies and checks in between.
 //!
