@@ -15,9 +15,10 @@
 //!   lighting run, the projection, the edge setup, the triangle setup, the Gouraud attribute
 //!   setup, the dither check and the flat span.
 //! - `scanline3d_thumb2`: a Cortex-M core with Thumb-2 (ARMv7-M, ARMv7E-M, ARMv8-M Mainline).
-//!   Besides the kernels of every Cortex-M core, the vertex run and the projection run there,
-//!   with Thumb-2 forms of the transform and the projection (`thumb::xform_t2`,
-//!   `thumb::project_t2`: `smlal`, `smull`, `umull`, `clz`).
+//!   Besides the kernels of every Cortex-M core, the vertex run, the projection and the
+//!   lighting run run there, with Thumb-2 forms of the transform, the projection and the
+//!   lighting's products (`thumb::xform_t2`, `thumb::project_t2`, the Thumb-2 macros of
+//!   `thumb::light`: `smlal`, `smull`, `umull`, `clz`).
 //!
 //! With neither (the host, and any target with the `portable` feature) every entry point runs
 //! its portable implementation. A triangle or a colour type the fast kernels do not handle (a
@@ -32,7 +33,7 @@
 //! | [`transform_q16`], [`transform_dir_q16`] | `thumb::xform` (ARMv6-M; elsewhere the native 64-bit multiply-accumulate is faster) | declines; `Scalar::dot3_add` rows |
 //! | [`project_q16`] | `thumb::project` (ARMv6-M; `thumb::project_t2` where `scanline3d_thumb2`) | declines; `Viewport::project` |
 //! | [`project_run`] | `thumb::vertex` (ARMv6-M and `scanline3d_thumb2`, calling `thumb::xform_t2` and `thumb::project_t2` there) | declines; the geometry stage's vertex loop |
-//! | [`light_run`] | `thumb::light` (ARMv6-M) | declines; the lighting stage's vertex loop |
+//! | [`light_run`] | `thumb::light` (ARMv6-M; Thumb-2 forms of its products where `scanline3d_thumb2`) | declines; the lighting stage's vertex loop |
 //! | [`setup565`] | `thumb::setup` (ARMv6-M) | declines; `ActiveTri::setup` |
 //! | [`gouraud_setup`] | `thumb::gouraud` (ARMv6-M) | declines; `raster::attribute_words` |
 //! | [`dither_fits565`] | `thumb::dither_fits` (ARMv6-M) | declines; `ActiveTri::dither_fits` |
@@ -183,7 +184,7 @@ pub(crate) fn project_run<const V: usize>(
 }
 
 /// Whether [`light_run`] can light anything (the lighting stage asks it only then).
-pub(crate) const LIGHT_RUN: bool = cfg!(scanline3d_thumb_v6m);
+pub(crate) const LIGHT_RUN: bool = cfg!(any(scanline3d_thumb_v6m, scanline3d_thumb2));
 
 /// The lighting kernel, for RGB565 targets: lights the vertices of `verts` that the cull loop
 /// marked, as the lighting stage would with one grey light of direction `dir` (object space)
@@ -201,9 +202,9 @@ pub(crate) fn light_run(
     diffuse: i32,
     color: [u8; 3],
 ) -> Option<usize> {
-    #[cfg(scanline3d_thumb_v6m)]
+    #[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
     return thumb::light_run(verts, normals, dir, frac, ambient, diffuse, color);
-    #[cfg(not(scanline3d_thumb_v6m))]
+    #[cfg(not(any(scanline3d_thumb_v6m, scanline3d_thumb2)))]
     {
         let _ = (verts, normals, dir, frac, ambient, diffuse, color);
         None

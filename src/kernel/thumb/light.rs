@@ -1,5 +1,6 @@
-//! Thumb-1 assembly for the common case of the lighting pass on ARMv6-M with Q16.16 values
-//! (`kernel::light_run`): the vertices the triangle loop marked (`NEEDS_LIGHT`), lit in
+//! Thumb assembly for the common case of the lighting pass with Q16.16 values
+//! (`kernel::light_run`), on ARMv6-M and, with Thumb-2 forms of its products (`smlal`, about
+//! 105 instructions a lit vertex), on Thumb-2 cores: the vertices the triangle loop marked (`NEEDS_LIGHT`), lit in
 //! the object's space by one grey directional light without a specular term, for RGB565
 //! channels — what the pass computes for them (`shade::lit_diffuse`, `color::scale_channels`,
 //! `project::pack_channels`), stored with the `LIT` flag as the pass stores it.
@@ -39,6 +40,11 @@ struct LightCtx {
     frac_hi: i32,
     /// The material's ambient coefficient (any value).
     ambient: i32,
+    /// The direction, the diffuse coefficient and the colour fraction as whole words, for
+    /// the Thumb-2 forms (`smlal`).
+    dir: [i32; 3],
+    diffuse: i32,
+    frac: i32,
 }
 
 /// One component of the dot product N·L (the normal's component in r3, the direction's
@@ -46,6 +52,7 @@ struct LightCtx {
 /// and its lower half to ip (summed apart, so no carry is lost: see
 /// `scalar::dot3_q16_small`), the cross products and the high product (shifted) to r6.
 /// Uses r0–r5.
+#[cfg(not(scanline3d_thumb2))]
 macro_rules! dot_term {
     ($k:literal) => {
         concat!(
@@ -77,9 +84,11 @@ macro_rules! dot_term {
 /// r6 = `(a·r6 + 2¹⁵) >> 16` for the constant `a` whose halves are at `$lo`/`$hi` (both
 /// factors below 2²³ in magnitude: `scalar::mul_q16_small`). The low product plus 2¹⁵
 /// stays below 2³². Uses r0–r4.
+#[cfg(not(scanline3d_thumb2))]
 macro_rules! mul_q16 {
-    ($lo:literal, $hi:literal) => {
+    ($lo:literal, $hi:literal, $w:literal) => {
         concat!(
+            "@ whole word at ", $w, ", unused here\n",
             "uxth r1, r6\n",
             "asrs r0, r6, #16\n",
             "ldr r2, [r7, #",
@@ -110,6 +119,7 @@ macro_rules! mul_q16 {
 /// 8.8), `y = (x·$max + 127) / 255` (`color::div255`'s shifts and adds: the dividend is below
 /// 2²⁴) and the vertex format `(y + $half) >> $shift` (`pack_channels`; its upper limit,
 /// 992 or 1008, is what x = 65280 gives, so it never clamps). Uses r0, r1.
+#[cfg(not(scanline3d_thumb2))]
 macro_rules! channel {
     ($k:literal, $max:literal, $half:literal, $shift:literal, $out:literal) => {
         concat!(
@@ -145,6 +155,98 @@ macro_rules! channel {
             ", r0, #",
             $shift,
             "\n",
+        )
+    };
+}
+
+/// N·L into r6 (`dot3_q16_small`) for the normal in r3–r5: r6 and ip accumulate, ip from
+/// the rounding's 2¹⁵. Uses r0–r5, r8, r9.
+#[cfg(not(scanline3d_thumb2))]
+macro_rules! dot3 {
+    () => {
+        concat!(
+            "@ whole words at {dir}, unused here\n",
+            "mov r8, r4\n",
+            "mov r9, r5\n",
+            "movs r6, #0\n",
+            "movs r0, #1\n",
+            "lsls r0, r0, #15\n",
+            "mov ip, r0\n",
+            dot_term!("0"),
+            "mov r3, r8\n",
+            dot_term!("4"),
+            "mov r3, r9\n",
+            dot_term!("8"),
+            "mov r0, ip\n",
+            "lsrs r0, r0, #16\n",
+            "adds r6, r6, r0\n",
+        )
+    };
+}
+
+/// Thumb-2 form of [`dot3`] (the direction's whole words at `dir`): `dot3_q16_small`'s
+/// `(Σ n·d + 2¹⁵) >> 16` from three `smlal` into r6 (the sum is far inside 64 bits). Uses
+/// r0, r1.
+#[cfg(scanline3d_thumb2)]
+macro_rules! dot3 {
+    () => {
+        concat!(
+            "@ halves at {dir_lo} and {dir_hi}, unused here\n",
+            "ldr r0, [r7, #{dir}]\n",
+            "mov r6, #0x8000\n",
+            "movs r1, #0\n",
+            "smlal r6, r1, r3, r0\n",
+            "ldr r0, [r7, #{dir} + 4]\n",
+            "smlal r6, r1, r4, r0\n",
+            "ldr r0, [r7, #{dir} + 8]\n",
+            "smlal r6, r1, r5, r0\n",
+            "lsrs r6, r6, #16\n",
+            "orr r6, r6, r1, lsl #16\n",
+        )
+    };
+}
+
+/// Thumb-2 form of [`mul_q16`]: r6 = `(a·r6 + 2¹⁵) >> 16` for the whole word `a` at `$w`
+/// (the halves `$lo`, `$hi` are the Thumb-1 form's)
+/// (`scalar::mul_q16_small`, one `smlal`). Uses r0–r2.
+#[cfg(scanline3d_thumb2)]
+macro_rules! mul_q16 {
+    ($lo:literal, $hi:literal, $w:literal) => {
+        concat!(
+            "@ halves at ", $lo, " and ", $hi, ", unused here\n",
+            "ldr r2, [r7, #", $w, "]\n",
+            "mov r0, #0x8000\n",
+            "movs r1, #0\n",
+            "smlal r0, r1, r6, r2\n",
+            "lsrs r6, r0, #16\n",
+            "orr r6, r6, r1, lsl #16\n",
+        )
+    };
+}
+
+/// Thumb-2 form of [`channel`]: the same values, the clamp by an `it` block and the
+/// division's shifted adds as shifted operands.
+#[cfg(scanline3d_thumb2)]
+macro_rules! channel {
+    ($k:literal, $max:literal, $half:literal, $shift:literal, $out:literal) => {
+        concat!(
+            "ldrb r0, [r7, #{color} + ", $k, "]\n",
+            "muls r0, r5, r0\n",
+            "cmp r0, #0xff0000\n",
+            "it gt\n",
+            "movgt r0, #0xff0000\n",
+            "adds r0, #128\n",
+            "lsrs r0, r0, #8\n",
+            "movs r1, #", $max, "\n",
+            "muls r0, r1, r0\n",
+            "adds r0, #127\n",
+            "add r1, r0, r0, lsr #8\n",
+            "adds r1, #1\n",
+            "add r0, r0, r1, lsr #8\n",
+            "adds r0, #1\n",
+            "lsrs r0, r0, #8\n",
+            "adds r0, #", $half, "\n",
+            "lsrs ", $out, ", r0, #", $shift, "\n",
         )
     };
 }
@@ -208,33 +310,20 @@ core::arch::global_asm!(
     "orrs r0, r1",
     "lsrs r0, r0, #22",
     "bne 91b",
-    "mov r8, r4",
-    "mov r9, r5",
-    // r6 = N·L (`dot3_q16_small`): r6 and ip accumulate, ip from the rounding's 2¹⁵.
-    "movs r6, #0",
-    "movs r0, #1",
-    "lsls r0, r0, #15",
-    "mov ip, r0",
-    dot_term!("0"),
-    "mov r3, r8",
-    dot_term!("4"),
-    "mov r3, r9",
-    dot_term!("8"),
-    "mov r0, ip",
-    "lsrs r0, r0, #16",
-    "adds r6, r6, r0",
+    // r6 = N·L (`dot3_q16_small`).
+    dot3!(),
     // r5 = s: the ambient term, plus the diffuse one where N·L > 0.
     "ldr r5, [r7, #{ambient}]",
     "cmp r6, #0",
     "ble 30f",
     "lsrs r0, r6, #23",
     "bne 91b",
-    mul_q16!("{diffuse_lo}", "{diffuse_hi}"),
+    mul_q16!("{diffuse_lo}", "{diffuse_hi}", "{diffuse}"),
     "asrs r0, r6, #31",
     "eors r0, r6",
     "lsrs r0, r0, #23",
     "bne 91b",
-    mul_q16!("{frac_lo}", "{frac_hi}"),
+    mul_q16!("{frac_lo}", "{frac_hi}", "{frac}"),
     "adds r5, r5, r6",
     "bvs 92f",
     // The channels: all zero for s ≤ 0, the pass's for s ≥ 2²³.
@@ -292,6 +381,9 @@ core::arch::global_asm!(
     frac_lo = const core::mem::offset_of!(LightCtx, frac_lo),
     frac_hi = const core::mem::offset_of!(LightCtx, frac_hi),
     ambient = const core::mem::offset_of!(LightCtx, ambient),
+    dir = const core::mem::offset_of!(LightCtx, dir),
+    diffuse = const core::mem::offset_of!(LightCtx, diffuse),
+    frac = const core::mem::offset_of!(LightCtx, frac),
     color = const core::mem::offset_of!(LightCtx, color),
     vrgb = const crate::kernel::records::RGB_HI_OFFSET,
     vflags = const crate::kernel::records::FLAGS_OFFSET,
@@ -348,6 +440,9 @@ pub(crate) fn light_run(
         frac_hi: frac >> 16,
         ambient,
         color: [color[0], color[1], color[2], 0],
+        dir,
+        diffuse,
+        frac,
     };
     // SAFETY: a normal is three words.
     // The routine reads the records and normals of the run (`n` of each, 12 bytes a record and

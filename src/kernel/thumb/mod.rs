@@ -108,7 +108,7 @@ mod edge;
 mod cull;
 #[cfg(scanline3d_thumb_v6m)]
 mod dither_fits;
-#[cfg(scanline3d_thumb_v6m)]
+#[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
 mod light;
 #[cfg(scanline3d_thumb_v6m)]
 mod setup;
@@ -123,7 +123,7 @@ pub(crate) use edge::edge_new;
 pub(crate) use fill::clear_line;
 #[cfg(scanline3d_thumb_v6m)]
 pub(crate) use gouraud::gouraud_setup;
-#[cfg(scanline3d_thumb_v6m)]
+#[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
 pub(crate) use light::light_run;
 #[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
 pub(crate) use project::project_q16;
