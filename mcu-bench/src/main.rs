@@ -559,10 +559,10 @@ fn transform_matches_rows() -> bool {
 /// assembly Gouraud setup the portable attribute words on 20 000 pseudo-random triangles, and
 /// the assembly dithered span the portable one on 20 000 pseudo-random spans and the
 /// dithered row routine the portable rows on 2 000 strips of four triangles, and
-/// the assembly triangle loop the portable one on 5 000 objects of 24 triangles, and on ARMv6-M
-/// (where they are used) the assembly triangle setup the portable one on 20 000 more, the
-/// assembly dither check the portable one on 20 000 fast triangles, and the
-/// assembly vertex loop the portable one on 5 000 objects of 16 positions (the
+/// the assembly triangle loop the portable one on 5 000 objects of 24 triangles, the assembly
+/// vertex loop and lighting run the portable ones on 5 000 objects each, and on ARMv6-M
+/// (where they are used) the assembly triangle setup the portable one on 20 000 more and the
+/// assembly dither check the portable one on 20 000 fast triangles (the
 /// benchmark scenes' hashes check them too, but only on the cases they have). Prints the first
 /// mismatch. Not inlined, so that its locals are not part of `main`'s frame during the
 /// renders (on the 16 KB part every byte of it counts).
@@ -610,12 +610,10 @@ fn assembly_matches_portable() -> bool {
         hprintln!("TRIANGLE LOOP MISMATCH seed {:#x}", seed);
         return false;
     }
-    #[cfg(not(target_has_atomic = "32"))]
     if let Some(seed) = scanline3d::selftest::vertex_self_test(5_000) {
         hprintln!("VERTEX LOOP MISMATCH seed {:#x}", seed);
         return false;
     }
-    #[cfg(not(target_has_atomic = "32"))]
     if let Some(seed) = scanline3d::selftest::light_self_test(5_000) {
         hprintln!("LIGHTING MISMATCH seed {:#x}", seed);
         return false;

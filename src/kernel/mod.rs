@@ -27,7 +27,7 @@
 //!
 //! | entry point | Thumb kernel | portable implementation (the twin it is compared with) |
 //! |---|---|---|
-//! | [`cull_push`] | `thumb::cull` (all Cortex-M) | `portable::cull_push` |
+//! | [`cull_push`] | `thumb::cull` (all Cortex-M; a Thumb-2 routine where `scanline3d_thumb2`) | `portable::cull_push` |
 //! | [`edge_new`] | `thumb::edge` (ARMv6-M) | `Edge::new_portable` |
 //! | [`clear_line565`] | `thumb::fill` (all Cortex-M) | `portable::clear_line` |
 //! | [`transform_q16`], [`transform_dir_q16`] | `thumb::xform` (ARMv6-M; elsewhere the native 64-bit multiply-accumulate is faster) | declines; `Scalar::dot3_add` rows |
