@@ -92,7 +92,7 @@ macro_rules! next_triangle {
 // drawing (the edges and the decremented count go back with one `stm`, the rows with one
 // `ldm`/`stm` that also leaves the row's start values in the pixel loop's accumulators), then
 // draws the span with [`t2_pixel_loop`]. Frame: [sp] = slot n, [sp, #4] = the width (pixels),
-// [sp, #8] = the depth line, [sp, #12] = colour line − depth line (bytes), [sp, #16] = the
+// [sp, #8] = colour line − depth line (bytes), [sp, #12] = the depth line, [sp, #16] = the
 // hidden count, [sp, #20] = the records, [sp, #24] = the context, [sp, #28] = scratch.
 
 /// The Thumb-2 row routine's pixel loop: [`pixel_loop`] with its own registers — r7 = end of the
@@ -145,11 +145,11 @@ macro_rules! t2_hidden_pixel {
     };
 }
 
-/// Before [`t2_pixel_loop`] (r7 = end of the depth run, r10 = minus its length): the colour
-/// run's end into r4 and the fragments counted (lr).
+/// Before [`t2_pixel_loop`] (r7 = end of the depth run, r10 = minus its length, r8 = colour
+/// line − depth line): the colour run's end into r4 and the fragments counted (lr).
 macro_rules! t2_loop_setup {
     () => {
-        concat!("ldr r4, [sp, #12]\n", "add r4, r7\n", "sub lr, lr, r10\n")
+        concat!("add r4, r7, r8\n", "sub lr, lr, r10\n")
     };
 }
 
@@ -188,31 +188,32 @@ macro_rules! t2_left_carry {
 
 /// The packed attribute rows step (row += inc, and + gx when `$carry` is
 /// "add r4, r3\nadd r5, r9\nadd r6, r11\n"), leaving the row's start values in r0–r2 and the
-/// per-pixel steps gx in r3, r9, r11. Uses r4–r6, r8.
+/// per-pixel steps gx in r3, r9, r11. Uses r4–r6.
 macro_rules! t2_rows {
     ("") => {
         concat!(
-            "add r8, r12, #{row0}\n",
-            "ldm r8, {{r0, r1, r2, r3, r4, r5, r6}}\n",
+            "add r9, r12, #{row0}\n",
+            "ldm r9, {{r0, r1, r2, r3, r4, r5, r6}}\n",
             "add r4, r0\n",
             "add r5, r1\n",
             "add r6, r2\n",
-            "stm r8, {{r4, r5, r6}}\n",
+            "stm r9, {{r4, r5, r6}}\n",
             "add r11, r12, #{gx0}\n",
             "ldm r11, {{r3, r9, r11}}\n",
         )
     };
     ($carry:expr) => {
         concat!(
-            "add r8, r12, #{row0}\n",
-            "ldm r8, {{r0, r1, r2, r3, r4, r5, r6}}\n",
+            "add r6, r12, #{row0}\n",
+            "ldm r6, {{r0, r1, r2, r3, r4, r5, r6}}\n",
             "add r11, r12, #{gx0}\n",
             "ldm r11, {{r3, r9, r11}}\n",
             "add r4, r0\n",
             "add r5, r1\n",
             "add r6, r2\n",
             $carry,
-            "stm r8, {{r4, r5, r6}}\n",
+            "strd r4, r5, [r12, #{row0}]\n",
+            "str r6, [r12, #({row0} + 8)]\n",
         )
     };
 }
@@ -225,12 +226,13 @@ macro_rules! t2_gx {
 }
 
 /// The next slot (i += 84) and the loop test: back to the row head (label 16) with r7 = the
-/// width and r11 = the depth line while i < n, else out with 0 (label 11).
+/// width, r8 = colour line − depth line and r11 = the depth line while i < n, else out with 0
+/// (label 11).
 macro_rules! t2_next {
     () => {
         concat!(
             "add r12, r12, #{size}\n",
-            "ldm sp, {{r6, r7, r11}}\n",
+            "ldm sp, {{r6, r7, r8, r11}}\n",
             "cmp r12, r6\n",
             "blo 16b\n",
             "b 11b\n",
@@ -294,11 +296,14 @@ core::arch::global_asm!(
     "mla r12, r2, r6, r0",
     "mla r1, r1, r6, r0",
     "lsrs r2, r5, #1",
+    "mov r5, r3",
+    "mov r3, r4",
+    "mov r4, r5",
     "movs r5, #0",
     "mov r6, r0",
     "push {{r1, r2, r3, r4, r5, r6, r7, r8}}",
     "mov lr, r5",
-    "ldm sp, {{r6, r7, r11}}",
+    "ldm sp, {{r6, r7, r8, r11}}",
     "cmp r12, r6",
     "blo 16f",
     "11:",
@@ -308,7 +313,7 @@ core::arch::global_asm!(
     "movs r0, #1",
     "b 13f",
     // Slot i (r12) qualifies: rows left on its routine count (else label 19) and left.c ≥ 0
-    // (else label 18). r7 = the width, r11 = the depth line.
+    // (else label 18). r7 = the width, r8 = colour line − depth line, r11 = the depth line.
     "16:",
     "ldm r12, {{r0, r1, r2, r3, r4, r5}}",
     "tst r0, #0xff00",
@@ -333,12 +338,12 @@ core::arch::global_asm!(
     // An empty span: the steps only.
     "30:",
     t2_edges!("31f"),
-    "add r8, r12, #{row0}",
-    "ldm r8, {{r0, r1, r2, r3, r4, r5, r6}}",
+    "add r9, r12, #{row0}",
+    "ldm r9, {{r0, r1, r2, r3, r4, r5, r6}}",
     "add r4, r0",
     "add r5, r1",
     "add r6, r2",
-    "stm r8, {{r4, r5, r6}}",
+    "stm r9, {{r4, r5, r6}}",
     t2_next!(),
     "31:",
     t2_left_carry!(),
@@ -379,8 +384,8 @@ core::arch::global_asm!(
     "subs r10, r6, r9",
     "bge 21f",
     "add r7, r11, r9, lsl #1",
-    "add r8, r12, #{row0}",
-    "ldm r8, {{r0, r1, r2}}",
+    "add r4, r12, #{row0}",
+    "ldm r4, {{r0, r1, r2}}",
     "add r11, r12, #{gx0}",
     "ldm r11, {{r3, r9, r11}}",
     t2_loop_setup!(),
@@ -397,7 +402,7 @@ core::arch::global_asm!(
     "ldm r2, {{r0, r1, r2, r3, r4, r5, r6, r7, r8, r9}}",
     "add r11, r12, #44",
     "stm r11, {{r0, r1, r2, r3, r4, r5, r6, r7, r8, r9}}",
-    "ldrd r7, r11, [sp, #4]",
+    "ldm sp, {{r6, r7, r8, r11}}",
     "b 16b",
     t2_hidden_pixel!(),
     "55:",
@@ -409,17 +414,17 @@ core::arch::global_asm!(
     "tst r0, #{switch_flag}",
     "beq 12b",
     "ubfx r6, r1, #0, #15",
-    "ubfx r8, r3, #0, #15",
-    "cmp r8, r7",
+    "ubfx r9, r3, #0, #15",
+    "cmp r9, r7",
     "bgt 57f",
     "58:",
-    "subs r10, r6, r8",
-    "add r7, r11, r8, lsl #1",
+    "subs r10, r6, r9",
+    "add r7, r11, r9, lsl #1",
     "add r11, r12, #{gx0}",
     "ldm r11, {{r3, r9, r11}}",
     "bge 27f",
-    "add r8, r12, #{row0}",
-    "ldm r8, {{r0, r1, r2}}",
+    "add r4, r12, #{row0}",
+    "ldm r4, {{r0, r1, r2}}",
     t2_loop_setup!(),
     t2_pixel_loop!(),
     // Count and flags for the rows from the switch on: row_end − 1 − row_mid, last row flag
@@ -530,7 +535,7 @@ core::arch::global_asm!(
     t2_next!(),
     t2_hidden_pixel!(),
     "57:",
-    "mov r8, r7",
+    "mov r9, r7",
     "b 58b",
     // Slot addresses back to indices.
     "13:",
