@@ -3,6 +3,7 @@
 //! macros (the dithered twins are in `rows_dither`).
 #![allow(unsafe_code)]
 
+#[cfg(not(scanline3d_thumb2))]
 use super::offsets as o;
 use crate::kernel::records::{ActiveList, ActiveTri, DITHER565};
 
@@ -713,6 +714,8 @@ core::arch::global_asm!(
     };
 }
 
+// On Thumb-2 the plain routine is `rows_t2`'s.
+#[cfg(not(scanline3d_thumb2))]
 rows565_routine!(
     "scanline3d_rows565",
     "",
