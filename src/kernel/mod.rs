@@ -54,7 +54,7 @@ use records::{ActiveList, ActiveTri, Bins, CullCounts, CullStop, Edge, ScreenVer
 
 /// What [`setup565`] did.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-#[cfg_attr(not(scanline3d_thumb_v6m), allow(dead_code))]
+#[cfg_attr(not(scanline3d_thumb), allow(dead_code))]
 pub(crate) enum Setup565 {
     /// Set up and kept (while dithering: with `DITHER_OK`).
     Kept,
@@ -106,7 +106,7 @@ pub(crate) fn edge_new(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> Option<E
 
 /// Whether the triangle-setup kernels ([`setup565`], [`gouraud_setup`], [`dither_fits565`])
 /// can do anything (the setup keeps its portable attribute words out of line only then).
-pub(crate) const SETUP_KERNELS: bool = cfg!(scanline3d_thumb_v6m);
+pub(crate) const SETUP_KERNELS: bool = cfg!(scanline3d_thumb);
 
 /// Whether [`transform_q16`] and [`transform_dir_q16`] can do anything (a caller keeps its
 /// fallback out of line only then).
@@ -240,9 +240,9 @@ pub(crate) fn setup565(
     height: i32,
     dither: bool,
 ) -> Option<Setup565> {
-    #[cfg(scanline3d_thumb_v6m)]
+    #[cfg(scanline3d_thumb)]
     return thumb::setup565(rec, t, verts, row, height, dither);
-    #[cfg(not(scanline3d_thumb_v6m))]
+    #[cfg(not(scanline3d_thumb))]
     {
         let _ = (rec, t, verts, row, height, dither);
         None
@@ -254,9 +254,9 @@ pub(crate) fn setup565(
 /// it declines.
 #[inline(always)]
 pub(crate) fn gouraud_setup(rec: &mut ActiveTri, tri: &Sorted<'_>) -> bool {
-    #[cfg(scanline3d_thumb_v6m)]
+    #[cfg(scanline3d_thumb)]
     return thumb::gouraud_setup(rec, tri);
-    #[cfg(not(scanline3d_thumb_v6m))]
+    #[cfg(not(scanline3d_thumb))]
     {
         let _ = (rec, tri);
         false
@@ -267,9 +267,9 @@ pub(crate) fn gouraud_setup(rec: &mut ActiveTri, tri: &Sorted<'_>) -> bool {
 /// vertices `p` set up on `row`; `None` where it declines.
 #[inline(always)]
 pub(crate) fn dither_fits565(rec: &ActiveTri, p: [&ScreenVertex; 3], row: i32) -> Option<bool> {
-    #[cfg(scanline3d_thumb_v6m)]
+    #[cfg(scanline3d_thumb)]
     return Some(thumb::dither_fits565(rec, p, row));
-    #[cfg(not(scanline3d_thumb_v6m))]
+    #[cfg(not(scanline3d_thumb))]
     {
         let _ = (rec, p, row);
         None

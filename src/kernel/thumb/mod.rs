@@ -92,39 +92,39 @@ mod rows_dither;
 #[cfg(scanline3d_thumb_v6m)]
 #[macro_use]
 mod xform;
-#[cfg(scanline3d_thumb_v6m)]
+// `recip_norm!` for the Thumb-1 attribute setup; the projection itself runs on ARMv6-M only.
+#[cfg(not(scanline3d_thumb2))]
 #[macro_use]
 mod project;
-#[cfg(scanline3d_thumb_v6m)]
+#[cfg(scanline3d_thumb2)]
+#[macro_use]
+mod setup_t2;
 #[macro_use]
 mod gouraud;
-#[cfg(scanline3d_thumb_v6m)]
+// The edge kernel and the Thumb-1 triangle setup's edge macros; on Thumb-2 cores the setup
+// has its own (`setup_t2`) and the edges set up elsewhere stay portable.
+#[cfg(not(scanline3d_thumb2))]
 #[macro_use]
 mod edge;
 mod cull;
-#[cfg(scanline3d_thumb_v6m)]
 mod dither_fits;
 #[cfg(scanline3d_thumb_v6m)]
 mod light;
-#[cfg(scanline3d_thumb_v6m)]
 mod setup;
 #[cfg(scanline3d_thumb_v6m)]
 mod vertex;
 
 pub(crate) use cull::cull_push;
-#[cfg(scanline3d_thumb_v6m)]
 pub(crate) use dither_fits::dither_fits565;
 #[cfg(scanline3d_thumb_v6m)]
 pub(crate) use edge::edge_new;
 pub(crate) use fill::clear_line;
-#[cfg(scanline3d_thumb_v6m)]
 pub(crate) use gouraud::gouraud_setup;
 #[cfg(scanline3d_thumb_v6m)]
 pub(crate) use light::light_run;
 #[cfg(scanline3d_thumb_v6m)]
 pub(crate) use project::project_q16;
 pub(crate) use rows::rows565;
-#[cfg(scanline3d_thumb_v6m)]
 pub(crate) use setup::setup565;
 #[cfg(scanline3d_thumb_v6m)]
 pub(crate) use span::span565_flat_less;

@@ -2,6 +2,7 @@
 //! normalized reciprocal), and the reciprocal macro the triangle setup reuses.
 #![allow(unsafe_code)]
 
+#[cfg(scanline3d_thumb_v6m)]
 extern "C" {
     fn scanline3d_project_q16(p: *const i32, scales: u32, seed: *const u16, out: *mut i32) -> u32;
 }
@@ -211,6 +212,7 @@ macro_rules! screen_coordinate {
     };
 }
 
+#[cfg(scanline3d_thumb_v6m)]
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
@@ -312,6 +314,7 @@ core::arch::global_asm!(
 /// for the scales `sx`, `sy` < 2¹⁶; `None` where it declines (w ≤ 2⁻¹³, or a quotient
 /// beyond the guard band: points that are clipped before they are projected), and the
 /// portable code computes them.
+#[cfg(scanline3d_thumb_v6m)]
 #[inline(always)]
 pub(crate) fn project_q16(p: &[i32; 4], sx: u32, sy: u32) -> Option<[i32; 3]> {
     if (sx | sy) >> 16 != 0 {
