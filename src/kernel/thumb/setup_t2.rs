@@ -60,41 +60,38 @@ macro_rules! edge_t2 {
 }
 
 /// For [`scanline3d_gouraud_t2`]: colour channel `$byte` (its high byte's offset in a vertex,
-/// its low two bits at `$bit` of the flags) of the three vertices (frame words 8, 12, 16): r0 =
-/// the first vertex's, r4 = d1, r5 = d2 (the others' differences from it). Uses r1, r3.
+/// its low two bits at `$bit` of the flags) of the three vertices (frame words 8, 12, 16):
+/// r0 = the first vertex's, then r3 = gx = round(c0·d1 − c1·d2) and r5 = gy = round(c2·d2 −
+/// c3·d1) (d1, d2 the others' differences from it) as the portable setup rounds a colour
+/// gradient, `((v >> (r − 1)) + 1) >> 1`, here `(v + 2^(r − 1)) >> r` (the same floor) with
+/// r1 = 2^(r − 1), r2 = r. Uses r4.
 macro_rules! channel_t2 {
     ($byte:literal, $bit:literal) => {
         concat!(
             "ldr r3, [sp, #8]\n",
             "ldrb r0, [r3, #", $byte, "]\n",
-            "ldrh r1, [r3, #{vfl}]\n",
-            "ubfx r1, r1, #", $bit, ", #2\n",
-            "orr r0, r1, r0, lsl #2\n",
+            "ldrh r3, [r3, #{vfl}]\n",
+            "ubfx r3, r3, #", $bit, ", #2\n",
+            "orr r0, r3, r0, lsl #2\n",
             "ldr r3, [sp, #12]\n",
             "ldrb r4, [r3, #", $byte, "]\n",
-            "ldrh r1, [r3, #{vfl}]\n",
-            "ubfx r1, r1, #", $bit, ", #2\n",
-            "orr r4, r1, r4, lsl #2\n",
+            "ldrh r3, [r3, #{vfl}]\n",
+            "ubfx r3, r3, #", $bit, ", #2\n",
+            "orr r4, r3, r4, lsl #2\n",
             "subs r4, r4, r0\n",
             "ldr r3, [sp, #16]\n",
             "ldrb r5, [r3, #", $byte, "]\n",
-            "ldrh r1, [r3, #{vfl}]\n",
-            "ubfx r1, r1, #", $bit, ", #2\n",
-            "orr r5, r1, r5, lsl #2\n",
+            "ldrh r3, [r3, #{vfl}]\n",
+            "ubfx r3, r3, #", $bit, ", #2\n",
+            "orr r5, r3, r5, lsl #2\n",
             "subs r5, r5, r0\n",
-            // r3 = gx = round(c0·d1 − c1·d2), r5 = gy = round(c2·d2 − c3·d1), rounded as the
-            // portable setup rounds a colour gradient, ((v >> (r − 1)) + 1) >> 1 (r2 = r − 1).
-            "mul r3, r12, r4\n",
+            "mla r3, r12, r4, r1\n",
             "mls r3, r10, r5, r3\n",
             "asrs r3, r3, r2\n",
-            "adds r3, r3, #1\n",
-            "asrs r3, r3, #1\n",
             "mul r4, r4, r11\n",
-            "mul r5, r5, r9\n",
+            "mla r5, r5, r9, r1\n",
             "subs r5, r5, r4\n",
             "asrs r5, r5, r2\n",
-            "adds r5, r5, #1\n",
-            "asrs r5, r5, #1\n",
         )
     };
 }
@@ -293,7 +290,10 @@ core::arch::global_asm!(
     // Blue (5.5 vertex channels, 15 bits to 20 fraction bits, packed with 11): gx and gy
     // packed (v + 2⁸) >> 9 into r7 and lr; the first pixel's value (exact in 64 bits: all of
     // its 32-bit word counts, as the borrow into red) packed the same into frame word 4.
-    "sub r2, r2, #27",
+    "sub r2, r2, #26",
+    "sub r1, r2, #1",
+    "movs r4, #1",
+    "lsl r1, r4, r1",
     channel_t2!("{vrgb} + 2", "14"),
     "add r7, r3, #256",
     "asr r7, r7, #9",
@@ -301,38 +301,39 @@ core::arch::global_asm!(
     "asr lr, lr, #9",
     "lsls r0, r0, #19",
     "add r0, r0, #4096",
-    "movs r1, #0",
-    "smlal r0, r1, r3, r6",
-    "smlal r0, r1, r5, r8",
+    "movs r4, #0",
+    "smlal r0, r4, r3, r6",
+    "smlal r0, r4, r5, r8",
     "lsrs r0, r0, #13",
-    "orr r0, r0, r1, lsl #19",
+    "orr r0, r0, r4, lsl #19",
     "str r0, [sp, #4]",
     // Red: its halves added (the first pixel's value mod 2²⁸ is enough for its half), with
     // both halves' ½-unit biases; the row step gy + gx·sq of the packed words.
     channel_t2!("{vrgb}", "10"),
-    "add r1, r3, #256",
-    "asr r1, r1, #9",
-    "add r7, r7, r1, lsl #16",
-    "add r1, r5, #256",
-    "asr r1, r1, #9",
-    "add lr, lr, r1, lsl #16",
+    "add r4, r3, #256",
+    "asr r4, r4, #9",
+    "add r7, r7, r4, lsl #16",
+    "add r4, r5, #256",
+    "asr r4, r4, #9",
+    "add lr, lr, r4, lsl #16",
     "lsls r0, r0, #19",
     "add r0, r0, #4096",
     "mla r0, r3, r6, r0",
     "mla r0, r5, r8, r0",
     "lsrs r0, r0, #13",
-    "ldr r1, [sp, #4]",
-    "add r1, r1, r0, lsl #16",
-    "add r1, r1, #0x04000400",
+    "ldr r4, [sp, #4]",
+    "add r4, r4, r0, lsl #16",
+    "add r4, r4, #0x04000400",
     "ldr r0, [sp, #0]",
-    "ldr r4, [sp, #20]",
-    "mla r3, r7, r4, lr",
+    "ldr r3, [sp, #20]",
+    "mla r3, r7, r3, lr",
     "str r7, [r0, #{gx} + 4]",
-    "str r1, [r0, #{row} + 4]",
+    "str r4, [r0, #{row} + 4]",
     "str r3, [r0, #{inc} + 4]",
     // Green (6.4, 16 bits to 20, packed with 26: << 6; its rounding one bit less): the first
     // pixel's value with its ½-unit bias 2¹⁹, mod 2²⁶.
     "sub r2, r2, #1",
+    "lsr r1, r1, #1",
     channel_t2!("{vrgb} + 1", "12"),
     "lsls r0, r0, #20",
     "add r0, r0, #0x800000",
