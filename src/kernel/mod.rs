@@ -8,12 +8,14 @@
 //!
 //! - `scanline3d_thumb`: a Cortex-M target (`target_arch = "arm"`, `target_os = "none"`) and
 //!   the `portable` feature off. The Thumb kernels of [`thumb`] that pay off on every Cortex-M
-//!   core run: the RGB565 span loops, the row routine, the line clear and the cull loop.
+//!   core run: the RGB565 span loops, the row routine, the line clear, the cull loop, the
+//!   triangle setup, the Gouraud attribute setup and the dither check (the two setups in
+//!   Thumb-2 forms, `thumb::setup_t2`, where `scanline3d_thumb2`).
 //! - `scanline3d_thumb_v6m`: the same on ARMv6-M (Cortex-M0/M0+: no 32 × 32 → 64-bit multiply,
 //!   no divide instruction). The kernels that only pay off there run too: the Q16.16
-//!   transforms, the vertex run, the
-//!   lighting run, the projection, the edge setup, the triangle setup, the Gouraud attribute
-//!   setup, the dither check and the flat span.
+//!   transforms, the vertex run, the lighting run, the projection, the edge setup and the flat
+//!   span (on Thumb-2 cores the long multiply, `clz` and the divide make the portable forms
+//!   as fast or faster).
 //!
 //! With neither (the host, and any target with the `portable` feature) every entry point runs
 //! its portable implementation. A triangle or a colour type the fast kernels do not handle (a
@@ -29,9 +31,9 @@
 //! | [`project_q16`] | `thumb::project` (ARMv6-M) | declines; `Viewport::project` |
 //! | [`project_run`] | `thumb::vertex` (ARMv6-M) | declines; the geometry stage's vertex loop |
 //! | [`light_run`] | `thumb::light` (ARMv6-M) | declines; the lighting stage's vertex loop |
-//! | [`setup565`] | `thumb::setup` (ARMv6-M) | declines; `ActiveTri::setup` |
-//! | [`gouraud_setup`] | `thumb::gouraud` (ARMv6-M) | declines; `raster::attribute_words` |
-//! | [`dither_fits565`] | `thumb::dither_fits` (ARMv6-M) | declines; `ActiveTri::dither_fits` |
+//! | [`setup565`] | `thumb::setup` (all Cortex-M; Thumb-2 form in `thumb::setup_t2` where `scanline3d_thumb2`) | declines; `ActiveTri::setup` |
+//! | [`gouraud_setup`] | `thumb::gouraud` (all Cortex-M; Thumb-2 form in `thumb::setup_t2` where `scanline3d_thumb2`) | declines; `raster::attribute_words` |
+//! | [`dither_fits565`] | `thumb::dither_fits` (all Cortex-M) | declines; `ActiveTri::dither_fits` |
 //! | [`span565_less`], [`span565_less_dither`] | `thumb::span` (all Cortex-M; Thumb-2 pixel loop where `scanline3d_thumb2`) | declines; the span stage's packed loops |
 //! | [`span565_flat_less`] | `thumb::span` (ARMv6-M) | declines; the span stage's flat loop |
 //! | [`rows565`] | `thumb::rows`, `thumb::rows_dither` (all Cortex-M; hot path in Thumb-2, `thumb::rows_t2`, where `scanline3d_thumb2`) | declines; `ActiveTri::draw_row` |
