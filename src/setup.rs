@@ -398,8 +398,8 @@ impl ActiveTri {
         })
     }
 
-    /// [`ActiveTri::setup`] in portable code (on ARMv6-M, for what `kernel::setup565`
-    /// declines).
+    /// [`ActiveTri::setup`] in portable code (where the setup kernels run, for what
+    /// `kernel::setup565` declines).
     #[inline]
     pub(crate) fn setup_portable<C: TargetColor>(
         &mut self,

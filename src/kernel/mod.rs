@@ -8,17 +8,20 @@
 //!
 //! - `scanline3d_thumb`: a Cortex-M target (`target_arch = "arm"`, `target_os = "none"`) and
 //!   the `portable` feature off. The Thumb kernels of [`thumb`] that pay off on every Cortex-M
-//!   core run: the RGB565 span loops, the row routine, the line clear and the cull loop.
+//!   core run: the RGB565 span loops, the row routine, the line clear, the cull loop, the
+//!   triangle setup, the Gouraud attribute setup and the dither check (the two setups in
+//!   Thumb-2 forms, `thumb::setup_t2`, where `scanline3d_thumb2`).
 //! - `scanline3d_thumb_v6m`: the same on ARMv6-M (Cortex-M0/M0+: no 32 × 32 → 64-bit multiply,
 //!   no divide instruction). The kernels that only pay off there run too: the Q16.16
-//!   transforms, the vertex run, the
-//!   lighting run, the projection, the edge setup, the triangle setup, the Gouraud attribute
-//!   setup, the dither check and the flat span.
+//!   transforms, the vertex run, the lighting run, the projection, the edge setup and the flat
+//!   span.
 //! - `scanline3d_thumb2`: a Cortex-M core with Thumb-2 (ARMv7-M, ARMv7E-M, ARMv8-M Mainline).
-//!   Besides the kernels of every Cortex-M core, the vertex run, the projection and the
-//!   lighting run run there, with Thumb-2 forms of the transform, the projection and the
-//!   lighting's products (`thumb::xform_t2`, `thumb::project_t2`, the Thumb-2 macros of
-//!   `thumb::light`: `smlal`, `smull`, `umull`, `clz`).
+//!   Besides the kernels of every Cortex-M core (the two setups and the row routine in Thumb-2
+//!   forms), the vertex run, the projection and the lighting run run there, with Thumb-2
+//!   forms of the transform, the projection and the lighting's products (`thumb::xform_t2`,
+//!   `thumb::project_t2`, the Thumb-2 macros of `thumb::light`: `smlal`, `smull`, `umull`,
+//!   `clz`). The edge kernel and the single transforms stay on ARMv6-M (on Thumb-2 the
+//!   portable forms, with the long multiply and the divide, are as fast or faster).
 //!
 //! With neither (the host, and any target with the `portable` feature) every entry point runs
 //! its portable implementation. A triangle or a colour type the fast kernels do not handle (a
@@ -34,9 +37,9 @@
 //! | [`project_q16`] | `thumb::project` (ARMv6-M; `thumb::project_t2` where `scanline3d_thumb2`) | declines; `Viewport::project` |
 //! | [`project_run`] | `thumb::vertex` (ARMv6-M and `scanline3d_thumb2`, calling `thumb::xform_t2` and `thumb::project_t2` there) | declines; the geometry stage's vertex loop |
 //! | [`light_run`] | `thumb::light` (ARMv6-M; Thumb-2 forms of its products where `scanline3d_thumb2`) | declines; the lighting stage's vertex loop |
-//! | [`setup565`] | `thumb::setup` (ARMv6-M) | declines; `ActiveTri::setup` |
-//! | [`gouraud_setup`] | `thumb::gouraud` (ARMv6-M) | declines; `raster::attribute_words` |
-//! | [`dither_fits565`] | `thumb::dither_fits` (ARMv6-M) | declines; `ActiveTri::dither_fits` |
+//! | [`setup565`] | `thumb::setup` (all Cortex-M; Thumb-2 form in `thumb::setup_t2` where `scanline3d_thumb2`) | declines; `ActiveTri::setup` |
+//! | [`gouraud_setup`] | `thumb::gouraud` (all Cortex-M; Thumb-2 form in `thumb::setup_t2` where `scanline3d_thumb2`) | declines; `raster::attribute_words` |
+//! | [`dither_fits565`] | `thumb::dither_fits` (all Cortex-M) | declines; `ActiveTri::dither_fits` |
 //! | [`span565_less`], [`span565_less_dither`] | `thumb::span` (all Cortex-M; Thumb-2 pixel loop where `scanline3d_thumb2`) | declines; the span stage's packed loops |
 //! | [`span565_flat_less`] | `thumb::span` (ARMv6-M) | declines; the span stage's flat loop |
 //! | [`rows565`] | `thumb::rows`, `thumb::rows_dither` (all Cortex-M; hot path in Thumb-2, `thumb::rows_t2`, where `scanline3d_thumb2`) | declines; `ActiveTri::draw_row` |
@@ -59,7 +62,7 @@ use records::{ActiveList, ActiveTri, Bins, CullCounts, CullStop, Edge, ScreenVer
 
 /// What [`setup565`] did.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-#[cfg_attr(not(scanline3d_thumb_v6m), allow(dead_code))]
+#[cfg_attr(not(scanline3d_thumb), allow(dead_code))]
 pub(crate) enum Setup565 {
     /// Set up and kept (while dithering: with `DITHER_OK`).
     Kept,
@@ -111,7 +114,7 @@ pub(crate) fn edge_new(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> Option<E
 
 /// Whether the triangle-setup kernels ([`setup565`], [`gouraud_setup`], [`dither_fits565`])
 /// can do anything (the setup keeps its portable attribute words out of line only then).
-pub(crate) const SETUP_KERNELS: bool = cfg!(scanline3d_thumb_v6m);
+pub(crate) const SETUP_KERNELS: bool = cfg!(scanline3d_thumb);
 
 /// Whether [`transform_q16`] and [`transform_dir_q16`] can do anything (a caller keeps its
 /// fallback out of line only then).
@@ -245,9 +248,9 @@ pub(crate) fn setup565(
     height: i32,
     dither: bool,
 ) -> Option<Setup565> {
-    #[cfg(scanline3d_thumb_v6m)]
+    #[cfg(scanline3d_thumb)]
     return thumb::setup565(rec, t, verts, row, height, dither);
-    #[cfg(not(scanline3d_thumb_v6m))]
+    #[cfg(not(scanline3d_thumb))]
     {
         let _ = (rec, t, verts, row, height, dither);
         None
@@ -259,9 +262,9 @@ pub(crate) fn setup565(
 /// it declines.
 #[inline(always)]
 pub(crate) fn gouraud_setup(rec: &mut ActiveTri, tri: &Sorted<'_>) -> bool {
-    #[cfg(scanline3d_thumb_v6m)]
+    #[cfg(scanline3d_thumb)]
     return thumb::gouraud_setup(rec, tri);
-    #[cfg(not(scanline3d_thumb_v6m))]
+    #[cfg(not(scanline3d_thumb))]
     {
         let _ = (rec, tri);
         false
@@ -272,9 +275,9 @@ pub(crate) fn gouraud_setup(rec: &mut ActiveTri, tri: &Sorted<'_>) -> bool {
 /// vertices `p` set up on `row`; `None` where it declines.
 #[inline(always)]
 pub(crate) fn dither_fits565(rec: &ActiveTri, p: [&ScreenVertex; 3], row: i32) -> Option<bool> {
-    #[cfg(scanline3d_thumb_v6m)]
+    #[cfg(scanline3d_thumb)]
     return Some(thumb::dither_fits565(rec, p, row));
-    #[cfg(not(scanline3d_thumb_v6m))]
+    #[cfg(not(scanline3d_thumb))]
     {
         let _ = (rec, p, row);
         None

@@ -49,9 +49,9 @@ pub struct ScreenVertex {
     pub(crate) flags: u16,
 }
 
-/// Byte offsets of [`ScreenVertex::rgb_hi`] and [`ScreenVertex::flags`], for the Cortex-M0
+/// Byte offsets of [`ScreenVertex::rgb_hi`] and [`ScreenVertex::flags`], for the Cortex-M
 /// triangle setup (`kernel::thumb`).
-#[cfg_attr(not(scanline3d_thumb_v6m), allow(dead_code))]
+#[cfg_attr(not(scanline3d_thumb), allow(dead_code))]
 pub(crate) const RGB_HI_OFFSET: usize = core::mem::offset_of!(ScreenVertex, rgb_hi);
 #[cfg_attr(not(scanline3d_thumb), allow(dead_code))]
 pub(crate) const FLAGS_OFFSET: usize = core::mem::offset_of!(ScreenVertex, flags);

@@ -128,7 +128,7 @@ fn random_triangle(
     v
 }
 
-/// Cortex-M0 only, for the benchmark firmware: the assembly triangle setup
+/// For the benchmark firmware (compiled, and run by the host tests, on every target): the assembly triangle setup
 /// (`kernel::setup565`) against [`ActiveTri::setup_portable`] for RGB565 on `n`
 /// pseudo-random Gouraud triangles (small, tall and wide ones, equal ys, first rows before,
 /// at and after the middle vertex, short screens), without and with the dither check. Returns

@@ -19,7 +19,6 @@ extern "C" {
 /// the routine leaves through `.Ldf_fail`. r4 = dx, r5 = dy (subpixels from the first pixel's
 /// centre), r6 = the vertex, r2 = its flags half (the low two bits of each 10-bit channel in
 /// bits 10–15), r0, r1, r3, r7 scratch.
-#[cfg(scanline3d_thumb_v6m)]
 macro_rules! dither_fits_vertex {
     ($k:literal) => {
         concat!(
@@ -84,7 +83,6 @@ macro_rules! dither_fits_vertex {
 /// For [`dither_fits_vertex`]: one 16-bit field of the packed red-blue word (gradient halves in
 /// frame words `$gx`, `$gy`, the constant in `$k`; the vertex colour's high byte at
 /// `rgb_hi[$c]`, its low two bits from r2 by `$lo`, which leaves them in bits 0–1 of r1).
-#[cfg(scanline3d_thumb_v6m)]
 macro_rules! field16_fits_asm {
     ($gx:literal, $gy:literal, $k:literal, $c:literal, $lo:expr) => {
         concat!(
@@ -118,7 +116,6 @@ macro_rules! field16_fits_asm {
     };
 }
 
-#[cfg(scanline3d_thumb_v6m)]
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
@@ -263,7 +260,6 @@ core::arch::global_asm!(
 /// fast Gouraud triangle just set up on `row` from the vertices `p` (so its first pixel and
 /// every vertex are within the 1024-pixel box the fast path requires: the routine's sums stay
 /// within 32 bits).
-#[cfg(scanline3d_thumb_v6m)]
 #[inline(always)]
 pub(crate) fn dither_fits565(rec: &ActiveTri, p: [&ScreenVertex; 3], row: i32) -> bool {
     const {

@@ -1,6 +1,7 @@
 //! The attribute setup of a fast Gouraud triangle with RGB565 channels: depth and colour
 //! planes, gradients, first-pixel values and row steps (`raster::attribute_words`).
 #![allow(unsafe_code)]
+#![cfg_attr(scanline3d_thumb2, allow(unused_macros, unused_imports))]
 
 use super::offsets as o;
 use crate::kernel::records::{ActiveTri, ScreenVertex, Sorted};
@@ -354,6 +355,8 @@ macro_rules! coefficient {
     };
 }
 
+// The Thumb-1 form (ARMv6-M); Thumb-2 cores assemble `setup_t2`'s.
+#[cfg(not(scanline3d_thumb2))]
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",

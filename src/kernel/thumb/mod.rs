@@ -1,6 +1,6 @@
 //! The Thumb kernels: hand-written Thumb-1 assembly for the renderer's hot path on Cortex-M
 //! cores, one file per kernel (`span`, `rows` with `rows_t2`, `rows_dither`, `fill`, `xform`, `project`,
-//! `gouraud`, `edge`, `setup`, `dither_fits`, `cull`, `light`, `vertex`). The span file holds for RGB565 words, the
+//! `gouraud`, `edge`, `setup`, `setup_t2`, `dither_fits`, `cull`, `light`, `vertex`). The span file holds for RGB565 words, the
 //! Gouraud span loop, a routine that draws one row of every qualifying active triangle (span,
 //! edge steps, attribute steps, the short edge's switch, removal after the last row) and the
 //! strip-line clear; and the Q16.16 point and direction transforms. The span loop alone was
@@ -26,9 +26,13 @@
 //! 24 cycles per written pixel); the Pico firmware compares it with the portable rows at
 //! start-up, since the QEMU benchmark has no SIO.
 //!
-//! On ARMv6-M the triangle setup (`scanline3d_setup565`, with `scanline3d_gouraud_setup`) also
-//! makes the dither check of `raster::ActiveTri::dither_fits` (`scanline3d_dither_fits565`),
-//! compared with the portable check on random triangles by the benchmark firmware.
+//! The triangle setup (`scanline3d_setup565`, with `scanline3d_gouraud_setup`) also makes the
+//! dither check of `raster::ActiveTri::dither_fits` (`scanline3d_dither_fits565`), compared
+//! with the portable check on random triangles by the benchmark firmware. It runs on every
+//! Cortex-M core: in Thumb-1 (`setup`, `gouraud`, with `edge`'s edge macros and `project`'s
+//! reciprocal) on ARMv6-M, and in Thumb-2 (`setup_t2`: `smull`/`umull`, `clz`, `udiv`, `mla`,
+//! shifted operands; about 230 instructions per triangle for the setup and 270 for the
+//! attributes on a Cortex-M4F, where the portable setup took about 935) elsewhere.
 //!
 //! The routines compute exactly what the portable code in [`crate::raster`] computes
 //! (`span_packed` for `DepthTest::Less` and 5-6-5 channels, `ActiveTri::draw_row` for a fast
@@ -39,17 +43,23 @@
 //!
 //! On cores with Thumb-2 (`scanline3d_thumb2`: ARMv7-M, ARMv7E-M, ARMv8-M Mainline) the span
 //! loops' pixel loop (`span`) and the row routine's hot path (`rows_t2`: span head, line
-//! ends, edge and row steps, next triangle) take Thumb-2 forms of the same macros: 16
-//! instructions per written pixel instead of 19, about 16 fewer per drawn row. The vertex
+//! ends, edge and row steps, next triangle) take Thumb-2 forms: the plain row routine is a
+//! Thumb-2 source of its own (`rows_t2`), 16 instructions per written pixel and about 36
+//! around each drawn row instead of 19 and about 49; the triangle setup and the Gouraud
+//! attribute setup too (`setup_t2`: `udiv`/`mls` edges, `clz`/`umull` reciprocal,
+//! `smull`/`smlal` planes). The vertex
 //! run (`vertex`) runs there too, calling Thumb-2 forms of the transform and the projection
 //! (`xform_t2`, `project_t2`: `smlal`, `smull`, `umull`, `clz`; about 60 and 115 instructions
-//! a vertex where LLVM's code takes about 140 and 175). The single transforms
-//! (`transform_q16`) stay on ARMv6-M only: elsewhere they run LLVM's 64-bit products.
+//! a vertex where LLVM's code takes about 140 and 175), and so does the lighting run (`light`,
+//! with Thumb-2 forms of its products). The single transforms (`transform_q16`) and the edge
+//! kernel (`edge`) stay on ARMv6-M only: elsewhere the portable code, with the long multiply
+//! and the divide, is as fast or faster.
 //!
 //! Safety: the entry points take RGB565 words (`u16` lines) and pass runs within the lines
 //! they were given; `kernel` chooses these routines only on Cortex-M targets (the
 //! `scanline3d_thumb` cfg of `build.rs`) and, for the routines that only pay off without
-//! Thumb-2's multiplies and divides, only on ARMv6-M (`scanline3d_thumb_v6m`).
+//! Thumb-2's multiplies and divides, only on ARMv6-M (`scanline3d_thumb_v6m`); the Thumb-2
+//! forms only where `scanline3d_thumb2`.
 #![allow(unsafe_code)]
 
 /// AAPCS entry of both routines: saves r4–r11 and the return address (r8–r11 through low
@@ -95,40 +105,41 @@ mod rows_dither;
 mod xform;
 #[cfg(scanline3d_thumb2)]
 mod xform_t2;
+// The projection (Thumb-1 here, `project_t2` on Thumb-2 cores) and `recip_norm!` for the
+// Thumb-1 attribute setup.
 #[macro_use]
 mod project;
 #[cfg(scanline3d_thumb2)]
 mod project_t2;
-#[cfg(scanline3d_thumb_v6m)]
+#[cfg(scanline3d_thumb2)]
+#[macro_use]
+mod setup_t2;
 #[macro_use]
 mod gouraud;
-#[cfg(scanline3d_thumb_v6m)]
+// The edge kernel and the Thumb-1 triangle setup's edge macros; on Thumb-2 cores the setup
+// has its own (`setup_t2`) and the edges set up elsewhere stay portable.
+#[cfg(not(scanline3d_thumb2))]
 #[macro_use]
 mod edge;
 mod cull;
-#[cfg(scanline3d_thumb_v6m)]
 mod dither_fits;
 #[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
 mod light;
-#[cfg(scanline3d_thumb_v6m)]
 mod setup;
 #[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
 mod vertex;
 
 pub(crate) use cull::cull_push;
-#[cfg(scanline3d_thumb_v6m)]
 pub(crate) use dither_fits::dither_fits565;
 #[cfg(scanline3d_thumb_v6m)]
 pub(crate) use edge::edge_new;
 pub(crate) use fill::clear_line;
-#[cfg(scanline3d_thumb_v6m)]
 pub(crate) use gouraud::gouraud_setup;
 #[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
 pub(crate) use light::light_run;
 #[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
 pub(crate) use project::project_q16;
 pub(crate) use rows::rows565;
-#[cfg(scanline3d_thumb_v6m)]
 pub(crate) use setup::setup565;
 #[cfg(scanline3d_thumb_v6m)]
 pub(crate) use span::span565_flat_less;

@@ -2,6 +2,7 @@
 //! normalized reciprocal), and the reciprocal macro the triangle setup reuses.
 #![allow(unsafe_code)]
 
+#[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
 extern "C" {
     fn scanline3d_project_q16(p: *const i32, scales: u32, seed: *const u16, out: *mut i32) -> u32;
 }

@@ -2,6 +2,7 @@
 //! edges, the record, the attribute words (`scanline3d_gouraud_setup`) and, while dithering,
 //! the dither check (`scanline3d_dither_fits565`).
 #![allow(unsafe_code)]
+#![cfg_attr(scanline3d_thumb2, allow(unused_macros, unused_imports))]
 
 use super::offsets as o;
 use crate::kernel::records::{ActiveTri, ScreenVertex};
@@ -11,6 +12,8 @@ extern "C" {
     fn scanline3d_setup565(rec: *mut ActiveTri, args: *const SetupArgs) -> u32;
 }
 
+// The Thumb-1 form (ARMv6-M); Thumb-2 cores assemble `setup_t2`'s.
+#[cfg(not(scanline3d_thumb2))]
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
@@ -290,7 +293,6 @@ core::arch::global_asm!(
 );
 
 /// The arguments of [`scanline3d_setup565`] (seven words).
-#[cfg(scanline3d_thumb_v6m)]
 #[repr(C)]
 struct SetupArgs {
     verts: *const u32,
@@ -308,7 +310,6 @@ struct SetupArgs {
 /// whose mode is fast Gouraud (`DepthTest::Less`) with RGB565 channels, and with `dither` the
 /// check of `raster::ActiveTri::setup_dither` too ([`scanline3d_dither_fits565`]): what it
 /// did, or `None` (the record unspecified) for what the portable setup handles.
-#[cfg(scanline3d_thumb_v6m)]
 #[inline(always)]
 pub(crate) fn setup565(
     rec: &mut ActiveTri,
