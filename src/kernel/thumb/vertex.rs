@@ -42,6 +42,7 @@ struct RunCtx {
 /// Branches to label 12 when the clip-space word at byte `$k` of the scratch point (context
 /// in r7) is i32::MIN or i32::MAX: then v ^ (v >> 31) is i32::MAX and adding 1 overflows.
 /// Uses r1, r2.
+#[cfg_attr(scanline3d_thumb2, allow(unused_macros))]
 macro_rules! invalid_test {
     ($k:literal) => {
         concat!(
@@ -56,6 +57,8 @@ macro_rules! invalid_test {
     };
 }
 
+// Thumb-1; on Thumb-2 cores the Thumb-2 routine below.
+#[cfg(not(scanline3d_thumb2))]
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
@@ -286,6 +289,217 @@ core::arch::global_asm!(
     gk = const core::mem::offset_of!(RunCtx, gk),
     projected_bit = const crate::kernel::records::PROJECTED.trailing_zeros(),
 );
+
+/// Thumb-2 form of [`invalid_test`] for the clip-space word in `$r`: branches to label 12
+/// when it is i32::MIN or i32::MAX. Uses r1.
+#[cfg(scanline3d_thumb2)]
+macro_rules! invalid_test_t2 {
+    ($r:literal) => {
+        concat!(
+            "eor r1, ", $r, ", ", $r, ", asr #31\n",
+            "adds r1, r1, #1\n",
+            "bvs 12f\n",
+        )
+    };
+}
+
+// The Thumb-2 routine: the same records, outcodes and stops as the Thumb-1 one above, with
+// the end in r8 and the clip-space point in r9–r11 and r3 after the transform, the outcode
+// from `it` blocks, the guard band's product from one `umull` and each record stored as
+// three words (`str`: the store is only 2-byte aligned, which `str` allows and `stm` does
+// not).
+#[cfg(scanline3d_thumb2)]
+core::arch::global_asm!(
+    ".syntax unified",
+    ".thumb",
+    ".section .text.scanline3d_vertices_q16,\"ax\",%progbits",
+    ".global scanline3d_vertices_q16",
+    ".type scanline3d_vertices_q16,%function",
+    ".p2align 2",
+    ".thumb_func",
+    // r0 = &mut RunCtx. Returns 0 (the run is done) or 1 (the vertex at `pos` is the loop's).
+    // r4 = the position, r5 = the record, r7 = the context, r8 = the end.
+    "scanline3d_vertices_q16:",
+    "push {{r4, r5, r6, r7, r8, r9, r10, r11, lr}}",
+    "sub sp, #4",
+    "mov r7, r0",
+    "ldr r4, [r7, #{pos}]",
+    "ldr r5, [r7, #{out}]",
+    "ldr r8, [r7, #{end}]",
+    "b 10f",
+    "90:",
+    "movs r0, #0",
+    "b 99f",
+    "91:",
+    "movs r0, #1",
+    "99:",
+    "str r4, [r7, #{pos}]",
+    "str r5, [r7, #{out}]",
+    "add sp, #4",
+    "pop {{r4, r5, r6, r7, r8, r9, r10, r11, pc}}",
+    "10:",
+    "cmp r4, r8",
+    "bhs 90b",
+    // The point's coordinates in [−2³⁰, 2³⁰).
+    "ldm r4, {{r0, r1, r2}}",
+    "eor r0, r0, r0, asr #31",
+    "eor r1, r1, r1, asr #31",
+    "orrs r0, r0, r1",
+    "eor r2, r2, r2, asr #31",
+    "orrs r0, r0, r2",
+    "lsrs r0, r0, #30",
+    "bne 91b",
+    // clip = m · (p, 1), then x, y, z, w in r9, r10, r11, r3.
+    "ldr r0, [r7, #{m}]",
+    "mov r1, r4",
+    "add r2, r7, #{clip}",
+    "movs r3, #4",
+    "bl scanline3d_xform_q16",
+    "ldrd r9, r10, [r7, #{clip}]",
+    "ldrd r11, r3, [r7, #{clip} + 8]",
+    // The outcode (`clip::outcode`) in r6; −w saturates only for w = i32::MIN: the loop's.
+    "negs r12, r3",
+    "bvs 91b",
+    "movs r6, #0",
+    "cmp r9, r12",
+    "it lt",
+    "orrlt r6, r6, #{left}",
+    "cmp r9, r3",
+    "it gt",
+    "orrgt r6, r6, #{right}",
+    "cmp r10, r12",
+    "it lt",
+    "orrlt r6, r6, #{bottom}",
+    "cmp r10, r3",
+    "it gt",
+    "orrgt r6, r6, #{top}",
+    "cmp r11, #0",
+    "it lt",
+    "orrlt r6, r6, #{near}",
+    "cmp r11, r3",
+    "it gt",
+    "orrgt r6, r6, #{far}",
+    // Outside an x/y plane: the guard band test with gw = sat(k·w) (g = k, an integer).
+    "tst r6, #15",
+    "beq 4f",
+    "ldr r2, [r7, #{gk}]",
+    "eor r1, r3, r3, asr #31",
+    "sub r1, r1, r3, asr #31",
+    "umull r1, r0, r1, r2",
+    // m = k·|w| in r0:r1; m ≥ 2³¹ saturates.
+    "cmp r0, #0",
+    "bne 5f",
+    "cmp r1, #0",
+    "blt 5f",
+    "cmp r3, #0",
+    "it lt",
+    "neglt r1, r1",
+    "b 6f",
+    // Saturated: gw = i32::MAX for w ≥ 0, i32::MIN below.
+    "5:",
+    "mov r1, #0x80000000",
+    "cmp r3, #0",
+    "it ge",
+    "subge r1, r1, #1",
+    // r1 = gw, r2 = −gw (saturating: −i32::MIN = i32::MAX).
+    "6:",
+    "negs r2, r1",
+    "it vs",
+    "subvs r2, r2, #1",
+    "cmp r9, r2",
+    "blt 8f",
+    "cmp r9, r1",
+    "bgt 8f",
+    "cmp r10, r2",
+    "blt 8f",
+    "cmp r10, r1",
+    "ble 4f",
+    "8:",
+    "orr r6, r6, #{guard}",
+    // Invalid (a coordinate at i32::MIN or i32::MAX): inside the planes only w can be.
+    "4:",
+    "cmp r6, #0",
+    "bne 11f",
+    "adds r1, r3, #1",
+    "bvs 12f",
+    "b 13f",
+    "11:",
+    invalid_test_t2!("r9"),
+    invalid_test_t2!("r10"),
+    invalid_test_t2!("r11"),
+    invalid_test_t2!("r3"),
+    // To be clipped, or w ≤ 0 (no projection): a zero record with the flags.
+    "tst r6, #{needs_clip}",
+    "bne 20f",
+    "b 13f",
+    "12:",
+    "orr r6, r6, #{invalid}",
+    "b 20f",
+    "13:",
+    "cmp r3, #0",
+    "ble 20f",
+    // Projected: x | y << 16, z | zf << 16 (no colour), flags << 16 with PROJECTED.
+    "add r0, r7, #{clip}",
+    "ldr r1, [r7, #{scales}]",
+    "ldr r2, [r7, #{seed}]",
+    "add r3, r7, #{words}",
+    "bl scanline3d_project_q16",
+    "cmp r0, #0",
+    "beq 91b",
+    "add r0, r7, #{words}",
+    "ldm r0, {{r0, r1, r2}}",
+    "uxth r0, r0",
+    "orr r0, r0, r1, lsl #16",
+    "lsrs r1, r2, #8",
+    "bfi r1, r2, #16, #8",
+    "orr r2, r6, #{projected}",
+    "lsls r2, r2, #16",
+    "b 30f",
+    // To be clipped: a zero record with the outcode.
+    "20:",
+    "movs r0, #0",
+    "movs r1, #0",
+    "lsls r2, r6, #16",
+    "30:",
+    "str r0, [r5, #0]",
+    "str r1, [r5, #4]",
+    "str r2, [r5, #8]",
+    "adds r4, #12",
+    "adds r5, #12",
+    "b 10b",
+    ".size scanline3d_vertices_q16, . - scanline3d_vertices_q16",
+    pos = const core::mem::offset_of!(RunCtx, pos),
+    end = const core::mem::offset_of!(RunCtx, end),
+    m = const core::mem::offset_of!(RunCtx, m),
+    scales = const core::mem::offset_of!(RunCtx, scales),
+    seed = const core::mem::offset_of!(RunCtx, seed),
+    out = const core::mem::offset_of!(RunCtx, out),
+    clip = const core::mem::offset_of!(RunCtx, clip),
+    words = const core::mem::offset_of!(RunCtx, words),
+    gk = const core::mem::offset_of!(RunCtx, gk),
+    left = const LEFT,
+    right = const RIGHT,
+    bottom = const BOTTOM,
+    top = const TOP,
+    near = const NEAR,
+    far = const FAR,
+    guard = const GUARD,
+    needs_clip = const NEEDS_CLIP,
+    invalid = const crate::kernel::records::INVALID,
+    projected = const crate::kernel::records::PROJECTED,
+);
+
+// The Thumb-2 routine's record words: x, y, then z, zf, the three colour bytes and the flags,
+// little-endian.
+#[cfg(scanline3d_thumb2)]
+const _: () = {
+    assert!(core::mem::offset_of!(ScreenVertex, x) == 0);
+    assert!(core::mem::offset_of!(ScreenVertex, y) == 2);
+    assert!(core::mem::offset_of!(ScreenVertex, z) == 4);
+    assert!(core::mem::offset_of!(ScreenVertex, zf) == 6);
+    assert!(crate::kernel::records::RGB_HI_OFFSET == 7);
+    assert!(crate::kernel::records::FLAGS_OFFSET == 10);
+};
 
 // `adds rN, #imm8` reaches the scratch words; a record is 12 bytes; the positions are three
 // words.
