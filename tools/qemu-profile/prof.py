@@ -3,7 +3,7 @@
 # histograms PCs between frame_start_marker and frame_end_marker, prints per-function counts.
 import sys, subprocess, re, collections, os, bisect, pickle
 elf = sys.argv[1]
-fifo = "/tmp/m4f-prof.fifo"
+fifo = "/tmp/m4f-prof-%d.fifo" % os.getpid()
 if os.path.exists(fifo): os.remove(fifo)
 os.mkfifo(fifo)
 syms=[]
