@@ -93,10 +93,12 @@
 //!
 //! ## Cortex-M kernels
 //!
-//! On Cortex-M targets (`target_os = "none"`) the hot path runs **hand-written Thumb-1
-//! assembly**: the RGB565 span and row loops, the strip-line clear, the Q16.16 transforms and
-//! the cull loop on every core, and on ARMv6-M (Cortex-M0/M0+) also the vertex run, the
-//! lighting run, the projection, the edge and triangle setup and the dither check. It lives in
+//! On Cortex-M targets (`target_os = "none"`) the hot path runs **hand-written Thumb
+//! assembly**: on every core the RGB565 span and row loops, the strip-line clear, the cull
+//! loop, the triangle and Gouraud attribute setup and the dither check; on ARMv6-M
+//! (Cortex-M0/M0+: Thumb-1 routines) and on Thumb-2 cores (Cortex-M3/M4/M7/M33: Thumb-2 forms
+//! with the long multiplies, `clz` and the divide) also the vertex run, the projection and the
+//! lighting run; on ARMv6-M only, the edge setup and the single Q16.16 transforms. It lives in
 //! one module (`src/kernel`, one file per kernel), behind entry points that each do a prefix
 //! of their work and leave the rest to portable Rust, so every other stage is portable code and
 //! a case a kernel does not handle (another colour type, another depth test, a new shading mode)
