@@ -16,7 +16,13 @@ use crate::kernel::records::ScreenVertex;
 /// [`scanline3d_setup565`]: from r0 = xa, r1 = ya, r2 = xb, r3 = yb (`ya ≤ yb`) and the row in
 /// `$row` (not r0–r6) to r5 = w, r6 = s, r3 = dy, with r0 = c and r2 = sq. The floor division
 /// of dx by dy is the unsigned one of dx + 2¹⁵·dy (positive: |dx| < 2¹⁵); a row outside
-/// 0 ≤ k ≤ dy + 16 (k = 16·row + 8 − ya) declines. Uses r1, r4. 30 instructions.
+/// 0 ≤ k ≤ dy + 16 (k = 16·row + 8 − ya) declines. The column and its remainder (the portable
+/// t = xa − 8 + k·sq + (k·sr) / dy, q = t >> 4, r = dy·(t & 15) + (k·sr) % dy) are those of
+/// one floor division of N = dy·(xa − 8) + k·dx (= dy·t + (k·sr) % dy) by 16·dy; here of −N
+/// (|N| < 2³⁰: dy, |dx| ≤ 2¹⁴, |xa| < 2¹⁴ and k ≤ dy + 16 in a fast triangle), `sdiv` made a
+/// floor division: −N = 16·dy·q′ + r′ (0 ≤ r′ < 16·dy) gives c = −q′ and e = r′ >> 4 (the
+/// portable r = 0: c = q, e = 0; else c = q + 1, e = (16·dy − r) >> 4). Uses r1, r4.
+/// 28 instructions.
 macro_rules! edge_t2 {
     ($row:literal) => {
         concat!(
@@ -31,31 +37,28 @@ macro_rules! edge_t2 {
             "add r1, r3, #16\n",
             "cmp r4, r1\n",
             "bhi .Lsu_decline\n",
+            // −N = dy·(8 − xa) − k·dx (r5).
+            "rsb r0, r0, #8\n",
+            "mul r0, r0, r3\n",
+            "mls r5, r4, r2, r0\n",
             // (sq, sr) = floor division of dx by dy.
             "add r1, r2, r3, lsl #15\n",
             "udiv r2, r1, r3\n",
             "mls r1, r2, r3, r1\n",
             "sub r2, r2, #32768\n",
-            // t = xa − 8 + k·sq + qb, (qb, rb) = (k·sr) / dy.
-            "subs r0, r0, #8\n",
-            "mla r0, r4, r2, r0\n",
-            "mul r4, r4, r1\n",
-            "udiv r5, r4, r3\n",
-            "mls r4, r5, r3, r4\n",
-            "add r0, r0, r5\n",
-            // r = dy·(t & 15) + rb, q = t >> 4; r = 0: (c, e) = (q, 0), else
-            // (q + 1, (16·dy − r) >> 4).
-            "and r5, r0, #15\n",
-            "mla r4, r3, r5, r4\n",
-            "asrs r0, r0, #4\n",
-            "cmp r4, #0\n",
-            "ittt ne\n",
-            "addne r0, r0, #1\n",
-            "rsbne r4, r4, r3, lsl #4\n",
-            "asrne r4, r4, #4\n",
-            // w = e·2¹⁶ + c + 2¹⁵, s = sq − sr·2¹⁶.
-            "add r5, r0, #32768\n",
-            "add r5, r5, r4, lsl #16\n",
+            // (q′, r′) = floor division of −N by 16·dy (r4).
+            "lsls r4, r3, #4\n",
+            "sdiv r0, r5, r4\n",
+            "mls r5, r0, r4, r5\n",
+            "cmp r5, #0\n",
+            "itt lt\n",
+            "sublt r0, r0, #1\n",
+            "addlt r5, r5, r4\n",
+            // c = −q′, w = e·2¹⁶ + c + 2¹⁵, s = sq − sr·2¹⁶.
+            "rsb r0, r0, #0\n",
+            "lsrs r5, r5, #4\n",
+            "add r4, r0, #32768\n",
+            "add r5, r4, r5, lsl #16\n",
             "sub r6, r2, r1, lsl #16\n",
         )
     };
@@ -184,7 +187,7 @@ core::arch::global_asm!(
     // Thumb-1 `scanline3d_gouraud_setup` computes it (the same declines), for the two entry
     // points below: r0 = the record, r1 = `scalar::RECIP_SEED`, r2 = det, r3–r5 = the sorted
     // vertices, r6 = the left edge's column, r7 = its step, r8 = the row, r9 = dx1, r10 = dy1,
-    // r11 = dx2, r12 = dy2 (b − a and c − a). Writes the first three words of the record's
+    // r11 = dx2, r12 = dy2 (b − a and c − a; dy1, dy2 ≥ 0: sorted by y). Writes the first three words of the record's
     // `gx`, `row` and `inc` (not the fourth) and returns r0 = 1, or 0 having written nothing.
     // Clobbers r1–r12. Frame: the record, a scratch word, the vertices, the step, lr.
     "scanline3d_gouraud_t2:",
@@ -195,26 +198,22 @@ core::arch::global_asm!(
     "asr lr, lr, #16",
     "rsb r6, r0, r6, lsl #4",
     "adds r6, r6, #8",
-    "sxth r0, r6",
-    "cmp r0, r6",
-    "bne .Lgt_decline",
     "rsb r8, lr, r8, lsl #4",
     "add r8, r8, #8",
-    "sxth r0, r8",
-    "cmp r0, r8",
-    "bne .Lgt_decline",
-    // r0 = 32 − l, l the bit length of the largest |difference| (of their OR).
+    "add r0, r6, #0x8000",
+    "add r3, r8, #0x8000",
+    "orr r0, r0, r3",
+    "cmp r0, #0x10000",
+    "bhs .Lgt_decline",
+    // r0 = 32 − l, l the bit length of the largest |difference| (of their OR; dy1 and dy2
+    // are not negative).
     "eor r0, r9, r9, asr #31",
     "sub r0, r0, r9, asr #31",
-    "eor r3, r10, r10, asr #31",
-    "sub r3, r3, r10, asr #31",
-    "orr r0, r0, r3",
     "eor r3, r11, r11, asr #31",
     "sub r3, r3, r11, asr #31",
     "orr r0, r0, r3",
-    "eor r3, r12, r12, asr #31",
-    "sub r3, r3, r12, asr #31",
-    "orr r0, r0, r3",
+    "orr r0, r0, r10",
+    "orr r0, r0, r12",
     "clz r0, r0",
     // `scalar::recip_norm(|det|)`: r3 = m, r2 = 32 − s (r7 = det's sign mask). A table seed,
     // one Newton step in 32-bit products and one in 64-bit ones, as the portable code.
@@ -490,12 +489,10 @@ core::arch::global_asm!(
     "bhs .Lsu_decline",
     "cmp r5, r3",
     "bhs .Lsu_decline",
-    "add r1, r1, r1, lsl #1",
-    "add r3, r2, r1, lsl #2",
-    "add r4, r4, r4, lsl #1",
-    "add r4, r2, r4, lsl #2",
-    "add r5, r5, r5, lsl #1",
-    "add r5, r2, r5, lsl #2",
+    "movs r6, #12",
+    "mla r3, r1, r6, r2",
+    "mla r4, r4, r6, r2",
+    "mla r5, r5, r6, r2",
     // Sorted by y as the portable setup sorts them (the same swaps for equal ys).
     "ldrsh r9, [r3, #2]",
     "ldrsh r10, [r4, #2]",
@@ -654,13 +651,12 @@ core::arch::global_asm!(
     // The attribute words.
     "ldm sp, {{r0, r1, r2, r3, r4, r5, r6, r7, r8, r9, r10, r11, r12}}",
     "bl scanline3d_gouraud_t2",
-    "cmp r0, #0",
-    "beq .Lsu_decline",
+    "cbz r0, .Lsu_decline",
     // While dithering: `raster::ActiveTri::dither_fits` (the sorted vertex pointers are frame
-    // words 3–5) sets `DITHER_OK`, or the result is 3.
-    "ldr r0, [sp, #52]",
-    "lsls r0, r0, #31",
-    "beq 6f",
+    // words 3–5) sets `DITHER_OK`, or the result is 3; else it is 1 (r0).
+    "ldr r1, [sp, #52]",
+    "lsls r1, r1, #31",
+    "beq .Lsu_done",
     "ldr r0, [sp, #0]",
     "add r1, sp, #12",
     "ldr r2, [sp, #32]",
@@ -670,7 +666,6 @@ core::arch::global_asm!(
     "ldrb r2, [r1, #{flags}]",
     "orr r2, r2, #{dither_ok}",
     "strb r2, [r1, #{flags}]",
-    "6:",
     "movs r0, #1",
     "b .Lsu_done",
     ".Lsu_undithered:",
