@@ -12,6 +12,14 @@
 use super::offsets as o;
 use crate::kernel::records::ScreenVertex;
 
+// `channel_g_t2`'s word: green's byte and the flags (its low bits at flag bits 12–13) in one
+// aligned word of a 4-aligned vertex.
+const _: () = {
+    use crate::kernel::records::{FLAGS_OFFSET, RGB_HI_OFFSET};
+    assert!((RGB_HI_OFFSET + 1) % 4 == 0 && FLAGS_OFFSET == RGB_HI_OFFSET + 3);
+    assert!(core::mem::align_of::<ScreenVertex>() >= 4);
+};
+
 /// `raster::Edge::new_portable`'s steps, then the row loops' form (`raster::Edge::dda`), for
 /// [`scanline3d_setup565`]: from r0 = xa, r1 = ya, r2 = xb, r3 = yb (`ya ≤ yb`) and the row in
 /// `$row` (not r0–r6) to r5 = w, r6 = s, r3 = dy, with r0 = c and r2 = sq. The floor division
@@ -101,6 +109,37 @@ macro_rules! channel_t2 {
             $bit,
             ", #2\n",
             "orr r5, r3, r5, lsl #2\n",
+            "subs r5, r5, r0\n",
+            "mla r3, r12, r4, r1\n",
+            "mls r3, r10, r5, r3\n",
+            "asrs r3, r3, r2\n",
+            "mul r4, r4, r11\n",
+            "mla r5, r5, r9, r1\n",
+            "subs r5, r5, r4\n",
+            "asrs r5, r5, r2\n",
+        )
+    };
+}
+
+/// [`channel_t2`] for green, whose high byte and low two bits are in one word of a vertex
+/// (`{vrgb} + 1`: the byte at bits 0–7, the low bits at 28–29): per vertex one load, the low
+/// bits (with blue's above them) shifted down and the byte inserted above them by `bfi`.
+macro_rules! channel_g_t2 {
+    () => {
+        concat!(
+            "ldr r3, [sp, #8]\n",
+            "ldr r3, [r3, #{vrgb} + 1]\n",
+            "lsrs r0, r3, #28\n",
+            "bfi r0, r3, #2, #8\n",
+            "ldr r3, [sp, #12]\n",
+            "ldr r3, [r3, #{vrgb} + 1]\n",
+            "lsrs r4, r3, #28\n",
+            "bfi r4, r3, #2, #8\n",
+            "subs r4, r4, r0\n",
+            "ldr r3, [sp, #16]\n",
+            "ldr r3, [r3, #{vrgb} + 1]\n",
+            "lsrs r5, r3, #28\n",
+            "bfi r5, r3, #2, #8\n",
             "subs r5, r5, r0\n",
             "mla r3, r12, r4, r1\n",
             "mls r3, r10, r5, r3\n",
@@ -222,6 +261,16 @@ core::arch::global_asm!(
     "sub r4, r4, r7",
     "clz r2, r4",
     "lsls r4, r4, r2",
+    // (Before the reciprocal, which it does not need:) shift = 29 + s − (l + 4) (r2);
+    // declined where shift − l < `raster::COARSE_MIN` or green's rounding r = shift − 27 is
+    // below 1 (the portable code keeps exact sums).
+    "sub r2, r0, r2",
+    "add r2, r2, #25",
+    "add r5, r2, r0",
+    "subs r5, r5, #(32 + {coarse_min})",
+    "bmi .Lgt_decline",
+    "cmp r2, #28",
+    "blt .Lgt_decline",
     "ubfx r3, r4, #24, #7",
     "ldrh r3, [r1, r3, lsl #1]",
     "add r3, r3, #65536",
@@ -249,15 +298,6 @@ core::arch::global_asm!(
     "cmp r3, #0x40000000",
     "it gt",
     "movgt r3, #0x40000000",
-    // shift = 29 + s − (l + 4) (r2); declined where shift − l < `raster::COARSE_MIN` or green's
-    // rounding r = shift − 27 is below 1 (the portable code keeps exact sums).
-    "sub r2, r0, r2",
-    "add r2, r2, #25",
-    "add r1, r2, r0",
-    "subs r1, r1, #(32 + {coarse_min})",
-    "bmi .Lgt_decline",
-    "cmp r2, #28",
-    "blt .Lgt_decline",
     // The coefficients bx1 (r12, from dy2), bx2 (r10, dy1), by1 (r9, dx1), by2 (r11, dx2).
     "sub r0, r0, #16",
     coefficient_t2!("r12"),
@@ -379,7 +419,7 @@ core::arch::global_asm!(
     // pixel's value with its ½-unit bias 2¹⁹, mod 2²⁶.
     "sub r2, r2, #1",
     "lsr r1, r1, #1",
-    channel_t2!("{vrgb} + 1", "12"),
+    channel_g_t2!(),
     "lsls r0, r0, #20",
     "add r0, r0, #0x800000",
     "mla r0, r3, r6, r0",
