@@ -30,9 +30,9 @@ const _: () = {
 /// (|N| < 2³⁰: dy, |dx| ≤ 2¹⁴, |xa| < 2¹⁴ and k ≤ dy + 16 in a fast triangle), `sdiv` made a
 /// floor division: −N = 16·dy·q′ + r′ (0 ≤ r′ < 16·dy) gives c = −q′ and e = r′ >> 4 (the
 /// portable r = 0: c = q, e = 0; else c = q + 1, e = (16·dy − r) >> 4). Uses r1, r4.
-/// 28 instructions.
+/// 28 instructions, and `$k` (k in r4) after the row's check.
 macro_rules! edge_t2 {
-    ($row:literal) => {
+    ($row:literal, $k:literal) => {
         concat!(
             "subs r3, r3, r1\n",
             "it le\n",
@@ -45,6 +45,7 @@ macro_rules! edge_t2 {
             "add r1, r3, #16\n",
             "cmp r4, r1\n",
             "bhi .Lsu_decline\n",
+            $k,
             // −N = dy·(8 − xa) − k·dx (r5).
             "rsb r0, r0, #8\n",
             "mul r0, r0, r3\n",
@@ -225,20 +226,18 @@ core::arch::global_asm!(
     // `raster::attribute_words` of a fast Gouraud triangle with RGB565 channels, as the
     // Thumb-1 `scanline3d_gouraud_setup` computes it (the same declines), for the two entry
     // points below: r0 = the record, r1 = `scalar::RECIP_SEED`, r2 = det, r3–r5 = the sorted
-    // vertices, r6 = the left edge's column, r7 = its step, r8 = the row, r9 = dx1, r10 = dy1,
-    // r11 = dx2, r12 = dy2 (b − a and c − a; dy1, dy2 ≥ 0: sorted by y). Writes the first three words of the record's
-    // `gx`, `row` and `inc` (not the fourth) and returns r0 = 1, or 0 having written nothing.
+    // vertices, r6 = the left edge's column, r7 = its step, r8 = dy = 16·row + 8 − ay (the
+    // first row's centre from the first vertex, subpixels), r9 = dx1, r10 = dy1, r11 = dx2,
+    // r12 = dy2 (b − a and c − a; dy1, dy2 ≥ 0: sorted by y). Writes the first three words of
+    // the record's `gx`, `row` and `inc` (not the fourth) and returns r0 = 1, or 0 having
+    // written nothing.
     // Clobbers r1–r12. Frame: the record, a scratch word, the vertices, the step, lr.
     "scanline3d_gouraud_t2:",
     "push {{r0, r1, r3, r4, r5, r7, lr}}",
-    // dx = 16·left.c + 8 − ax (r6), dy = 16·row + 8 − ay (r8), both within the i16 range.
-    "ldr lr, [r3]",
-    "sxth r0, lr",
-    "asr lr, lr, #16",
+    // dx = 16·left.c + 8 − ax (r6); it and dy (r8) within the i16 range.
+    "ldrsh r0, [r3]",
     "rsb r6, r0, r6, lsl #4",
     "adds r6, r6, #8",
-    "rsb r8, lr, r8, lsl #4",
-    "add r8, r8, #8",
     "add r0, r6, #0x8000",
     "add r3, r8, #0x8000",
     "orr r0, r0, r3",
@@ -472,6 +471,9 @@ core::arch::global_asm!(
     "ldr lr, [r3]",
     "ldr r9, [r4]",
     "ldr r11, [r5]",
+    "lsl r8, r8, #4",
+    "add r8, r8, #8",
+    "sub r8, r8, lr, asr #16",
     "asr r10, r9, #16",
     "sub r10, r10, lr, asr #16",
     "asr r12, r11, #16",
@@ -507,16 +509,16 @@ core::arch::global_asm!(
     // The Thumb-1 routine's interface and results (r0 = the record, r1 = `SetupArgs`): 1 kept,
     // 2 no row to draw, 3 kept but not ditherable, 0 declined. Frame: the registers of
     // `scanline3d_gouraud_t2` (words 0–12: the record, the seed, det, the sorted vertices, the
-    // left edge's column and step, the row, dx1, dy1, dx2, dy2), the seed with the dither
-    // flag (52), the right edge's column and step (56, 60: unused), row_end (64).
+    // left edge's column and step, dy = 16·row + 8 − ay, dx1, dy1, dx2, dy2), row_end (52),
+    // the right edge's column and step (56, 60: unused), the seed with the dither flag (68),
+    // the row (72).
     "scanline3d_setup565:",
     "push {{r4, r5, r6, r7, r8, r9, r10, r11, lr}}",
     "sub sp, #76",
     "ldm r1, {{r2, r3, r4, r5, r7, r8, r9}}",
     "bic r1, r9, #1",
     "strd r0, r1, [sp, #0]",
-    "str r7, [sp, #32]",
-    "str r9, [sp, #52]",
+    "strd r9, r7, [sp, #68]",
     "mov lr, r0",
     // The vertex pointers (a flat triangle declines; indices checked against the length).
     "tst r4, #0x8000",
@@ -542,9 +544,8 @@ core::arch::global_asm!(
     "mov r1, r3",
     "mov r3, r4",
     "mov r4, r1",
-    "mov r1, r9",
-    "mov r9, r10",
-    "mov r10, r1",
+    "ldrsh r9, [r3, #2]",
+    "ldrsh r10, [r4, #2]",
     "1:",
     "cmp r11, r10",
     "bge 1f",
@@ -577,7 +578,7 @@ core::arch::global_asm!(
     "movgt r6, r8",
     "cmp r7, r6",
     "bge .Lsu_empty",
-    "str r6, [sp, #64]",
+    "str r6, [sp, #52]",
     "add r12, r2, #7",
     "asr r12, r12, #4",
     "uxth r4, r12",
@@ -640,7 +641,7 @@ core::arch::global_asm!(
     "asr r1, r9, #16",
     "sxth r2, r11",
     "asr r3, r11, #16",
-    edge_t2!("r7"),
+    edge_t2!("r7", "str r4, [sp, #32]\n"),
     "add r1, lr, r8, lsl #3",
     "strd r5, r6, [r1, #{left_w}]",
     "add r1, lr, r8, lsl #1",
@@ -658,7 +659,7 @@ core::arch::global_asm!(
     "asr r1, r4, #16",
     "sxth r2, r5",
     "asr r3, r5, #16",
-    edge_t2!("r7"),
+    edge_t2!("r7", ""),
     "eor r8, r8, #1",
     "add r1, lr, r8, lsl #3",
     "strd r5, r6, [r1, #{left_w}]",
@@ -671,14 +672,14 @@ core::arch::global_asm!(
     // zeros there.
     "cmp r7, r12",
     "bge 2f",
-    "ldr r0, [sp, #64]",
+    "ldr r0, [sp, #52]",
     "cmp r12, r0",
     "bge 2f",
     "sxth r0, r10",
     "asr r1, r10, #16",
     "sxth r2, r11",
     "asr r3, r11, #16",
-    edge_t2!("r12"),
+    edge_t2!("r12", ""),
     "b 3f",
     "2:",
     "movs r5, #0",
@@ -694,12 +695,12 @@ core::arch::global_asm!(
     "cbz r0, .Lsu_decline",
     // While dithering: `raster::ActiveTri::dither_fits` (the sorted vertex pointers are frame
     // words 3–5) sets `DITHER_OK`, or the result is 3; else it is 1 (r0).
-    "ldr r1, [sp, #52]",
+    "ldr r1, [sp, #68]",
     "lsls r1, r1, #31",
     "beq .Lsu_done",
     "ldr r0, [sp, #0]",
     "add r1, sp, #12",
-    "ldr r2, [sp, #32]",
+    "ldr r2, [sp, #72]",
     "bl scanline3d_dither_fits565",
     "cbz r0, .Lsu_undithered",
     "ldr r1, [sp, #0]",
