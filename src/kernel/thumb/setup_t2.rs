@@ -325,6 +325,18 @@ macro_rules! depth_words_t2 {
 macro_rules! channels_t2 {
     ($tail:ident) => {
         concat!(
+            blue_red_t2!($tail),
+            green_t2!($tail),
+            "movs r0, #1\n",
+            "pop {{r1, r2, r3, r4, r5, r7, pc}}\n",
+        )
+    };
+}
+
+/// For [`channels_t2`]: blue and red (r2 = shift on entry, then shift − 26).
+macro_rules! blue_red_t2 {
+    ($tail:ident) => {
+        concat!(
             // Blue (5.5 vertex channels, 15 bits to 20 fraction bits, packed with 11): gx and gy
             // packed (v + 2⁸) >> 9 into r7 and lr; the first pixel's value (exact in 64 bits: all of
             // its 32-bit word counts, as the borrow into red) packed the same into frame word 4.
@@ -368,6 +380,14 @@ macro_rules! channels_t2 {
             "str r7, [r0, #{gx} + 4]\n",
             "str r4, [r0, #{row} + 4]\n",
             "str r3, [r0, #{inc} + 4]\n",
+        )
+    };
+}
+
+/// For [`channels_t2`]: green (r2 = shift − 26 on entry, then shift − 27).
+macro_rules! green_t2 {
+    ($tail:ident) => {
+        concat!(
             // Green (6.4, 16 bits to 20, packed with 26: << 6; its rounding one bit less): the first
             // pixel's value with its ½-unit bias 2¹⁹, mod 2²⁶.
             "sub r2, r2, #1\n",
@@ -387,8 +407,6 @@ macro_rules! channels_t2 {
             "str r3, [r1, #{gx} + 8]\n",
             "str r0, [r1, #{row} + 8]\n",
             "str r5, [r1, #{inc} + 8]\n",
-            "movs r0, #1\n",
-            "pop {{r1, r2, r3, r4, r5, r7, pc}}\n",
         )
     };
 }
@@ -473,8 +491,9 @@ core::arch::global_asm!(
     // vertices, r6 = the left edge's column, r7 = its step, r8 = dy = 16·row + 8 − ay (the
     // first row's centre from the first vertex, subpixels), r9 = dx1, r10 = dy1, r11 = dx2,
     // r12 = dy2 (b − a and c − a; dy1, dy2 ≥ 0: sorted by y). Writes the first three words of
-    // the record's `gx`, `row` and `inc` (not the fourth) and returns r0 = 1, or 0 having
-    // written nothing.
+    // the record's `gx`, `row` and `inc` (not the fourth) and returns r0 = 1, or 0 (having
+    // written nothing, except where a sliver's exact gradient is beyond 2²⁹: then some of
+    // those words; every caller has the portable code write all of them after a 0).
     // Clobbers r1–r12. Frame: the record, a scratch word, the vertices, the step, lr.
     "scanline3d_gouraud_t2:",
     "push {{r0, r1, r3, r4, r5, r7, lr}}",
@@ -528,20 +547,39 @@ core::arch::global_asm!(
     depth_words_t2!(),
     channels_t2!(coarse_t2),
     // A sliver: the exact colour sums of every channel (`exact_t2`), for shift ≥ 17 (n ≥ 1);
-    // declined where shift = 27 and the coefficients are fine (red and blue, r = 1, take the
-    // coarse sums there, green the exact ones).
+    // where shift = 27 and the coefficients are fine, red and blue (r = 1) take the coarse
+    // sums and green the exact ones (`.Lgt_mixed`).
     ".Lgt_sliver:",
     "cmp r2, #17",
     "blt .Lgt_decline",
     "cmp r2, #27",
     "bne 1f",
     "cmp r5, #0",
-    "bge .Lgt_decline",
+    "bge .Lgt_mixed",
     "1:",
     recip_t2!(),
     coef_depth_t2!(),
     depth_words_t2!(),
     channels_t2!(exact_t2),
+    // Green first from the full coefficients, then blue and red from the rounded ones.
+    ".Lgt_mixed:",
+    recip_t2!(),
+    coef_depth_t2!(),
+    depth_words_t2!(),
+    "sub r2, r2, #26",
+    green_t2!(exact_t2),
+    "add r2, r2, #27",
+    "add r12, r12, #1024",
+    "asr r12, r12, #11",
+    "add r10, r10, #1024",
+    "asr r10, r10, #11",
+    "add r9, r9, #1024",
+    "asr r9, r9, #11",
+    "add r11, r11, #1024",
+    "asr r11, r11, #11",
+    blue_red_t2!(coarse_t2),
+    "movs r0, #1",
+    "pop {{r1, r2, r3, r4, r5, r7, pc}}",
     ".Lgt_decline3:",
     "add sp, #12",
     ".Lgt_decline:",
