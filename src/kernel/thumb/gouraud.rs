@@ -602,8 +602,9 @@ core::arch::global_asm!(
 
 /// `raster::attribute_words` of a fast Gouraud triangle with RGB565 channels
 /// (`C::CHANNEL_MAX == [31, 63, 31]`), written into `rec`'s `gx`, `row` and `inc` by
-/// [`scanline3d_gouraud_setup`]; false (nothing written) where it declines and the portable
-/// code computes them.
+/// [`scanline3d_gouraud_setup`]; false where it declines and the portable code computes them
+/// (nothing written, but for the Thumb-2 form's rare late decline of a sliver, after which
+/// some of those words are written: the portable code overwrites them all).
 #[inline(always)]
 pub(crate) fn gouraud_setup(rec: &mut ActiveTri, tri: &Sorted<'_>) -> bool {
     const {
