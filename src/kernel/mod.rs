@@ -258,8 +258,9 @@ pub(crate) fn setup565(
 }
 
 /// The attribute-setup kernel: `raster::attribute_words` of a fast Gouraud triangle with
-/// RGB565 channels, written into `rec`'s `gx`, `row` and `inc`; false (nothing written) where
-/// it declines.
+/// RGB565 channels, written into `rec`'s `gx`, `row` and `inc`; false where it declines (then
+/// those words are unspecified: the Thumb-2 form may have written some before a late decline,
+/// and the caller's portable code writes all of them).
 #[inline(always)]
 pub(crate) fn gouraud_setup(rec: &mut ActiveTri, tri: &Sorted<'_>) -> bool {
     #[cfg(scanline3d_thumb)]
