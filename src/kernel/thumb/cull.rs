@@ -339,9 +339,13 @@ macro_rules! count_t2 {
     ($off:literal) => {
         concat!(
             "ldr r12, [r7, #{stats}]\n",
-            "ldr lr, [r12, #{", $off, "}]\n",
+            "ldr lr, [r12, #{",
+            $off,
+            "}]\n",
             "add lr, lr, #1\n",
-            "str lr, [r12, #{", $off, "}]\n",
+            "str lr, [r12, #{",
+            $off,
+            "}]\n",
         )
     };
 }
@@ -351,8 +355,18 @@ macro_rules! count_t2 {
 macro_rules! vertex_address_t2 {
     ($p:literal) => {
         concat!(
-            "add ", $p, ", ", $p, ", ", $p, ", lsl #1\n",
-            "add ", $p, ", r10, ", $p, ", lsl #2\n",
+            "add ",
+            $p,
+            ", ",
+            $p,
+            ", ",
+            $p,
+            ", lsl #1\n",
+            "add ",
+            $p,
+            ", r10, ",
+            $p,
+            ", lsl #2\n",
         )
     };
 }
@@ -362,21 +376,61 @@ macro_rules! vertex_address_t2 {
 macro_rules! pixel_range_t2 {
     ($lo:literal, $hi:literal, $c:literal) => {
         concat!(
-            "cmp ", $lo, ", ", $hi, "\n",
+            "cmp ",
+            $lo,
+            ", ",
+            $hi,
+            "\n",
             "ittt gt\n",
-            "movgt r12, ", $lo, "\n",
-            "movgt ", $lo, ", ", $hi, "\n",
-            "movgt ", $hi, ", r12\n",
-            "cmp ", $c, ", ", $lo, "\n",
+            "movgt r12, ",
+            $lo,
+            "\n",
+            "movgt ",
+            $lo,
+            ", ",
+            $hi,
+            "\n",
+            "movgt ",
+            $hi,
+            ", r12\n",
+            "cmp ",
+            $c,
+            ", ",
+            $lo,
+            "\n",
             "it lt\n",
-            "movlt ", $lo, ", ", $c, "\n",
-            "cmp ", $c, ", ", $hi, "\n",
+            "movlt ",
+            $lo,
+            ", ",
+            $c,
+            "\n",
+            "cmp ",
+            $c,
+            ", ",
+            $hi,
+            "\n",
             "it gt\n",
-            "movgt ", $hi, ", ", $c, "\n",
-            "adds ", $lo, ", #7\n",
-            "asrs ", $lo, ", ", $lo, ", #4\n",
-            "adds ", $hi, ", #7\n",
-            "asrs ", $hi, ", ", $hi, ", #4\n",
+            "movgt ",
+            $hi,
+            ", ",
+            $c,
+            "\n",
+            "adds ",
+            $lo,
+            ", #7\n",
+            "asrs ",
+            $lo,
+            ", ",
+            $lo,
+            ", #4\n",
+            "adds ",
+            $hi,
+            ", #7\n",
+            "asrs ",
+            $hi,
+            ", ",
+            $hi,
+            ", #4\n",
         )
     };
 }
@@ -387,7 +441,9 @@ macro_rules! pixel_range_t2 {
 macro_rules! mark_unlit_t2 {
     ($i:literal) => {
         concat!(
-            "ldrh r1, [r0, #", $i, "]\n",
+            "ldrh r1, [r0, #",
+            $i,
+            "]\n",
             "add r1, r1, r1, lsl #1\n",
             "add r1, r10, r1, lsl #2\n",
             "ldrh r2, [r1, #{flags}]\n",

@@ -88,7 +88,9 @@ macro_rules! dot_term {
 macro_rules! mul_q16 {
     ($lo:literal, $hi:literal, $w:literal) => {
         concat!(
-            "@ whole word at ", $w, ", unused here\n",
+            "@ whole word at ",
+            $w,
+            ", unused here\n",
             "uxth r1, r6\n",
             "asrs r0, r6, #16\n",
             "ldr r2, [r7, #",
@@ -213,8 +215,14 @@ macro_rules! dot3 {
 macro_rules! mul_q16 {
     ($lo:literal, $hi:literal, $w:literal) => {
         concat!(
-            "@ halves at ", $lo, " and ", $hi, ", unused here\n",
-            "ldr r2, [r7, #", $w, "]\n",
+            "@ halves at ",
+            $lo,
+            " and ",
+            $hi,
+            ", unused here\n",
+            "ldr r2, [r7, #",
+            $w,
+            "]\n",
             "mov r0, #0x8000\n",
             "movs r1, #0\n",
             "smlal r0, r1, r6, r2\n",
@@ -230,14 +238,18 @@ macro_rules! mul_q16 {
 macro_rules! channel {
     ($k:literal, $max:literal, $half:literal, $shift:literal, $out:literal) => {
         concat!(
-            "ldrb r0, [r7, #{color} + ", $k, "]\n",
+            "ldrb r0, [r7, #{color} + ",
+            $k,
+            "]\n",
             "muls r0, r5, r0\n",
             "cmp r0, #0xff0000\n",
             "it gt\n",
             "movgt r0, #0xff0000\n",
             "adds r0, #128\n",
             "lsrs r0, r0, #8\n",
-            "movs r1, #", $max, "\n",
+            "movs r1, #",
+            $max,
+            "\n",
             "muls r0, r1, r0\n",
             "adds r0, #127\n",
             "add r1, r0, r0, lsr #8\n",
@@ -245,8 +257,14 @@ macro_rules! channel {
             "add r0, r0, r1, lsr #8\n",
             "adds r0, #1\n",
             "lsrs r0, r0, #8\n",
-            "adds r0, #", $half, "\n",
-            "lsrs ", $out, ", r0, #", $shift, "\n",
+            "adds r0, #",
+            $half,
+            "\n",
+            "lsrs ",
+            $out,
+            ", r0, #",
+            $shift,
+            "\n",
         )
     };
 }

@@ -12,7 +12,9 @@
 macro_rules! ndc_words_t2 {
     ($off:literal) => {
         concat!(
-            "ldr r0, [r8, #", $off, "]\n",
+            "ldr r0, [r8, #",
+            $off,
+            "]\n",
             "smull r4, r0, r0, r6\n",
             "adds r4, r4, r12\n",
             "adc r0, r0, #0\n",
@@ -46,7 +48,9 @@ macro_rules! screen_coordinate_t2 {
             "cmn r0, r7\n",
             "it lt\n",
             "rsblt r0, r7, #0\n",
-            "str r0, [r10, #", $out, "]\n",
+            "str r0, [r10, #",
+            $out,
+            "]\n",
         )
     };
 }

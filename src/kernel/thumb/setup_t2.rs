@@ -472,7 +472,6 @@ macro_rules! coarse_t2 {
             "mla r5, r5, r9, r1\n",
             "subs r5, r5, r4\n",
             "asrs r5, r5, r2\n",
-
         )
     };
 }

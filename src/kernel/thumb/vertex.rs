@@ -296,7 +296,11 @@ core::arch::global_asm!(
 macro_rules! invalid_test_t2 {
     ($r:literal) => {
         concat!(
-            "eor r1, ", $r, ", ", $r, ", asr #31\n",
+            "eor r1, ",
+            $r,
+            ", ",
+            $r,
+            ", asr #31\n",
             "adds r1, r1, #1\n",
             "bvs 12f\n",
         )
