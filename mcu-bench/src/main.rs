@@ -560,9 +560,9 @@ fn transform_matches_rows() -> bool {
 /// the assembly dithered span the portable one on 20 000 pseudo-random spans and the
 /// dithered row routine the portable rows on 2 000 strips of four triangles, and
 /// the assembly triangle loop the portable one on 5 000 objects of 24 triangles, the assembly
-/// vertex loop and lighting run the portable ones on 5 000 objects each, and on ARMv6-M
-/// (where they are used) the assembly triangle setup the portable one on 20 000 more and the
-/// assembly dither check the portable one on 20 000 fast triangles (the
+/// vertex loop and lighting run the portable ones on 5 000 objects each, the assembly
+/// triangle setup the portable one on 20 000 more and the assembly dither check the portable
+/// one on 20 000 fast triangles (the
 /// benchmark scenes' hashes check them too, but only on the cases they have). Prints the first
 /// mismatch. Not inlined, so that its locals are not part of `main`'s frame during the
 /// renders (on the 16 KB part every byte of it counts).
@@ -588,12 +588,10 @@ fn assembly_matches_portable() -> bool {
         hprintln!("SETUP MISMATCH {:?}", e);
         return false;
     }
-    #[cfg(not(target_has_atomic = "32"))]
     if let Some(e) = scanline3d::selftest::triangle_setup_self_test(20_000) {
         hprintln!("TRIANGLE SETUP MISMATCH {:?}", e);
         return false;
     }
-    #[cfg(not(target_has_atomic = "32"))]
     if let Some(e) = scanline3d::selftest::dither_fits_self_test(20_000) {
         hprintln!("DITHER CHECK MISMATCH {:?}", e);
         return false;

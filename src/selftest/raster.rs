@@ -128,8 +128,8 @@ fn random_triangle(
     v
 }
 
-/// For the benchmark firmware (compiled, and run by the host tests, on every target): the assembly triangle setup
-/// (`kernel::setup565`) against [`ActiveTri::setup_portable`] for RGB565 on `n`
+/// For the benchmark firmware (compiled, and run by the host tests, on every target): the
+/// assembly triangle setup (`kernel::setup565`) against [`ActiveTri::setup_portable`] for RGB565 on `n`
 /// pseudo-random Gouraud triangles (small, tall and wide ones, equal ys, first rows before,
 /// at and after the middle vertex, short screens), without and with the dither check. Returns
 /// the first mismatch's vertices `[x, y]` and `[row, height]` (height negated when the
