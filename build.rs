@@ -1,7 +1,9 @@
 //! Chooses the kernels (`src/kernel`): sets the cfg aliases `scanline3d_thumb` (a Cortex-M
 //! target: `target_arch = "arm"` and `target_os = "none"`) and `scanline3d_thumb_v6m` (the
 //! same without 32-bit atomics, i.e. ARMv6-M: Cortex-M0/M0+) and `scanline3d_thumb2` (the same
-//! on a core with the full Thumb-2 instruction set: ARMv7-M, ARMv7E-M, ARMv8-M Mainline), all
+//! on a core with the full Thumb-2 instruction set: ARMv7-M, ARMv7E-M, ARMv8-M Mainline) and
+//! `scanline3d_thumb_geometry` (either of the last two: where the vertex-run, projection and
+//! lighting kernels run; not on ARMv8-M Baseline, where they were never measured), all
 //! unless the `portable` feature is on; and the capability cfgs `scanline3d_no_divide` (no
 //! divide instruction), `scanline3d_no_mul64` (no 32 × 32 → 64-bit multiply) and
 //! `scanline3d_no_clz` (no count-leading-zeros instruction), all three ARMv6-M whatever the
@@ -22,6 +24,7 @@ fn main() {
     println!("cargo::rustc-check-cfg=cfg(scanline3d_no_mul64)");
     println!("cargo::rustc-check-cfg=cfg(scanline3d_no_clz)");
     println!("cargo::rustc-check-cfg=cfg(scanline3d_thumb2)");
+    println!("cargo::rustc-check-cfg=cfg(scanline3d_thumb_geometry)");
     let cfg = |k: &str| env::var(k).unwrap_or_default();
     let cortex_m = cfg("CARGO_CFG_TARGET_ARCH") == "arm" && cfg("CARGO_CFG_TARGET_OS") == "none";
     let atomics32 = cfg("CARGO_CFG_TARGET_HAS_ATOMIC")
@@ -44,6 +47,9 @@ fn main() {
         }
         if thumb2 {
             println!("cargo::rustc-cfg=scanline3d_thumb2");
+        }
+        if !atomics32 || thumb2 {
+            println!("cargo::rustc-cfg=scanline3d_thumb_geometry");
         }
     }
     if target != "thumbv6m-none-eabi" {

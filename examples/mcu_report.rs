@@ -272,10 +272,13 @@ fn run() -> Result<(), String> {
             ));
         }
     }
+    // The default torus, fixed point, on one machine's row.
+    let torus_on = |machine: &str| {
+        rows.iter()
+            .find(|r| r["scene"] == "torus" && r["number"] == "I16F16" && r["machine"] == machine)
+    };
     // The budget: default torus, fixed point, Cortex-M0.
-    let torus = rows
-        .iter()
-        .find(|r| r["scene"] == "torus" && r["number"] == "I16F16" && r["machine"] == "mps2-an385");
+    let torus = torus_on("mps2-an385");
     let budget = torus.map(|t| {
         let i = t["renderer_instructions"].as_u64().unwrap_or(u64::MAX);
         let ram = t["renderer_ram_bytes"].as_u64().unwrap_or(u64::MAX);
@@ -290,10 +293,7 @@ fn run() -> Result<(), String> {
     )
     .map_err(|e| e.to_string())?;
     // The Cortex-M4F goal: the same frame on mps2-an386.
-    let m4f_torus = rows
-        .iter()
-        .find(|r| r["scene"] == "torus" && r["number"] == "I16F16" && r["machine"] == "mps2-an386")
-        .and_then(|t| t["renderer_instructions"].as_u64());
+    let m4f_torus = torus_on("mps2-an386").and_then(|t| t["renderer_instructions"].as_u64());
     let mut md = markdown(&rows, &mem, budget, &small);
     if let Some(i) = m4f_torus {
         md.push_str(&format!(

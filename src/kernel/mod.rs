@@ -22,6 +22,8 @@
 //!   `thumb::project_t2`, the Thumb-2 macros of `thumb::light`: `smlal`, `smull`, `umull`,
 //!   `clz`). The edge kernel and the single transforms stay on ARMv6-M (on Thumb-2 the
 //!   portable forms, with the long multiply and the divide, are as fast or faster).
+//! - `scanline3d_thumb_geometry`: either of the last two, where the vertex run, the projection
+//!   and the lighting run have a kernel (the one alias their entry points and modules test).
 //!
 //! With neither (the host, and any target with the `portable` feature) every entry point runs
 //! its portable implementation. A triangle or a colour type the fast kernels do not handle (a
@@ -151,9 +153,9 @@ pub(crate) fn transform_dir_q16(m: &[[i32; 4]; 4], v: [i32; 3]) -> Option<[i32; 
 /// size); `None` where it declines (scales of 2¹⁶ or more, w ≤ 2⁻¹³, beyond the guard band).
 #[inline(always)]
 pub(crate) fn project_q16(p: &[i32; 4], sx: u32, sy: u32) -> Option<[i32; 3]> {
-    #[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
+    #[cfg(scanline3d_thumb_geometry)]
     return thumb::project_q16(p, sx, sy);
-    #[cfg(not(any(scanline3d_thumb_v6m, scanline3d_thumb2)))]
+    #[cfg(not(scanline3d_thumb_geometry))]
     {
         let _ = (p, sx, sy);
         None
@@ -161,7 +163,7 @@ pub(crate) fn project_q16(p: &[i32; 4], sx: u32, sy: u32) -> Option<[i32; 3]> {
 }
 
 /// Whether [`project_run`] can store anything (the vertex loop asks it only then).
-pub(crate) const PROJECT_RUN: bool = cfg!(any(scanline3d_thumb_v6m, scanline3d_thumb2));
+pub(crate) const PROJECT_RUN: bool = cfg!(scanline3d_thumb_geometry);
 
 /// The vertex kernel: stores the vertex-store records of the longest run of Q16.16 positions
 /// `ps` (at most the store's room) that it handles exactly as the geometry stage's vertex loop
@@ -177,9 +179,9 @@ pub(crate) fn project_run<const V: usize>(
     sy: u32,
     out: &mut Vec<ScreenVertex, V>,
 ) -> usize {
-    #[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
+    #[cfg(scanline3d_thumb_geometry)]
     return thumb::project_run(m, ps, g, sx, sy, out);
-    #[cfg(not(any(scanline3d_thumb_v6m, scanline3d_thumb2)))]
+    #[cfg(not(scanline3d_thumb_geometry))]
     {
         let _ = (m, ps, g, sx, sy, out);
         0
@@ -187,7 +189,7 @@ pub(crate) fn project_run<const V: usize>(
 }
 
 /// Whether [`light_run`] can light anything (the lighting stage asks it only then).
-pub(crate) const LIGHT_RUN: bool = cfg!(any(scanline3d_thumb_v6m, scanline3d_thumb2));
+pub(crate) const LIGHT_RUN: bool = cfg!(scanline3d_thumb_geometry);
 
 /// The lighting kernel, for RGB565 targets: lights the vertices of `verts` that the cull loop
 /// marked, as the lighting stage would with one grey light of direction `dir` (object space)
@@ -205,9 +207,9 @@ pub(crate) fn light_run(
     diffuse: i32,
     color: [u8; 3],
 ) -> Option<usize> {
-    #[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
+    #[cfg(scanline3d_thumb_geometry)]
     return thumb::light_run(verts, normals, dir, frac, ambient, diffuse, color);
-    #[cfg(not(any(scanline3d_thumb_v6m, scanline3d_thumb2)))]
+    #[cfg(not(scanline3d_thumb_geometry))]
     {
         let _ = (verts, normals, dir, frac, ambient, diffuse, color);
         None

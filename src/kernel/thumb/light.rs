@@ -1,7 +1,7 @@
 //! Thumb assembly for the common case of the lighting pass with Q16.16 values
 //! (`kernel::light_run`), on ARMv6-M and, with Thumb-2 forms of its products (`smlal`, about
-//! 105 instructions a lit vertex), on Thumb-2 cores: the vertices the triangle loop marked (`NEEDS_LIGHT`), lit in
-//! the object's space by one grey directional light without a specular term, for RGB565
+//! 105 instructions a lit vertex), on Thumb-2 cores: the vertices the triangle loop marked
+//! (`NEEDS_LIGHT`), lit in the object's space by one grey directional light without a specular term, for RGB565
 //! channels — what the pass computes for them (`shade::lit_diffuse`, `color::scale_channels`,
 //! `project::pack_channels`), stored with the `LIT` flag as the pass stores it.
 //!
@@ -209,8 +209,8 @@ macro_rules! dot3 {
 }
 
 /// Thumb-2 form of [`mul_q16`]: r6 = `(a·r6 + 2¹⁵) >> 16` for the whole word `a` at `$w`
-/// (the halves `$lo`, `$hi` are the Thumb-1 form's)
-/// (`scalar::mul_q16_small`, one `smlal`). Uses r0–r2.
+/// (`scalar::mul_q16_small`, one `smlal`; the halves `$lo`, `$hi` are the Thumb-1 form's).
+/// Uses r0–r2.
 #[cfg(scanline3d_thumb2)]
 macro_rules! mul_q16 {
     ($lo:literal, $hi:literal, $w:literal) => {

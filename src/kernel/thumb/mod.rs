@@ -101,6 +101,7 @@ mod rows_t2;
 mod rows;
 mod fill;
 mod rows_dither;
+#[cfg(scanline3d_thumb_v6m)]
 #[macro_use]
 mod xform;
 #[cfg(scanline3d_thumb2)]
@@ -110,6 +111,7 @@ mod xform_t2;
 #[macro_use]
 mod project;
 #[cfg(scanline3d_thumb2)]
+#[macro_use]
 mod project_t2;
 #[cfg(scanline3d_thumb2)]
 #[macro_use]
@@ -123,10 +125,10 @@ mod gouraud;
 mod edge;
 mod cull;
 mod dither_fits;
-#[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
+#[cfg(scanline3d_thumb_geometry)]
 mod light;
 mod setup;
-#[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
+#[cfg(scanline3d_thumb_geometry)]
 mod vertex;
 
 pub(crate) use cull::cull_push;
@@ -135,16 +137,16 @@ pub(crate) use dither_fits::dither_fits565;
 pub(crate) use edge::edge_new;
 pub(crate) use fill::clear_line;
 pub(crate) use gouraud::gouraud_setup;
-#[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
+#[cfg(scanline3d_thumb_geometry)]
 pub(crate) use light::light_run;
-#[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
+#[cfg(scanline3d_thumb_geometry)]
 pub(crate) use project::project_q16;
 pub(crate) use rows::rows565;
 pub(crate) use setup::setup565;
 #[cfg(scanline3d_thumb_v6m)]
 pub(crate) use span::span565_flat_less;
 pub(crate) use span::{span565_less, span565_less_dither};
-#[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
+#[cfg(scanline3d_thumb_geometry)]
 pub(crate) use vertex::project_run;
 #[cfg(scanline3d_thumb_v6m)]
 pub(crate) use xform::{transform_dir_q16, transform_q16};

@@ -2,7 +2,7 @@
 //! normalized reciprocal), and the reciprocal macro the triangle setup reuses.
 #![allow(unsafe_code)]
 
-#[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
+#[cfg(scanline3d_thumb_geometry)]
 extern "C" {
     fn scanline3d_project_q16(p: *const i32, scales: u32, seed: *const u16, out: *mut i32) -> u32;
 }
@@ -319,7 +319,7 @@ core::arch::global_asm!(
 /// beyond the guard band: points that are clipped before they are projected), and the
 /// portable code computes them.
 #[inline(always)]
-#[cfg(any(scanline3d_thumb_v6m, scanline3d_thumb2))]
+#[cfg(scanline3d_thumb_geometry)]
 pub(crate) fn project_q16(p: &[i32; 4], sx: u32, sy: u32) -> Option<[i32; 3]> {
     if (sx | sy) >> 16 != 0 {
         return None;

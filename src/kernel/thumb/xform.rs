@@ -1,10 +1,8 @@
 //! The Q16.16 point and direction transforms (a 4 × 4 matrix times a point or a direction).
 #![allow(unsafe_code)]
 
-#[cfg(scanline3d_thumb_v6m)]
 use crate::wide::spread_bits;
 
-#[cfg(scanline3d_thumb_v6m)]
 extern "C" {
     fn scanline3d_xform_q16(m: *const i32, p: *const i32, out: *mut i32, rows: u32);
 }
@@ -15,7 +13,6 @@ extern "C" {
 /// With a = ah·2¹⁶ + al and b likewise: al·bl (< 2³²) is added unsigned, ah·bh (< 2²⁸) to
 /// the high word, and ah·bl + al·bh (each below 2³⁰ in magnitude, so their sum fits) shifted
 /// by 16. 20 instructions, four of them `muls`.
-#[cfg_attr(scanline3d_thumb2, allow(unused_macros))]
 macro_rules! q16_product {
     ($a:literal, $bl:literal, $bh:literal) => {
         concat!(
@@ -52,7 +49,6 @@ macro_rules! q16_product {
 /// One row of [`scanline3d_xform_q16`] (r5 = the row), its result stored at byte offset
 /// `$out` of the result: `sat32((Σ a·b + (c << 16) + 2¹⁵) >> 16)`, c the row's last entry
 /// masked by [sp, #4] (zero for a direction). Uses r0–r4, r6, r7.
-#[cfg_attr(scanline3d_thumb2, allow(unused_macros))]
 macro_rules! xform_row {
     ($out:literal) => {
         concat!(
@@ -92,8 +88,6 @@ macro_rules! xform_row {
     };
 }
 
-// Thumb-1; on Thumb-2 cores `xform_t2` assembles the same routine from Thumb-2 forms.
-#[cfg(not(scanline3d_thumb2))]
 core::arch::global_asm!(
     ".syntax unified",
     ".thumb",
@@ -156,7 +150,6 @@ core::arch::global_asm!(
 /// `dot3_add` takes its plain 64-bit sum, whose result this is, bit for bit. `None` otherwise
 /// (the portable code then saturates where it must). About 360 instructions for a point on a
 /// Cortex-M0, where LLVM's version of the four rows takes about 600.
-#[cfg(scanline3d_thumb_v6m)]
 #[inline(always)]
 pub(crate) fn transform_rows<const R: usize>(m: &[[i32; 4]; 4], p: [i32; 3]) -> Option<[i32; R]> {
     const { assert!(R == 3 || R == 4) };
@@ -186,7 +179,6 @@ pub(crate) fn transform_rows<const R: usize>(m: &[[i32; 4]; 4], p: [i32; 3]) -> 
 }
 
 /// `m · (p, 1)` in Q16.16 words (see [`transform_rows`]).
-#[cfg(scanline3d_thumb_v6m)]
 #[inline(always)]
 pub(crate) fn transform_q16(m: &[[i32; 4]; 4], p: [i32; 3]) -> Option<[i32; 4]> {
     transform_rows::<4>(m, p)
@@ -194,7 +186,6 @@ pub(crate) fn transform_q16(m: &[[i32; 4]; 4], p: [i32; 3]) -> Option<[i32; 4]> 
 
 /// The upper 3 × 3 block of `m` times the direction `v`, Q16.16 words (see
 /// [`transform_rows`]).
-#[cfg(scanline3d_thumb_v6m)]
 #[inline(always)]
 pub(crate) fn transform_dir_q16(m: &[[i32; 4]; 4], v: [i32; 3]) -> Option<[i32; 3]> {
     transform_rows::<3>(m, v)
