@@ -5,6 +5,50 @@
 //! vertex where the Thumb-1 routine takes about 250 and LLVM's `Viewport::screen_words`
 //! about 175 on a Cortex-M4F.
 
+/// `wide::recip_norm`'s mantissa for `$a`, the value normalized (bit 31 set), into `$m`: a
+/// table seed (`wide::RECIP_SEED` at `$seed`), one Newton step in 32-bit products and one in
+/// 64-bit ones, clamped to [1, 2³⁰]. `$a` is kept; `$seed`, `$t1`, `$t2` are clobbered (all
+/// low registers but `$t2`). The projection and the triangle setup (`setup_t2`) share it.
+/// (One instruction a line: rustfmt would put every operand on a line of its own.)
+#[rustfmt::skip]
+macro_rules! recip_mantissa_t2 {
+    ($a:literal, $seed:literal, $m:literal, $t1:literal, $t2:literal) => {
+        concat!(
+            // x0 = seed[(a32 >> 24) & 127] + 2¹⁶; e = −d·x0 (d = a32 >> 16, wrapping);
+            // x1 = x0 + ((x0 >> 1)·(e >> 10) >> 21); m0 = x1 << 13.
+            "ubfx ", $m, ", ", $a, ", #24, #7\n",
+            "ldrh ", $m, ", [", $seed, ", ", $m, ", lsl #1]\n",
+            "add ", $m, ", ", $m, ", #65536\n",
+            "lsrs ", $t1, ", ", $a, ", #16\n",
+            "muls ", $t1, ", ", $m, ", ", $t1, "\n",
+            "negs ", $t1, ", ", $t1, "\n",
+            "asrs ", $t1, ", ", $t1, ", #10\n",
+            "lsrs ", $seed, ", ", $m, ", #1\n",
+            "muls ", $t1, ", ", $seed, ", ", $t1, "\n",
+            "add ", $m, ", ", $m, ", ", $t1, ", asr #21\n",
+            "lsls ", $m, ", ", $m, ", #13\n",
+            // err = 2⁶¹ − a32·m0 (|err| < 2⁴⁷), t = err >> 30 (its low word, in $t2).
+            "umull ", $t1, ", ", $seed, ", ", $a, ", ", $m, "\n",
+            "mov ", $t2, ", #0x20000000\n",
+            "negs ", $t1, ", ", $t1, "\n",
+            "sbc ", $t2, ", ", $t2, ", ", $seed, "\n",
+            "lsrs ", $t1, ", ", $t1, ", #30\n",
+            "orr ", $t2, ", ", $t1, ", ", $t2, ", lsl #2\n",
+            // m1 = m0 + (m0·t >> 31), clamped to [1, 2³⁰].
+            "smull ", $t1, ", ", $seed, ", ", $m, ", ", $t2, "\n",
+            "lsrs ", $t1, ", ", $t1, ", #31\n",
+            "orr ", $seed, ", ", $t1, ", ", $seed, ", lsl #1\n",
+            "adds ", $m, ", ", $m, ", ", $seed, "\n",
+            "cmp ", $m, ", #1\n",
+            "it lt\n",
+            "movlt ", $m, ", #1\n",
+            "cmp ", $m, ", #0x40000000\n",
+            "it gt\n",
+            "movgt ", $m, ", #0x40000000\n",
+        )
+    };
+}
+
 /// [`scanline3d_project_q16`]'s quotient `v·m` rounded to `ns` fraction bits fewer
 /// (`wide::round_shr_words(mul_wide(v, m), ns)`, the Q16.16 `ndc` of `v`) for the word at
 /// byte offset `$off` of the point (r8) and the reciprocal's mantissa in r6. r5 = ns (1..=28),
@@ -81,37 +125,8 @@ core::arch::global_asm!(
     "clz r5, r4",
     "lsls r4, r4, r5",
     "rsb r5, r5, #32",
-    // x0 = seed[(a32 >> 24) & 127] + 2¹⁶; e = −d·x0 (d = a32 >> 16, wrapping);
-    // x1 = x0 + ((x0 >> 1)·(e >> 10) >> 21); m0 = x1 << 13 (r6).
-    "ubfx r6, r4, #24, #7",
-    "ldrh r6, [r2, r6, lsl #1]",
-    "add r6, r6, #65536",
-    "lsrs r7, r4, #16",
-    "mul r7, r6, r7",
-    "negs r7, r7",
-    "asrs r7, r7, #10",
-    "lsrs r3, r6, #1",
-    "mul r7, r3, r7",
-    "add r6, r6, r7, asr #21",
-    "lsls r6, r6, #13",
-    // err = 2⁶¹ − a32·m0 (|err| < 2⁴⁷), t = err >> 30 (r2, its low word).
-    "umull r7, r1, r4, r6",
-    "negs r7, r7",
-    "mov r2, #0x20000000",
-    "sbc r2, r2, r1",
-    "lsls r2, r2, #2",
-    "orr r2, r2, r7, lsr #30",
-    // m1 = m0 + (m0·t >> 31), clamped to [1, 2³⁰] (r6).
-    "smull r4, r1, r6, r2",
-    "lsls r1, r1, #1",
-    "orr r1, r1, r4, lsr #31",
-    "add r6, r6, r1",
-    "cmp r6, #1",
-    "it lt",
-    "movlt r6, #1",
-    "cmp r6, #0x40000000",
-    "it gt",
-    "movgt r6, #0x40000000",
+    // m1 (r6), as `wide::recip_norm`.
+    recip_mantissa_t2!("r4", "r2", "r6", "r7", "r3"),
     // The quotients' shift is ns = 29 + s − 32; the portable code handles ns ≤ 0.
     "subs r5, r5, #3",
     "ble 9f",
