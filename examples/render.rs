@@ -603,6 +603,7 @@ fn run<S: Scalar, C: TargetColor>(
         } else {
             Shading::Gouraud
         },
+        texture: None,
     };
     let mut r: Box<Big<S, C>> = Box::default();
     r.set_viewport(w, h);

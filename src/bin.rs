@@ -18,7 +18,9 @@ impl<
         const TRIS: usize,
         const ACTIVE: usize,
         const LINES: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES>
+        const XV: usize,
+        const XA: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
 {
     /// The bucket of a stored triangle (see [`bucket_row`]).
     pub(crate) fn first_row(&self, t: &TriRecord) -> usize {

@@ -216,7 +216,9 @@ impl<
         const TRIS: usize,
         const ACTIVE: usize,
         const LINES: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES>
+        const XV: usize,
+        const XA: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
 {
     /// This renderer type's size and capacities, by name.
     pub const CAPACITIES: Capacities = Capacities {

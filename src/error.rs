@@ -42,6 +42,26 @@ pub enum Error<E> {
         /// Index of the object in the scene.
         object: usize,
     },
+    /// Object `object` has a textured material but its mesh has no texture coordinates
+    /// ([`crate::Mesh::with_uvs`]). Nothing was drawn.
+    MissingUvs {
+        /// Index of the object in the scene.
+        object: usize,
+    },
+    /// Object `object` is textured but the renderer's texture attribute stores cannot hold it:
+    /// its vertices end at store index `needed` (the renderer's `XV` must be at least that)
+    /// and textured triangles need a pool (`XA` ≥ 1; see [`crate::Renderer`], "Textures").
+    /// Nothing was drawn.
+    AttributeStore {
+        /// Index of the object in the scene.
+        object: usize,
+        /// The `XV` the frame needed so far (at least).
+        needed: usize,
+        /// The renderer's `XV`.
+        vertex_capacity: usize,
+        /// The renderer's `XA`.
+        active_capacity: usize,
+    },
     /// The scene's camera fails [`crate::Camera::validate`] (its fields are public and may
     /// have been changed after [`crate::Camera::look_at`]). Nothing was drawn.
     Camera(crate::CameraError),
@@ -97,6 +117,21 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
                 f,
                 "object {object} is Gouraud-shaded but its mesh has no vertex normals; nothing \
                  was drawn"
+            ),
+            Error::MissingUvs { object } => write!(
+                f,
+                "object {object} is textured but its mesh has no texture coordinates; nothing \
+                 was drawn"
+            ),
+            Error::AttributeStore {
+                object,
+                needed,
+                vertex_capacity,
+                active_capacity,
+            } => write!(
+                f,
+                "object {object} is textured: the renderer needs XV >= {needed} and XA >= 1 \
+                 (it has XV = {vertex_capacity}, XA = {active_capacity}); nothing was drawn"
             ),
             Error::Camera(e) => write!(f, "{e}; nothing was drawn"),
             Error::Shortfall(s) => {

@@ -5,6 +5,7 @@
 
 use heapless::Vec;
 
+use crate::camera::Projection;
 use crate::clip::{clip_triangle, outcode, ClipVertex, NEEDS_CLIP};
 use crate::color::TargetColor;
 use crate::cull::{facing, Facing};
@@ -17,6 +18,7 @@ use crate::raster::{TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::{lit_color, lit_diffuse, PreparedLight, Shading};
+use crate::textured::{q_from_depth, VertexExtra};
 
 use crate::error::*;
 use crate::kernel;
@@ -46,6 +48,9 @@ pub(crate) struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
     mirrored: bool,
     eye: Vec3<S>,
     base: usize,
+    /// `1 − near/far` in Q0.24 for a perspective camera, 0 for an orthographic one: the
+    /// textured vertices' `near/w` from their depth ([`q_from_depth`]).
+    k24: u32,
 }
 
 impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
@@ -132,7 +137,9 @@ impl<
         const TRIS: usize,
         const ACTIVE: usize,
         const LINES: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES>
+        const XV: usize,
+        const XA: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
 {
     pub(crate) fn geometry<E, P: Probe, const L: usize>(
         &mut self,
@@ -141,7 +148,7 @@ impl<
     ) -> Result<Stats, Error<E>> {
         self.verts.clear();
         self.tris.clear();
-        self.active.clear();
+        self.clear_active();
         self.heads = [0; H];
         self.starts = [0; H];
         self.next_row = self.vh;
@@ -149,6 +156,19 @@ impl<
         for (i, o) in scene.objects.iter().enumerate() {
             if o.material.shading == Shading::Gouraud && o.mesh.normals().is_none() {
                 return Err(Error::MissingNormals { object: i });
+            }
+            if o.material.texture.is_some() {
+                if o.mesh.uvs().is_none() {
+                    return Err(Error::MissingUvs { object: i });
+                }
+                if XV == 0 || XA == 0 {
+                    return Err(Error::AttributeStore {
+                        object: i,
+                        needed: self.verts.len() + o.mesh.positions().len(),
+                        vertex_capacity: XV,
+                        active_capacity: XA,
+                    });
+                }
             }
         }
         let vp = Viewport {
@@ -164,11 +184,18 @@ impl<
             .matrix(vp.aspect())
             .mul(&scene.camera.view);
         let mut need = (0usize, 0usize);
+        let k24 = match scene.camera.projection {
+            Projection::Perspective { near, far, .. } => {
+                let k = 1.0 - near.to_f64() / far.to_f64();
+                libm::round(k.clamp(0.0, 1.0) * (1u32 << 24) as f64) as u32
+            }
+            Projection::Orthographic { .. } => 0,
+        };
         // NaN, infinite or (fixed point) saturated inputs are skipped and counted per object,
         // the same for every number type (a float NaN would poison every vertex).
         let ok = |v: &S| v.is_valid();
         let lights_ok = scene.lights.iter().all(|l| l.direction.iter().all(ok));
-        for obj in scene.objects {
+        for (index, obj) in scene.objects.iter().enumerate() {
             let m = &obj.material;
             if !(lights_ok
                 && obj.transform.m.iter().all(|r| r.iter().all(ok))
@@ -202,8 +229,25 @@ impl<
                 mirrored,
                 eye: scene.camera.eye,
                 base: self.verts.len(),
+                k24,
             };
             self.object(&setup, &vp, g, &mut stats, &mut need, probe);
+            if XV > 0 {
+                let end = self.verts.len();
+                if obj.material.texture.is_some() && end > XV {
+                    return Err(Error::AttributeStore {
+                        object: index,
+                        needed: end,
+                        vertex_capacity: XV,
+                        active_capacity: XA,
+                    });
+                }
+                if obj.material.texture.is_none() {
+                    for x in self.xverts.iter_mut().take(end).skip(setup.base) {
+                        *x = VertexExtra::NONE;
+                    }
+                }
+            }
         }
         stats.vertices = need.0 as u32;
         let mut cur = 0i32;
@@ -295,6 +339,9 @@ impl<
                     }
                 }
             }
+        }
+        if XV > 0 {
+            self.vertex_extras(o, o.base, positions.len());
         }
         let flat = o.obj.material.shading == Shading::Flat;
         probe.enter(Stage::Triangles);
@@ -410,6 +457,9 @@ impl<
                     let mut colour_vertex = self.verts[vi[0]];
                     colour_vertex.set_color(pack_flat_channels(rgb, C::CHANNEL_MAX));
                     v[0] = self.verts.len() as u16 | FLAT_BIT;
+                    if XV > 0 {
+                        self.copy_extra(vi[0], self.verts.len());
+                    }
                     if self.verts.push(colour_vertex).is_err() {
                         need.1 += 1;
                         continue;
@@ -563,6 +613,15 @@ impl<
         let codes =
             (self.verts[vi[0]].flags | self.verts[vi[1]].flags | self.verts[vi[2]].flags) as u8;
         let poly = clip_triangle(input, codes, g);
+        // A textured triangle's polygon once more, with the barycentric weights of its
+        // vertices 1 and 2 in place of the colour: the new vertices' texture coordinates.
+        let weights = (XV > 0 && o.obj.material.texture.is_some()).then(|| {
+            let mut tagged = input;
+            for (k, v) in tagged.iter_mut().enumerate() {
+                v.rgb = [(k == 1) as u16 * u16::MAX, (k == 2) as u16 * u16::MAX, 0];
+            }
+            clip_triangle(tagged, codes, g)
+        });
         if poly.v.is_empty() {
             stats.outside += 1;
             return;
@@ -574,7 +633,7 @@ impl<
             return;
         }
         let first = self.verts.len();
-        for v in &poly.v {
+        for (pi, v) in poly.v.iter().enumerate() {
             let rgb = if face.is_some() {
                 pack_flat_channels(v.rgb, C::CHANNEL_MAX)
             } else {
@@ -585,6 +644,9 @@ impl<
                     sv.flags |= PROJECTED | LIT;
                     let index = self.verts.len() - stats.color_vertices as usize;
                     (sv.x, sv.y) = snapped(probe, index, sv);
+                    if let Some(w) = weights.as_ref().and_then(|w| w.v.get(pi)) {
+                        self.clipped_extra(o, tri, w.rgb, &sv);
+                    }
                     let _ = self.verts.push(sv);
                 }
                 None => {
@@ -611,6 +673,65 @@ impl<
                 }
             }
         }
+    }
+
+    /// The texture attributes of object `o`'s mesh vertices (stored from `base`, `n` of them)
+    /// when it is textured, none otherwise (where the store has room).
+    #[inline(never)]
+    pub(crate) fn vertex_extras<const L: usize>(
+        &mut self,
+        o: &ObjectSetup<'_, '_, S, L>,
+        base: usize,
+        n: usize,
+    ) {
+        let mesh = &o.obj.mesh;
+        let end = (base + n).min(XV).min(self.verts.len());
+        for i in base..end {
+            self.xverts[i] = match (&o.obj.material.texture, mesh.uvs()) {
+                (Some(map), Some(uvs)) => {
+                    let st = uvs[i - base].map(|c| c.to_fixed_i32(16));
+                    let q = q_from_depth(self.verts[i].depth() as u32 >> 4, o.k24);
+                    VertexExtra::new(map, st, q)
+                }
+                _ => VertexExtra::NONE,
+            };
+        }
+    }
+
+    /// Store entry `to` gets the texture attributes of entry `from` (a flat triangle's colour
+    /// vertex), where the store has room.
+    pub(crate) fn copy_extra(&mut self, from: usize, to: usize) {
+        if to < XV {
+            self.xverts[to] = self.xverts.get(from).copied().unwrap_or(VertexExtra::NONE);
+        }
+    }
+
+    /// The texture attributes of a vertex a clip made on mesh triangle `tri` of object `o`,
+    /// with barycentric weights `w` (of the triangle's vertices 1 and 2, in 2⁻¹⁶ units, as
+    /// the clip interpolated them: 1 is 65535) and record `sv`, stored for the next vertex.
+    pub(crate) fn clipped_extra<const L: usize>(
+        &mut self,
+        o: &ObjectSetup<'_, '_, S, L>,
+        tri: &[u16; 3],
+        w: [u16; 3],
+        sv: &ScreenVertex,
+    ) {
+        let at = self.verts.len();
+        let (Some(map), Some(uvs)) = (&o.obj.material.texture, o.obj.mesh.uvs()) else {
+            return;
+        };
+        if at >= XV {
+            return;
+        }
+        let st = |k: usize| uvs[tri[k] as usize].map(|c| c.to_fixed_i32(16) as i64);
+        let (a, b, c) = (st(0), st(1), st(2));
+        let (w1, w2) = (w[0] as i64, w[1] as i64);
+        let mix = |j: usize| {
+            let d = (b[j] - a[j]) * w1 + (c[j] - a[j]) * w2;
+            (a[j] + (d + (1 << 15)).div_euclid(65535)) as i32
+        };
+        let q = q_from_depth(sv.depth() as u32 >> 4, o.k24);
+        self.xverts[at] = VertexExtra::new(map, [mix(0), mix(1)], q);
     }
 
     /// Buckets a triangle by its first covered row, or counts it as empty or off-screen.

@@ -173,6 +173,8 @@ mod shapes;
 mod span;
 mod stats;
 mod strip;
+mod texture;
+mod textured;
 mod wide;
 
 pub use fixed;
@@ -185,7 +187,7 @@ pub use config::__macro as __renderer_type;
 pub use config::Capacities;
 pub use cull::{facing, signed_area2, Facing};
 pub use math::{add, cross, dot, length, normalize, scale, sub, Mat4, Vec3};
-pub use mesh::{face_normal, vertex_normals, Mesh, MeshError};
+pub use mesh::{face_normal, vertex_normals, Mesh, MeshError, UV_LIMIT};
 pub use project::{ScreenVertex, COORD_LIMIT, DEPTH_FRAC_BITS, MAX_SCREEN, SUBPIXEL_BITS};
 pub use raster::{DepthTest, COLOR_FRAC_BITS};
 pub use renderer::{
@@ -197,6 +199,7 @@ pub use scene::{Object, Scene};
 pub use shade::{Light, Material, Shading};
 pub use shapes::{ParamValue, Shape, ShapeError};
 pub use strip::StripCanvas;
+pub use texture::{Texture, TextureError, TextureMode, Texturing, Wrap, MAX_TEXTURE_SIZE};
 
 #[doc(inline)]
 pub use embedded_graphics_core::draw_target::DrawTarget;

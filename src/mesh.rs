@@ -13,6 +13,8 @@ pub struct Mesh<'a, S> {
     positions: &'a [Vec3<S>],
     indices: &'a [[u16; 3]],
     normals: Option<&'a [Vec3<S>]>,
+    /// Texture coordinates `(s, t)`, one per position ([`Mesh::with_uvs`]).
+    uvs: Option<&'a [[S; 2]]>,
     /// Whether a position has a coordinate that is not valid in `S` ([`Scalar::is_valid`]:
     /// NaN, infinite, or a fixed-point rail, where a NaN input lands): found once when the
     /// mesh is built, so that the renderer checks positions one by one only for such a mesh.
@@ -52,7 +54,23 @@ pub enum MeshError {
         /// The length needed.
         needed: usize,
     },
+    /// The texture-coordinate slice is not as long as the positions slice.
+    UvCount {
+        /// Number of positions.
+        positions: usize,
+        /// Number of texture coordinates.
+        uvs: usize,
+    },
+    /// A texture coordinate is not valid in the number type or not within ±[`UV_LIMIT`].
+    UvOutOfRange {
+        /// The vertex.
+        vertex: usize,
+    },
 }
+
+/// The largest magnitude of a texture coordinate (exclusive): 16 texture widths, so that a
+/// triangle spans fewer than 2¹⁵ texels of a 1024-texel texture (the span formats' range).
+pub const UV_LIMIT: f64 = 16.0;
 
 impl<'a, S: Scalar> Mesh<'a, S> {
     /// A mesh without normals (enough for flat shading; Gouraud needs [`Mesh::with_normals`]).
@@ -69,6 +87,7 @@ impl<'a, S: Scalar> Mesh<'a, S> {
             positions,
             indices,
             normals: None,
+            uvs: None,
             bad_positions: any_invalid(positions),
         })
     }
@@ -86,6 +105,7 @@ impl<'a, S: Scalar> Mesh<'a, S> {
             positions,
             indices,
             normals,
+            uvs: None,
             bad_positions: false,
         }
     }
@@ -100,6 +120,38 @@ impl<'a, S: Scalar> Mesh<'a, S> {
         }
         self.normals = Some(normals);
         Ok(self)
+    }
+
+    /// Adds texture coordinates `(s, t)`, one per position (see [`crate::Texture`] for their
+    /// orientation). A vertex where two faces need different coordinates (a UV seam) must be
+    /// two vertices.
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::UvCount`] unless there is one per position; [`MeshError::UvOutOfRange`]
+    /// for a coordinate that is not valid in `S` or not within ±[`UV_LIMIT`].
+    pub fn with_uvs(mut self, uvs: &'a [[S; 2]]) -> Result<Self, MeshError> {
+        if uvs.len() != self.positions.len() {
+            return Err(MeshError::UvCount {
+                positions: self.positions.len(),
+                uvs: uvs.len(),
+            });
+        }
+        let (lo, hi) = (S::from_f64(-UV_LIMIT), S::from_f64(UV_LIMIT));
+        if let Some(vertex) = uvs
+            .iter()
+            .position(|uv| !uv.iter().all(|&c| c.is_valid() && c > lo && c < hi))
+        {
+            return Err(MeshError::UvOutOfRange { vertex });
+        }
+        self.uvs = Some(uvs);
+        Ok(self)
+    }
+
+    /// The texture coordinates, if any.
+    #[must_use]
+    pub fn uvs(&self) -> Option<&'a [[S; 2]]> {
+        self.uvs
     }
 
     /// The positions.
@@ -163,6 +215,15 @@ impl core::fmt::Display for MeshError {
             MeshError::BufferTooSmall { needed } => {
                 write!(f, "output buffer too small: {needed} entries needed")
             }
+            MeshError::UvCount { positions, uvs } => write!(
+                f,
+                "mesh has {positions} positions but {uvs} texture coordinates (one per \
+                 position needed)"
+            ),
+            MeshError::UvOutOfRange { vertex } => write!(
+                f,
+                "texture coordinate of vertex {vertex} is not a number within ±{UV_LIMIT}"
+            ),
         }
     }
 }

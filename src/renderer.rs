@@ -15,6 +15,7 @@ use crate::project::{ScreenVertex, MAX_SCREEN};
 use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
 use crate::scene::Scene;
+use crate::textured::{is_textured, push_textured, ActiveExtra, VertexExtra};
 
 pub use crate::error::{Capacity, Error, Needs, OverflowPolicy, Shortfall, StripBufferTooSmall};
 pub use crate::stats::{NoProbe, Probe, Stage, Stats};
@@ -91,8 +92,14 @@ pub struct Renderer<
     const TRIS: usize,
     const ACTIVE: usize,
     const LINES: usize = 1,
+    const XV: usize = 0,
+    const XA: usize = 0,
 > {
     pub(crate) verts: Vec<ScreenVertex, VERTS>,
+    /// Texture attributes of the first `XV` vertices of the store (see "Textures").
+    pub(crate) xverts: [VertexExtra; XV],
+    /// Extra planes of up to `XA` active textured triangles.
+    pub(crate) xactive: [ActiveExtra; XA],
     pub(crate) tris: Vec<TriRecord, TRIS>,
     pub(crate) active: ActiveList<ACTIVE>,
     /// Per row: during geometry the number of triangles whose first row it is; then the index
@@ -130,7 +137,9 @@ impl<
         const TRIS: usize,
         const ACTIVE: usize,
         const LINES: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES>
+        const XV: usize,
+        const XA: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
 {
     /// Exact RAM of this renderer in bytes.
     pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
@@ -175,6 +184,8 @@ impl<
         let () = Self::CHECK;
         Renderer {
             verts: Vec::new(),
+            xverts: [VertexExtra::NONE; XV],
+            xactive: [ActiveExtra::EMPTY; XA],
             tris: Vec::new(),
             active: ActiveList::new(),
             heads: [0; H],
@@ -538,7 +549,7 @@ impl<
     pub fn seek_row(&mut self, row: usize) {
         let vh = self.vh;
         let row = row.min(vh);
-        self.active.clear();
+        self.clear_active();
         self.next_row = row;
         if row >= vh {
             return;
@@ -553,6 +564,21 @@ impl<
             if first_pixel(y_max as i32) <= row as i32 {
                 continue;
             }
+            if XV > 0 && XA > 0 && is_textured(rec, &self.xverts) {
+                let (xv, pool) = (&self.xverts, &mut self.xactive);
+                if !push_textured::<C, ACTIVE>(
+                    &mut self.active,
+                    pool,
+                    rec,
+                    verts,
+                    xv,
+                    row,
+                    vh as i32,
+                ) {
+                    self.active_skipped = self.active_skipped.saturating_add(1);
+                }
+                continue;
+            }
             // Full only under `OverflowPolicy::DrawWhatFits` (the largest number of triangles
             // crossing one row was checked when the frame was prepared): the triangle is left
             // out and counted.
@@ -562,6 +588,14 @@ impl<
             {
                 self.active_skipped = self.active_skipped.saturating_add(1);
             }
+        }
+    }
+
+    /// Empties the active list and the textured triangles' pool.
+    pub(crate) fn clear_active(&mut self) {
+        self.active.clear();
+        for e in self.xactive.iter_mut() {
+            e.used = false;
         }
     }
 
@@ -588,7 +622,9 @@ impl<
         const TRIS: usize,
         const ACTIVE: usize,
         const LINES: usize,
-    > Default for Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES>
+        const XV: usize,
+        const XA: usize,
+    > Default for Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
 {
     fn default() -> Self {
         Self::new()

@@ -78,6 +78,7 @@ mod tests {
             specular: 0.0,
             shininess: 1,
             shading: Shading::Flat,
+            texture: None,
         };
         let near_s: &[[f64; 3]] = &near;
         let far_s: &[[f64; 3]] = &far;

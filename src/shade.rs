@@ -12,6 +12,7 @@
 
 use crate::math::{dot, normalize, scale, sub, Mat4, Vec3};
 use crate::scalar::{channel_8_8, Scalar};
+use crate::texture::{Texture, TextureMode, Texturing};
 
 /// How a surface is shaded.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
@@ -89,6 +90,10 @@ pub struct Material<S> {
     pub shininess: u8,
     /// Flat or Gouraud.
     pub shading: Shading,
+    /// A texture that multiplies the lit colour ([`Material::textured`]); `None` for a plain
+    /// colour. Drawing a textured material needs a renderer with attribute stores (its `XV`
+    /// and `XA` capacities; see [`crate::Renderer`]).
+    pub texture: Option<Texturing>,
 }
 
 /// Building a material: start from [`Material::matte`] and chain the builder methods, e.g.
@@ -121,6 +126,7 @@ impl<S: Scalar> Material<S> {
             specular: S::ZERO,
             shininess: 1,
             shading: Shading::Gouraud,
+            texture: None,
         }
     }
 
@@ -140,6 +146,44 @@ impl<S: Scalar> Material<S> {
     #[must_use]
     pub const fn shading(self, shading: Shading) -> Self {
         Material { shading, ..self }
+    }
+
+    /// This material with `texture` ([`TextureMode::Subdivided16`], no colour key): each pixel
+    /// is its texel times the lit colour / 255 (a white material shows the texels as they are
+    /// under full light).
+    #[must_use]
+    pub const fn textured(self, texture: &'static Texture) -> Self {
+        Material {
+            texture: Some(Texturing::new(texture)),
+            ..self
+        }
+    }
+
+    /// This material with its texture's span mode set to `mode` (no effect without a texture).
+    #[must_use]
+    pub const fn texture_mode(self, mode: TextureMode) -> Self {
+        match self.texture {
+            Some(t) => Material {
+                texture: Some(Texturing { mode, ..t }),
+                ..self
+            },
+            None => self,
+        }
+    }
+
+    /// This material with texels equal to `key` not drawn (no effect without a texture).
+    #[must_use]
+    pub const fn color_key(self, key: u16) -> Self {
+        match self.texture {
+            Some(t) => Material {
+                texture: Some(Texturing {
+                    key: Some(key),
+                    ..t
+                }),
+                ..self
+            },
+            None => self,
+        }
     }
 
     /// This material with a Phong specular term: coefficient `k` (zero, or below, removes the
@@ -402,6 +446,7 @@ mod tests {
                 specular: Q::lit(0.75),
                 shininess: 12,
                 shading: Shading::Flat,
+                texture: None,
             }
         );
         assert_eq!(m.gouraud().shading, Shading::Gouraud);

@@ -13,6 +13,7 @@ use embedded_graphics_core::Pixel;
 use crate::color::{rgb565_word, rgb565_words_mut, TargetColor};
 use crate::raster::SpanMode;
 use crate::scalar::Scalar;
+use crate::textured::{draw_row_textured, is_textured, push_textured, TEXTURED};
 
 use crate::error::*;
 use crate::kernel;
@@ -66,7 +67,9 @@ impl<
         const TRIS: usize,
         const ACTIVE: usize,
         const LINES: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES>
+        const XV: usize,
+        const XA: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
 {
     /// [`Renderer::render_strip`], reporting stage changes to `probe`.
     pub fn render_strip_probed<D, P>(
@@ -213,6 +216,8 @@ impl<
         let mode = SpanMode::new::<C>(self.depth_test, self.dither);
         let Renderer {
             verts,
+            xverts,
+            xactive,
             tris,
             active,
             heads,
@@ -258,6 +263,13 @@ impl<
             for t in bucket {
                 let rec = tris[t];
                 let (verts, h) = (&*verts, vh as i32);
+                // (A constant test: without attribute stores this is the loop it was.)
+                if XV > 0 && XA > 0 && is_textured(&rec, xverts) {
+                    if !push_textured::<C, ACTIVE>(active, xactive, &rec, verts, xverts, row, h) {
+                        *skipped = skipped.saturating_add(1);
+                    }
+                    continue;
+                }
                 // Full only under `OverflowPolicy::DrawWhatFits` (the largest number of rows'
                 // overlaps was checked): the triangle is left out and counted.
                 if !active.push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, mode)) {
@@ -278,13 +290,25 @@ impl<
                 if i >= active.len() {
                     break;
                 }
-                let (frag, written, done) = active.get_mut(i).draw_row(
-                    row as i32,
-                    &mut color[l][..vw],
-                    &mut depth[l][..vw],
-                    *depth_test,
-                    *dither,
-                );
+                let a = active.get_mut(i);
+                let (frag, written, done) = if XA > 0 && a.flags & TEXTURED != 0 {
+                    draw_row_textured(
+                        a,
+                        xactive,
+                        row as i32,
+                        &mut color[l][..vw],
+                        &mut depth[l][..vw],
+                        *depth_test,
+                    )
+                } else {
+                    a.draw_row(
+                        row as i32,
+                        &mut color[l][..vw],
+                        &mut depth[l][..vw],
+                        *depth_test,
+                        *dither,
+                    )
+                };
                 stats.add_row(frag, written);
                 if done {
                     active.swap_remove(i);

@@ -574,6 +574,7 @@ fn lit_red<S: Scalar>() -> Material<S> {
         specular: S::ZERO,
         shininess: 1,
         shading: Shading::Gouraud,
+        texture: None,
     }
 }
 

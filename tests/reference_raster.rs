@@ -130,6 +130,7 @@ fn render<C: TargetColor, const N: usize>(tris: &[RefTri]) -> Frame<C> {
             specular: 0.0,
             shininess: 1,
             shading: Shading::Gouraud,
+            texture: None,
         },
     }];
     let light = |d: [f64; 3], c: [u8; 3]| Light {

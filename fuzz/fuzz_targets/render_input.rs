@@ -193,6 +193,7 @@ pub fn colour_range_violation<S: Scalar>(
             specular: S::from_f64(0.0),
             shininess: 1,
             shading: Shading::Gouraud,
+            texture: None,
         },
     }];
     let axis = |k: usize| {

@@ -4,6 +4,7 @@
 
 pub mod compare;
 pub mod obj;
+pub mod textures;
 
 use std::path::PathBuf;
 
@@ -204,5 +205,6 @@ pub fn unlit<S: Scalar>(color: [u8; 3], shading: Shading) -> Material<S> {
         specular: S::ZERO,
         shininess: 1,
         shading,
+        texture: None,
     }
 }
