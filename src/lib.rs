@@ -175,6 +175,7 @@ mod stats;
 mod strip;
 mod texture;
 mod textured;
+mod textured_shapes;
 mod wide;
 
 pub use fixed;
@@ -200,6 +201,7 @@ pub use shade::{Light, Material, Shading};
 pub use shapes::{ParamValue, Shape, ShapeError};
 pub use strip::StripCanvas;
 pub use texture::{Texture, TextureError, TextureMode, Texturing, Wrap, MAX_TEXTURE_SIZE};
+pub use textured_shapes::TexturedShape;
 
 #[doc(inline)]
 pub use embedded_graphics_core::draw_target::DrawTarget;

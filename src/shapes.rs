@@ -166,7 +166,7 @@ impl fmt::Display for ShapeError {
 impl core::error::Error for ShapeError {}
 
 /// `Ok` when `v` is finite and positive, else [`ShapeError::BadParameter`] naming it.
-fn positive(name: &'static str, v: f64) -> Result<(), ShapeError> {
+pub(crate) fn positive(name: &'static str, v: f64) -> Result<(), ShapeError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
@@ -179,7 +179,7 @@ fn positive(name: &'static str, v: f64) -> Result<(), ShapeError> {
 }
 
 /// `Ok` when the count `n` is at least `min`, else [`ShapeError::BadParameter`] naming it.
-fn at_least(
+pub(crate) fn at_least(
     name: &'static str,
     n: usize,
     min: usize,
@@ -201,7 +201,7 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
     /// Checks that the shape's largest coordinate in magnitude, `extent` (finite and > 0, from
     /// already checked parameters), and its negation are valid values of `S` and that `extent`
     /// does not round to zero.
-    fn check_extent(extent: f64) -> Result<(), ShapeError> {
+    pub(crate) fn check_extent(extent: f64) -> Result<(), ShapeError> {
         let (hi, lo) = (S::from_f64(extent), S::from_f64(-extent));
         if !(extent.is_finite() && hi.is_valid() && lo.is_valid()) {
             return Err(ShapeError::OutOfRange {
@@ -223,7 +223,7 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
     /// Empty storage for a shape of `vertices` vertices and `triangles` triangles (`None`: more
     /// than `usize::MAX`), or [`ShapeError::Capacity`] if it does not fit `V`, `T` and `u16`
     /// indices. After `Ok`, pushing that many vertices and triangles cannot fail.
-    fn with_capacity_for(
+    pub(crate) fn with_capacity_for(
         vertices: Option<usize>,
         triangles: Option<usize>,
     ) -> Result<Self, ShapeError> {
@@ -243,13 +243,13 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
         }
     }
 
-    fn vertex(&mut self, p: [f64; 3], n: [f64; 3]) {
+    pub(crate) fn vertex(&mut self, p: [f64; 3], n: [f64; 3]) {
         // Capacity was checked up front.
         let _ = self.positions.push(p.map(S::from_f64));
         let _ = self.normals.push(n.map(S::from_f64));
     }
 
-    fn tri(&mut self, a: usize, b: usize, c: usize) {
+    pub(crate) fn tri(&mut self, a: usize, b: usize, c: usize) {
         // Indices are below the vertex count, checked ≤ 65 536 up front: `as u16` is exact.
         let _ = self.indices.push([a as u16, b as u16, c as u16]);
     }
