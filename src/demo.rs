@@ -105,17 +105,28 @@ pub enum Bench {
     Overdraw,
     /// Six cubes from 0.05 to 800 units away with near 0.01 and far 1000 (depth precision).
     Deep,
+    /// A checkerboard floor receding to the far plane with a textured cube on it, lit
+    /// (Gouraud), the floor crossing the near plane: perspective-correct texturing by
+    /// 16-pixel segments ([`crate::TextureMode::Subdivided16`]).
+    Textured,
+    /// [`Bench::Textured`] with [`crate::TextureMode::Affine`] spans.
+    TexturedAffine,
+    /// [`Bench::Textured`] with [`crate::TextureMode::PerPixel`] spans (the reference).
+    TexturedExact,
 }
 
 impl Bench {
     /// Every benchmark scene.
-    pub const ALL: [Bench; 6] = [
+    pub const ALL: [Bench; 9] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
         Bench::Terrain,
         Bench::Overdraw,
         Bench::Deep,
+        Bench::Textured,
+        Bench::TexturedAffine,
+        Bench::TexturedExact,
     ];
 
     /// Its name in reports.
@@ -128,6 +139,9 @@ impl Bench {
             Bench::Terrain => "terrain",
             Bench::Overdraw => "overdraw",
             Bench::Deep => "deep",
+            Bench::Textured => "textured",
+            Bench::TexturedAffine => "textured_affine",
+            Bench::TexturedExact => "textured_exact",
         }
     }
 }
@@ -214,7 +228,7 @@ where
         material: torus_material(),
     }];
     let scene = crate::Scene::new(&objects, camera().map_err(|_| BenchError::Scene)?, lights());
-    render_with::<S, C, D, P, W, W, 512, T, A, 1, 1>(&scene, false, target, probe)
+    render_with::<S, C, D, P, W, W, 512, T, A, 1, 1, 0, 0>(&scene, false, target, probe)
 }
 
 /// Renders `scene` with a fresh `W × H` renderer of capacities `V`, `T`, `A` and reports the
@@ -231,6 +245,8 @@ fn render_with<
     const A: usize,
     const L: usize,
     const LINES: usize,
+    const XV: usize,
+    const XA: usize,
 >(
     scene: &crate::Scene<'_, S, L>,
     dither: bool,
@@ -245,7 +261,7 @@ where
 {
     // Set in place: `with_dither` would move the renderer, which may take a second copy of it
     // on the stack.
-    let mut r = crate::Renderer::<S, C, W, H, V, T, A, LINES>::new();
+    let mut r = crate::Renderer::<S, C, W, H, V, T, A, LINES, XV, XA>::new();
     r.set_dither(dither);
     let stats = r
         .render_probed(scene, target, probe)
@@ -286,11 +302,23 @@ where
     let scene = crate::Scene::new(&objects, camera, lights());
     if C::triangle_id(0).is_some() {
         // One more vertex record per drawn triangle, as in `render_bench`.
-        render_with::<S, C, D, P, 240, 240, { 512 + TORUS_TRIS }, TORUS_TRIS, TORUS_ACTIVE, 1, LINES>(
-            &scene, dither, target, probe,
-        )
+        render_with::<
+            S,
+            C,
+            D,
+            P,
+            240,
+            240,
+            { 512 + TORUS_TRIS },
+            TORUS_TRIS,
+            TORUS_ACTIVE,
+            1,
+            LINES,
+            0,
+            0,
+        >(&scene, dither, target, probe)
     } else {
-        render_with::<S, C, D, P, 240, 240, 512, TORUS_TRIS, TORUS_ACTIVE, 1, LINES>(
+        render_with::<S, C, D, P, 240, 240, 512, TORUS_TRIS, TORUS_ACTIVE, 1, LINES, 0, 0>(
             &scene, dither, target, probe,
         )
     }
@@ -317,7 +345,9 @@ where
         ($objects:expr, $camera:expr, $lights:expr, $v:expr, $t:expr, $a:expr) => {{
             let camera = $camera.map_err(|_| BenchError::Scene)?;
             let scene = crate::Scene::new(&$objects, camera, $lights);
-            render_with::<S, C, D, P, 240, 240, { $v }, $t, $a, 1, 1>(&scene, dither, target, probe)
+            render_with::<S, C, D, P, 240, 240, { $v }, $t, $a, 1, 1, 0, 0>(
+                &scene, dither, target, probe,
+            )
         }};
     }
     // Rendering triangle ids makes every triangle flat, which takes one more vertex record
@@ -440,6 +470,56 @@ where
                 16
             )
         }
+        Bench::Textured | Bench::TexturedAffine | Bench::TexturedExact => {
+            let mode = match bench {
+                Bench::TexturedAffine => crate::TextureMode::Affine,
+                Bench::TexturedExact => crate::TextureMode::PerPixel,
+                _ => crate::TextureMode::Subdivided16,
+            };
+            let cube =
+                crate::TexturedShape::<S, 24, 12>::cube(1.0).map_err(|_| BenchError::Scene)?;
+            let floor = Floor::<S>::new();
+            let floor_mesh = crate::Mesh::new(&floor.positions, &floor.indices)
+                .and_then(|m| m.with_normals(&floor.normals))
+                .and_then(|m| m.with_uvs(&floor.uvs))
+                .map_err(|_| BenchError::Scene)?;
+            let lit = |c: [u8; 3]| {
+                Material::matte(c, S::from_f64(0.3), S::from_f64(0.7))
+                    .textured(&CHECKER)
+                    .texture_mode(mode)
+            };
+            let objects = [
+                Object {
+                    mesh: floor_mesh,
+                    transform: Mat4::identity(),
+                    material: lit([255, 255, 255]),
+                },
+                Object {
+                    mesh: cube.mesh(),
+                    transform: Mat4::scale([S::from_f64(0.6); 3])
+                        .then(&Mat4::rotate_y(deg(30.0)))
+                        .then(&Mat4::translate([
+                            S::ZERO,
+                            S::from_f64(0.6),
+                            S::from_f64(-1.0),
+                        ]))
+                        .then(&spin),
+                    material: lit([255, 220, 160]),
+                },
+            ];
+            let cam = look([-0.8, 1.0, 2.2], [0.3, 0.2, -1.5], persp(60.0, 0.1, 12.0));
+            let camera = cam.map_err(|_| BenchError::Scene)?;
+            let scene = crate::Scene::new(
+                &objects,
+                camera,
+                [Light::white([-S::ONE, S::from_f64(2.0), S::ONE])],
+            );
+            // Room for the clipped floor and, with triangle ids (every triangle flat), one more
+            // vertex record per triangle.
+            render_with::<S, C, D, P, 240, 240, 96, 24, 16, 1, 1, 96, 16>(
+                &scene, dither, target, probe,
+            )
+        }
         Bench::Deep => {
             let shape = Shape::<S, 24, 12>::cube(1.0).map_err(|_| BenchError::Scene)?;
             let mut objects = [Object {
@@ -470,6 +550,55 @@ where
                 80,
                 40
             )
+        }
+    }
+}
+
+/// The textured benchmark's 64 × 64 texture: a two-tone checkerboard of 8 × 8-texel squares
+/// with a dark line along each square's top and left edge (the lines show a perspective
+/// error as bent or broken lines).
+pub static CHECKER_TEXELS: [u16; 64 * 64] = {
+    let mut t = [0u16; 64 * 64];
+    let mut i = 0;
+    while i < 64 * 64 {
+        let (x, y) = (i % 64, i / 64);
+        let light = ((x / 8) + (y / 8)) % 2 == 0;
+        t[i] = if x % 8 == 0 || y % 8 == 0 {
+            0x2104 // dark grey (4, 8, 4)
+        } else if light {
+            0xffff
+        } else {
+            0xc618 // grey (24, 48, 24)
+        };
+        i += 1;
+    }
+    t
+};
+
+/// [`CHECKER_TEXELS`] as a texture (repeating).
+pub static CHECKER: crate::Texture = match crate::Texture::new(&CHECKER_TEXELS, 64, 64) {
+    Ok(t) => t,
+    Err(_) => panic!("the checkerboard is 64 x 64"),
+};
+
+/// The textured benchmark's floor: x ∈ [−3, 3], z ∈ [−10, 4] at y = 0 (reaching behind the
+/// eye, so it is clipped at the near plane), facing up, the checkerboard repeated 3 × 7 times.
+struct Floor<S> {
+    positions: [[S; 3]; 4],
+    normals: [[S; 3]; 4],
+    uvs: [[S; 2]; 4],
+    indices: [[u16; 3]; 2],
+}
+
+impl<S: Scalar> Floor<S> {
+    fn new() -> Self {
+        let p = |x: f64, z: f64| [S::from_f64(x), S::ZERO, S::from_f64(z)];
+        let uv = |x: f64, z: f64| [S::from_f64((x + 3.0) * 0.5), S::from_f64((4.0 - z) * 0.5)];
+        Floor {
+            positions: [p(-3.0, 4.0), p(3.0, 4.0), p(3.0, -10.0), p(-3.0, -10.0)],
+            normals: [[S::ZERO, S::ONE, S::ZERO]; 4],
+            uvs: [uv(-3.0, 4.0), uv(3.0, 4.0), uv(3.0, -10.0), uv(-3.0, -10.0)],
+            indices: [[0, 1, 2], [0, 2, 3]],
         }
     }
 }

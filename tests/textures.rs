@@ -125,4 +125,16 @@ fn dump_pictures() {
         let f = floor_scene::<Q>(coded_texture(Wrap::Repeat, Wrap::Repeat), mode, None);
         std::fs::write(format!("/tmp/floor_{name}.png"), common::png_bytes(&f)).unwrap();
     }
+    use scanline3d::demo::{render_bench, Bench};
+    for b in [Bench::Textured, Bench::TexturedAffine, Bench::TexturedExact] {
+        let mut f = common::Frame::new(240, 240, Rgb565::BLACK);
+        let r = render_bench::<Q, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::NoProbe)
+            .unwrap();
+        println!("{}: {:?}", b.name(), r.stats);
+        std::fs::write(
+            format!("/tmp/bench_{}.png", b.name()),
+            common::png_bytes(&f),
+        )
+        .unwrap();
+    }
 }
