@@ -32,6 +32,10 @@ pub use crate::stats::{NoProbe, Probe, Stage, Stats};
 /// * `TRIS` — triangles a frame can keep after culling (1..=32 767); [`Stats::drawn`].
 /// * `ACTIVE` — triangles that may cross one row at once (1..=32 768); [`Stats::max_active`].
 /// * `LINES` — rows per strip (default 1).
+/// * `XV`, `XA` — the texture attribute stores (default 0, 0: no textures, and no RAM or
+///   instruction spent on them): texture coordinates for the first `XV` records of the
+///   vertex store, and extra planes for `XA` textured triangles active at once (see
+///   "Textures").
 ///
 /// # Capacities
 ///
@@ -82,6 +86,33 @@ pub use crate::stats::{NoProbe, Probe, Stage, Stats};
 /// `+ 12·VERTS + 6·TRIS + 84·ACTIVE` (vertex store, triangle list, active list)
 /// `+ 4·H` (row buckets and the active-count sweep) plus a few words; [`Renderer::RAM_BYTES`]
 /// is the exact figure for a given instantiation. No framebuffer, no full-screen depth buffer.
+/// The texture stores add `XV·`[`VERTEX_EXTRA_BYTES`]` + XA·`[`ACTIVE_EXTRA_BYTES`] (20 and
+/// 108 bytes on a 32-bit core).
+///
+/// # Textures
+///
+/// A scene with a textured material ([`crate::Material::textured`]) needs `XV` at least the
+/// vertex-store index its last textured vertex gets (the vertices of the objects before it,
+/// its own, and those its clipping and flat shading add: `XV = VERTS` always suffices) and
+/// `XA ≥ 1`; otherwise the frame fails with [`Error::AttributeStore`] before anything is
+/// drawn. A textured triangle that finds all `XA` entries in use is left out and counted like
+/// one that finds the active list full ([`Renderer::shortfall`]); `XA` equal to the most
+/// textured triangles on one row (at most [`Stats::max_active`]) draws everything.
+///
+/// ```
+/// # use embedded_graphics::pixelcolor::Rgb565;
+/// # use scanline3d::prelude::*;
+/// # type Q = Fx<scanline3d::fixed::types::I16F16>;
+/// // 240 × 240, 64 vertices, 64 triangles, 16 active, 1 line, textures for all 64
+/// // vertices and 16 active triangles.
+/// type Textured = Renderer<Q, Rgb565, 240, 240, 64, 64, 16, 1, 64, 16>;
+/// assert_eq!(
+///     Textured::RAM_BYTES,
+///     Renderer::<Q, Rgb565, 240, 240, 64, 64, 16>::RAM_BYTES
+///         + 64 * scanline3d::VERTEX_EXTRA_BYTES
+///         + 16 * scanline3d::ACTIVE_EXTRA_BYTES
+/// );
+/// ```
 #[derive(Debug)]
 pub struct Renderer<
     S,
@@ -637,6 +668,12 @@ pub const VERTEX_BYTES: usize = core::mem::size_of::<ScreenVertex>();
 pub const TRIANGLE_BYTES: usize = core::mem::size_of::<TriRecord>();
 /// Bytes per active triangle (84).
 pub const ACTIVE_BYTES: usize = core::mem::size_of::<ActiveTri>();
+/// Bytes per vertex of the texture attribute store (`XV`): 20 on a 32-bit core, 24 on a
+/// 64-bit host.
+pub const VERTEX_EXTRA_BYTES: usize = core::mem::size_of::<VertexExtra>();
+/// Bytes per entry of the textured triangles' pool (`XA`): 108 on a 32-bit core, 112 on a
+/// 64-bit host.
+pub const ACTIVE_EXTRA_BYTES: usize = core::mem::size_of::<ActiveExtra>();
 
 /// The documented RAM formula (see the crate docs): colour and depth lines, vertex store,
 /// triangle list, active list, row buckets; `extra` covers alignment and a few words of state.
@@ -695,5 +732,20 @@ mod ram_tests {
             320, 200, 4, 4, 100, 300, 20,
         ));
         check::<Renderer<f64, Rgb565, 16, 16, 8, 8, 8, 16>>(ram_formula(16, 16, 2, 16, 8, 8, 8));
+    }
+}
+
+#[cfg(test)]
+mod extra_size_tests {
+    use super::*;
+
+    #[test]
+    fn attribute_store_records_are_the_documented_sizes() {
+        let host = core::mem::size_of::<usize>() == 8;
+        assert_eq!(
+            (VERTEX_EXTRA_BYTES, ACTIVE_EXTRA_BYTES),
+            if host { (24, 112) } else { (20, 108) }
+        );
+        assert_eq!(core::mem::align_of::<ActiveExtra>(), 4);
     }
 }

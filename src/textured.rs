@@ -479,3 +479,9 @@ fn scaled_div(n: i64, det: i64, s: u32) -> i64 {
     let (q, r) = (n / det, n % det);
     q.wrapping_shl(s).wrapping_add(round_div(r << s, det))
 }
+
+// The documented record sizes on 32-bit cores (`VERTEX_EXTRA_BYTES`, `ACTIVE_EXTRA_BYTES`).
+#[cfg(target_pointer_width = "32")]
+const _: () = assert!(
+    core::mem::size_of::<VertexExtra>() == 20 && core::mem::size_of::<ActiveExtra>() == 108
+);

@@ -114,27 +114,20 @@ fn renderer_without_textures_is_the_same_size() {
     assert_eq!(std::mem::align_of::<Plain>(), std::mem::align_of::<Zero>());
 }
 
+/// The textured benchmark frame in every span mode and number type, against golden images
+/// (looked at): the checkerboard floor crossing the near plane and the textured cube.
 #[test]
-#[ignore]
-fn dump_pictures() {
-    for (name, mode) in [
-        ("pp", TextureMode::PerPixel),
-        ("s16", TextureMode::Subdivided16),
-        ("aff", TextureMode::Affine),
-    ] {
-        let f = floor_scene::<Q>(coded_texture(Wrap::Repeat, Wrap::Repeat), mode, None);
-        std::fs::write(format!("/tmp/floor_{name}.png"), common::png_bytes(&f)).unwrap();
-    }
+fn textured_frames_match_their_golden_images() {
     use scanline3d::demo::{render_bench, Bench};
-    for b in [Bench::Textured, Bench::TexturedAffine, Bench::TexturedExact] {
+    fn one<S: Scalar>(b: Bench, ty: &str) {
         let mut f = common::Frame::new(240, 240, Rgb565::BLACK);
-        let r = render_bench::<Q, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::NoProbe)
-            .unwrap();
-        println!("{}: {:?}", b.name(), r.stats);
-        std::fs::write(
-            format!("/tmp/bench_{}.png", b.name()),
-            common::png_bytes(&f),
-        )
-        .unwrap();
+        render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::NoProbe).unwrap();
+        f.assert_each_written_once();
+        common::check_golden(&format!("{}_{ty}", b.name()), &f);
+    }
+    for b in [Bench::Textured, Bench::TexturedAffine, Bench::TexturedExact] {
+        one::<Q>(b, "I16F16");
+        one::<f32>(b, "f32");
+        one::<f64>(b, "f64");
     }
 }
