@@ -48,17 +48,21 @@ pub enum Error<E> {
         /// Index of the object in the scene.
         object: usize,
     },
-    /// Object `object` is textured but the renderer's texture attribute stores cannot hold it:
-    /// its vertices end at store index `needed` (the renderer's `XV` must be at least that)
-    /// and textured triangles need a pool (`XA` ≥ 1; see [`crate::Renderer`], "Textures").
-    /// Nothing was drawn.
+    /// Object `object` is textured but the renderer's texture attribute stores cannot hold the
+    /// frame: its vertices end at store index `vertices_needed` (the renderer's `XV` must be
+    /// at least that), or (under [`OverflowPolicy::Error`]) up to `active_needed` triangles
+    /// are active on one row, more than the `XA` textured triangles the pool holds (`XA` ≥
+    /// [`crate::Stats::max_active`] suffices; see [`crate::Renderer`], "Textures"). Nothing
+    /// was drawn.
     AttributeStore {
-        /// Index of the object in the scene.
+        /// Index of the (first) textured object in the scene.
         object: usize,
-        /// The `XV` the frame needed so far (at least).
-        needed: usize,
+        /// The `XV` the frame needs (at least).
+        vertices_needed: usize,
         /// The renderer's `XV`.
         vertex_capacity: usize,
+        /// The most triangles active on one row (an upper bound of the textured ones).
+        active_needed: usize,
         /// The renderer's `XA`.
         active_capacity: usize,
     },
@@ -125,13 +129,15 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
             ),
             Error::AttributeStore {
                 object,
-                needed,
+                vertices_needed,
                 vertex_capacity,
+                active_needed,
                 active_capacity,
             } => write!(
                 f,
-                "object {object} is textured: the renderer needs XV >= {needed} and XA >= 1 \
-                 (it has XV = {vertex_capacity}, XA = {active_capacity}); nothing was drawn"
+                "object {object} is textured: the frame needs XV >= {vertices_needed} and up to \
+                 {active_needed} textured triangles active on a row (the renderer has XV = \
+                 {vertex_capacity}, XA = {active_capacity}); nothing was drawn"
             ),
             Error::Camera(e) => write!(f, "{e}; nothing was drawn"),
             Error::Shortfall(s) => {

@@ -164,8 +164,9 @@ impl<
                 if XV == 0 || XA == 0 {
                     return Err(Error::AttributeStore {
                         object: i,
-                        needed: self.verts.len() + o.mesh.positions().len(),
+                        vertices_needed: self.verts.len() + o.mesh.positions().len(),
                         vertex_capacity: XV,
+                        active_needed: 1,
                         active_capacity: XA,
                     });
                 }
@@ -237,8 +238,9 @@ impl<
                 if obj.material.texture.is_some() && end > XV {
                     return Err(Error::AttributeStore {
                         object: index,
-                        needed: end,
+                        vertices_needed: end,
                         vertex_capacity: XV,
+                        active_needed: 0,
                         active_capacity: XA,
                     });
                 }
@@ -257,6 +259,23 @@ impl<
             max = max.max(cur);
         }
         stats.max_active = max as u32;
+        // The textured triangles' pool: under `OverflowPolicy::Error` the most triangles on a
+        // row (a bound of the textured ones among them) must fit it, so that none is left out.
+        if XA > 0 && self.overflow == OverflowPolicy::Error && max as usize > XA {
+            if let Some(object) = scene
+                .objects
+                .iter()
+                .position(|o| o.material.texture.is_some())
+            {
+                return Err(Error::AttributeStore {
+                    object,
+                    vertices_needed: self.verts.len(),
+                    vertex_capacity: XV,
+                    active_needed: max as usize,
+                    active_capacity: XA,
+                });
+            }
+        }
         // Triangles needed but not stored (only when the store or the vertices overflowed).
         let store_skipped = need.1.saturating_sub(self.tris.len());
         if need.0 > VERTS || need.1 > TRIS || max as usize > ACTIVE {

@@ -95,9 +95,11 @@ pub use crate::stats::{NoProbe, Probe, Stage, Stats};
 /// vertex-store index its last textured vertex gets (the vertices of the objects before it,
 /// its own, and those its clipping and flat shading add: `XV = VERTS` always suffices) and
 /// `XA ≥ 1`; otherwise the frame fails with [`Error::AttributeStore`] before anything is
-/// drawn. A textured triangle that finds all `XA` entries in use is left out and counted like
-/// one that finds the active list full ([`Renderer::shortfall`]); `XA` equal to the most
-/// textured triangles on one row (at most [`Stats::max_active`]) draws everything.
+/// drawn. Under [`OverflowPolicy::Error`] the frame also fails so when more triangles than
+/// `XA` are active on one row ([`Stats::max_active`], a bound of the textured ones: the
+/// renderer does not count those apart), so that no textured triangle is left out; under
+/// [`OverflowPolicy::DrawWhatFits`] a textured triangle that finds all `XA` entries in use is
+/// left out and counted in [`Renderer::shortfall`] (`skipped`).
 ///
 /// ```
 /// # use embedded_graphics::pixelcolor::Rgb565;
@@ -283,7 +285,8 @@ impl<
             s.drawn as usize + self.store_skipped as usize,
             s.max_active as usize,
         );
-        if needed.fits(&Self::CAPACITY) {
+        // (A textured triangle left out for want of a pool entry is a shortfall too.)
+        if needed.fits(&Self::CAPACITY) && self.active_skipped == 0 {
             return None;
         }
         Some(Shortfall {

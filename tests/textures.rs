@@ -11,7 +11,7 @@ use common::textures::{coded_texture, floor_error, floor_scene, TexError, FLOOR_
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use scanline3d::prelude::*;
-use scanline3d::{Texture, TextureMode, Wrap};
+use scanline3d::{OverflowPolicy, Renderer, Texture, TextureMode, Wrap};
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;
 
@@ -107,7 +107,6 @@ fn textured_scene_without_attribute_stores_is_a_clear_error() {
 
 #[test]
 fn renderer_without_textures_is_the_same_size() {
-    use scanline3d::Renderer;
     type Plain = Renderer<Q, Rgb565, 240, 240, 512, 466, 61>;
     type Zero = Renderer<Q, Rgb565, 240, 240, 512, 466, 61, 1, 0, 0>;
     assert_eq!(std::mem::size_of::<Plain>(), std::mem::size_of::<Zero>());
@@ -130,4 +129,123 @@ fn textured_frames_match_their_golden_images() {
         one::<f32>(b, "f32");
         one::<f64>(b, "f64");
     }
+}
+
+/// A textured floor with `XA` pool entries, under `policy`: the frame, its stats and its
+/// shortfall.
+fn floor_with_pool<const XA: usize>(
+    policy: OverflowPolicy,
+    shading: Shading,
+) -> (
+    common::Frame<Rgb565>,
+    Result<scanline3d::Stats, scanline3d::Error<core::convert::Infallible>>,
+    Option<scanline3d::Shortfall>,
+) {
+    let f = common::textures::floor::<f32>();
+    let mesh = Mesh::new(&f.positions, &f.indices)
+        .unwrap()
+        .with_normals(&f.normals)
+        .unwrap()
+        .with_uvs(&f.uvs)
+        .unwrap();
+    let tex = coded_texture(Wrap::Repeat, Wrap::Repeat);
+    let objects = [Object {
+        mesh,
+        transform: Mat4::identity(),
+        material: Material::matte([255; 3], 1.0, 0.0)
+            .shading(shading)
+            .textured(tex)
+            .texture_mode(TextureMode::PerPixel),
+    }];
+    let scene = Scene::new(
+        &objects,
+        common::textures::floor_camera(),
+        [Light::white([0.0, 1.0, 0.0])],
+    );
+    let mut r: Box<Renderer<f32, Rgb565, 160, 120, 64, 64, 16, 1, 64, XA>> = Box::default();
+    r.set_overflow(policy);
+    let mut frame = common::Frame::new(160, 120, Rgb565::BLACK);
+    let res = r.render(&scene, &mut frame);
+    (frame, res, r.shortfall())
+}
+
+#[test]
+fn a_full_pool_leaves_triangles_out_and_counts_them() {
+    // Both floor triangles are active on the same rows: one pool entry cannot hold them.
+    let (full, ok, none) = floor_with_pool::<2>(OverflowPolicy::Error, Shading::Gouraud);
+    assert!(ok.is_ok() && none.is_none());
+    let (part, _, short) = floor_with_pool::<1>(OverflowPolicy::DrawWhatFits, Shading::Gouraud);
+    let short = short.expect("a triangle was left out");
+    // Under the default policy the frame is refused instead, before anything is drawn.
+    let (_, err, _) = floor_with_pool::<1>(OverflowPolicy::Error, Shading::Gouraud);
+    assert!(
+        matches!(
+            err,
+            Err(scanline3d::Error::AttributeStore {
+                active_needed: 2,
+                active_capacity: 1,
+                ..
+            })
+        ),
+        "{err:?}"
+    );
+    assert!(short.skipped >= 1, "{short:?}");
+    let lit = |f: &common::Frame<Rgb565>| f.px.iter().filter(|&&c| c != Rgb565::BLACK).count();
+    assert!(lit(&part) < lit(&full) && lit(&part) > 0);
+}
+
+#[test]
+fn flat_textured_triangles_are_the_same_unlit() {
+    // Unlit (ambient 1, no diffuse), flat and Gouraud textured triangles show the same texels.
+    let (g, _, _) = floor_with_pool::<4>(OverflowPolicy::Error, Shading::Gouraud);
+    let (f, _, _) = floor_with_pool::<4>(OverflowPolicy::Error, Shading::Flat);
+    assert_eq!(g.px, f.px);
+    f.assert_each_written_once();
+}
+
+#[test]
+fn seeking_a_row_gives_the_rows_of_the_whole_frame() {
+    // The whole frame, then the same frame from row 100 on after a seek: the texture planes
+    // are evaluated per row (no drift), the lighting within one step as for any triangle.
+    let shape = scanline3d::TexturedShape::<Q, 24, 12>::cube(1.0).unwrap();
+    let objects = [Object {
+        mesh: shape.mesh(),
+        transform: Mat4::rotate_y(Q::lit(0.5)),
+        material: Material::matte([255; 3], Q::lit(0.3), Q::lit(0.7))
+            .textured(&scanline3d::demo::CHECKER),
+    }];
+    let cam = Camera::look_at(
+        [Q::lit(0.0), Q::lit(1.5), Q::lit(3.0)],
+        [Q::ZERO; 3],
+        [Q::ZERO, Q::ONE, Q::ZERO],
+        Projection::Perspective {
+            fov_y: Q::lit(0.9),
+            near: Q::lit(0.1),
+            far: Q::lit(10.0),
+        },
+    )
+    .unwrap();
+    let scene = Scene::new(&objects, cam, [Light::white([-Q::ONE, Q::ONE, Q::ONE])]);
+    type R = Renderer<Q, Rgb565, 240, 240, 64, 64, 16, 1, 64, 16>;
+    let mut a: Box<R> = Box::default();
+    let mut full = common::Frame::new(240, 240, Rgb565::BLACK);
+    a.render(&scene, &mut full).unwrap();
+    let mut b: Box<R> = Box::default();
+    b.prepare(&scene).unwrap();
+    b.seek_row(100);
+    let mut tail = common::Frame::new(240, 240, Rgb565::BLACK);
+    while b.render_strip(&mut tail).unwrap().is_some() {}
+    let mut worst = 0;
+    for y in 100..240 {
+        for x in 0..240 {
+            let (p, q) = (full.get(x, y), tail.get(x, y));
+            let d = (p.r() as i32 - q.r() as i32)
+                .abs()
+                .max((p.g() as i32 - q.g() as i32).abs())
+                .max((p.b() as i32 - q.b() as i32).abs());
+            worst = worst.max(d);
+        }
+    }
+    assert!(worst <= 1, "{worst}");
+    assert!(full.px.iter().filter(|&&c| c != Rgb565::BLACK).count() > 5000);
 }

@@ -174,3 +174,13 @@ pub fn compare<S: Scalar>(b: Bench, runs: usize) -> [Row; 2] {
         },
     ]
 }
+
+/// The error of scene `b` in number type `S` against scene `reference` in f64 (both with their
+/// own geometry): for a span mode against the exact one, the whole error a user sees.
+pub fn compare_with<S: Scalar>(b: Bench, reference: Bench) -> Metrics {
+    let img = frame::<S, Rgb565, _>(b, &mut scanline3d::NoProbe);
+    let ids = frame::<S, TriangleId, _>(b, &mut scanline3d::NoProbe);
+    let r = frame::<f64, Rgb565, _>(reference, &mut scanline3d::NoProbe);
+    let r_ids = frame::<f64, TriangleId, _>(reference, &mut scanline3d::NoProbe);
+    metrics(&img, &r, &ids, &r_ids)
+}
