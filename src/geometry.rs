@@ -186,6 +186,7 @@ impl<
             .mul(&scene.camera.view);
         let mut need = (0usize, 0usize);
         let k24 = match scene.camera.projection {
+            _ if XV == 0 => 0,
             Projection::Perspective { near, far, .. } => {
                 let k = 1.0 - near.to_f64() / far.to_f64();
                 libm::round(k.clamp(0.0, 1.0) * (1u32 << 24) as f64) as u32

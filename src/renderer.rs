@@ -15,7 +15,7 @@ use crate::project::{ScreenVertex, MAX_SCREEN};
 use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
 use crate::scene::Scene;
-use crate::textured::{is_textured, push_textured, ActiveExtra, VertexExtra};
+use crate::textured::{attach_pushed, is_textured, ActiveExtra, VertexExtra};
 
 pub use crate::error::{Capacity, Error, Needs, OverflowPolicy, Shortfall, StripBufferTooSmall};
 pub use crate::stats::{NoProbe, Probe, Stage, Stats};
@@ -598,27 +598,25 @@ impl<
             if first_pixel(y_max as i32) <= row as i32 {
                 continue;
             }
-            if XV > 0 && XA > 0 && is_textured(rec, &self.xverts) {
-                let (xv, pool) = (&self.xverts, &mut self.xactive);
-                if !push_textured::<C, ACTIVE>(
-                    &mut self.active,
-                    pool,
-                    rec,
-                    verts,
-                    xv,
-                    row,
-                    vh as i32,
-                ) {
-                    self.active_skipped = self.active_skipped.saturating_add(1);
-                }
-                continue;
-            }
+            // A textured triangle as in the strip pass (constant tests without the stores).
+            let textured = XV > 0 && XA > 0 && is_textured(rec, &self.xverts);
+            let m = if textured { SpanMode::default() } else { mode };
+            let before = self.active.len();
             // Full only under `OverflowPolicy::DrawWhatFits` (the largest number of triangles
             // crossing one row was checked when the frame was prepared): the triangle is left
             // out and counted.
             if !self
                 .active
-                .push_with(|a| a.setup::<C>(rec, verts, row as i32, vh as i32, mode))
+                .push_with(|a| a.setup::<C>(rec, verts, row as i32, vh as i32, m))
+                || (textured
+                    && !attach_pushed::<C, ACTIVE>(
+                        &mut self.active,
+                        before,
+                        &mut self.xactive,
+                        rec,
+                        verts,
+                        &self.xverts,
+                    ))
             {
                 self.active_skipped = self.active_skipped.saturating_add(1);
             }

@@ -13,7 +13,7 @@ use embedded_graphics_core::Pixel;
 use crate::color::{rgb565_word, rgb565_words_mut, TargetColor};
 use crate::raster::SpanMode;
 use crate::scalar::Scalar;
-use crate::textured::{draw_row_textured, is_textured, push_textured, TEXTURED};
+use crate::textured::{attach_pushed, draw_row_textured, is_textured, TEXTURED};
 
 use crate::error::*;
 use crate::kernel;
@@ -263,20 +263,37 @@ impl<
             for t in bucket {
                 let rec = tris[t];
                 let (verts, h) = (&*verts, vh as i32);
-                // (A constant test: without attribute stores this is the loop it was.)
-                if XV > 0 && XA > 0 && is_textured(&rec, xverts) {
-                    if !push_textured::<C, ACTIVE>(active, xactive, &rec, verts, xverts, row, h) {
-                        *skipped = skipped.saturating_add(1);
-                    }
-                    continue;
-                }
+                // A textured triangle is set up as an ordinary one (no fast path) and gets its
+                // planes after. (Constant tests: without attribute stores this is the loop it
+                // was.)
+                let textured = XV > 0 && XA > 0 && is_textured(&rec, xverts);
+                let m = if textured { SpanMode::default() } else { mode };
+                let before = active.len();
                 // Full only under `OverflowPolicy::DrawWhatFits` (the largest number of rows'
                 // overlaps was checked): the triangle is left out and counted.
-                if !active.push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, mode)) {
+                if !active.push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, m))
+                    || (textured
+                        && !attach_pushed::<C, ACTIVE>(
+                            active, before, xactive, &rec, verts, xverts,
+                        ))
+                {
                     *skipped = skipped.saturating_add(1);
                 }
             }
             probe.enter(Stage::Raster);
+            if XA > 0 {
+                draw_row_with_textures(
+                    active,
+                    xactive,
+                    row,
+                    &mut color[l][..vw],
+                    &mut depth[l][..vw],
+                    *depth_test,
+                    *dither,
+                    stats,
+                );
+                continue;
+            }
             let mut i = 0;
             loop {
                 if let Some(words) = rgb565_words_mut(&mut color[l][..vw]) {
@@ -290,25 +307,13 @@ impl<
                 if i >= active.len() {
                     break;
                 }
-                let a = active.get_mut(i);
-                let (frag, written, done) = if XA > 0 && a.flags & TEXTURED != 0 {
-                    draw_row_textured(
-                        a,
-                        xactive,
-                        row as i32,
-                        &mut color[l][..vw],
-                        &mut depth[l][..vw],
-                        *depth_test,
-                    )
-                } else {
-                    a.draw_row(
-                        row as i32,
-                        &mut color[l][..vw],
-                        &mut depth[l][..vw],
-                        *depth_test,
-                        *dither,
-                    )
-                };
+                let (frag, written, done) = active.get_mut(i).draw_row(
+                    row as i32,
+                    &mut color[l][..vw],
+                    &mut depth[l][..vw],
+                    *depth_test,
+                    *dither,
+                );
                 stats.add_row(frag, written);
                 if done {
                     active.swap_remove(i);
@@ -319,5 +324,49 @@ impl<
         }
         self.next_row = y0 + lines;
         Some((y0, lines))
+    }
+}
+
+/// The row loop of a strip line for a renderer with a textured triangles' pool: as the
+/// renderer's own (the row kernel, then each active triangle's row), with textured triangles
+/// drawn by [`draw_row_textured`]. Apart, so that a renderer without the pool compiles its row
+/// loop exactly as before.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn draw_row_with_textures<C: TargetColor, const N: usize>(
+    active: &mut crate::raster::ActiveList<N>,
+    pool: &mut [crate::textured::ActiveExtra],
+    row: usize,
+    colors: &mut [C],
+    depth: &mut [u16],
+    test: crate::raster::DepthTest,
+    dither: bool,
+    stats: &mut Stats,
+) {
+    let mut i = 0;
+    loop {
+        if let Some(words) = rgb565_words_mut(colors) {
+            if let Some((next, frag, written)) =
+                kernel::rows565(active, i, words, depth, row, dither)
+            {
+                stats.add_row(frag, written);
+                i = next;
+            }
+        }
+        if i >= active.len() {
+            break;
+        }
+        let a = active.get_mut(i);
+        let (frag, written, done) = if a.flags & TEXTURED != 0 {
+            draw_row_textured(a, pool, row as i32, colors, depth, test)
+        } else {
+            a.draw_row(row as i32, colors, depth, test, dither)
+        };
+        stats.add_row(frag, written);
+        if done {
+            active.swap_remove(i);
+        } else {
+            i += 1;
+        }
     }
 }

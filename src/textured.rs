@@ -149,26 +149,24 @@ pub(crate) fn is_textured(t: &TriRecord, xverts: &[VertexExtra]) -> bool {
     xverts.get(i).is_some_and(|x| x.texture.is_some())
 }
 
-/// Sets up textured triangle `t` on `row` into `rec` and the free entry of `pool` (its
-/// index in `rec.spare`). Returns `Some(kept)`, or `None` when the pool is full.
-pub(crate) fn setup_textured<C: TargetColor>(
+/// Gives textured triangle `t`, just set up in `rec` (as an ordinary triangle, with the
+/// default [`SpanMode`]), its planes in the free entry of `pool` (the entry's index in
+/// `rec.spare`). Returns false, leaving `rec` as it was, when the pool is full or the vertices'
+/// attributes are missing.
+pub(crate) fn attach_textured<C: TargetColor>(
     rec: &mut ActiveTri,
     pool: &mut [ActiveExtra],
     t: &TriRecord,
     verts: &[ScreenVertex],
     xverts: &[VertexExtra],
-    row: i32,
-    height: i32,
-) -> Option<bool> {
-    let slot = pool.iter().position(|e| !e.used)?;
-    // Edges, depth and lit colour as an ordinary triangle (no packed fast path).
-    if !rec.setup::<C>(t, verts, row, height, SpanMode::default()) {
-        return Some(false);
-    }
+) -> bool {
+    let Some(slot) = pool.iter().position(|e| !e.used) else {
+        return false;
+    };
     let [i0, i1, i2] = t.indices();
     let x0 = xverts[(t.v[0] & !FLAT_BIT) as usize];
     let (Some(x1), Some(x2), Some(texture)) = (xverts.get(i1), xverts.get(i2), x0.texture) else {
-        return Some(false);
+        return false;
     };
     let p = [&verts[i0], &verts[i1], &verts[i2]];
     let e = &mut pool[slot];
@@ -225,7 +223,7 @@ pub(crate) fn setup_textured<C: TargetColor>(
     let (dx2, dy2) = (p[2].x as i64 - ax, p[2].y as i64 - ay);
     let det = dx1 * dy2 - dx2 * dy1;
     if det == 0 {
-        return Some(false);
+        return false;
     }
     let (px0, py0) = (
         ax.div_euclid(SUBPIXELS as i64),
@@ -251,32 +249,29 @@ pub(crate) fn setup_textured<C: TargetColor>(
     e.used = true;
     rec.flags |= TEXTURED;
     rec.spare = slot as i16;
-    Some(true)
+    true
 }
 
-/// Sets up textured triangle `t` on `row` in the next free slot of `active`: false when the
-/// active list or the pool is full (the triangle is left out, to be counted).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn push_textured<C: TargetColor, const N: usize>(
+/// After the caller set up textured triangle `t` with [`ActiveList::push_with`] and the
+/// default [`SpanMode`] (its own setup call, so that the ordinary setup keeps its call sites),
+/// `before` being the list's length before: attaches its planes, or leaves it out when the
+/// pool is full. False when it was left out (to be counted).
+pub(crate) fn attach_pushed<C: TargetColor, const N: usize>(
     active: &mut ActiveList<N>,
+    before: usize,
     pool: &mut [ActiveExtra],
     t: &TriRecord,
     verts: &[ScreenVertex],
     xverts: &[VertexExtra],
-    row: usize,
-    height: i32,
 ) -> bool {
-    let mut room = true;
-    let pushed = active.push_with(|a| {
-        match setup_textured::<C>(a, pool, t, verts, xverts, row as i32, height) {
-            Some(kept) => kept,
-            None => {
-                room = false;
-                false
-            }
-        }
-    });
-    pushed && room
+    if active.len() == before {
+        return true; // nothing to draw from this row on
+    }
+    let ok = attach_textured::<C>(active.get_mut(before), pool, t, verts, xverts);
+    if !ok {
+        active.swap_remove(before);
+    }
+    ok
 }
 
 /// A textured triangle's row: draws it like [`ActiveTri::draw_row`] and moves to the next
@@ -330,15 +325,15 @@ pub(crate) fn draw_row_textured<C: TargetColor>(
             counts = ((xe - xs) as u32, written);
         }
     }
-    let next = row + 1;
-    if next >= rec.row_end as i32 {
+    // The edges and the depth and colour planes move on in the triangle's own row routine,
+    // called for no pixel (its call sites stay those of an ordinary triangle).
+    let (_, _, done) = rec.draw_row::<C>(row, &mut [], &mut [], test, false);
+    if done {
         if let Some(e) = pool.get_mut(slot) {
             e.used = false;
         }
-        return (counts.0, counts.1, true);
     }
-    rec.advance(next);
-    (counts.0, counts.1, false)
+    (counts.0, counts.1, done)
 }
 
 /// Texel maxima of the RGB565 channels.
