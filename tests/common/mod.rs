@@ -4,6 +4,7 @@
 
 pub mod compare;
 pub mod obj;
+pub mod texture_io;
 pub mod textures;
 
 use std::path::PathBuf;

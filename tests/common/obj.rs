@@ -16,11 +16,15 @@ pub struct ObjMesh {
     pub indices: Vec<[u16; 3]>,
 }
 
-/// The same with u32 indices: any size an OBJ file can have, before simplification.
+/// The same with u32 indices: any size an OBJ file can have, before simplification; and
+/// texture coordinates when asked for ([`ObjFile::mesh_with`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct BigMesh {
     pub positions: Vec<[f64; 3]>,
     pub normals: Option<Vec<[f64; 3]>>,
+    /// Texture coordinates `(s, t)` in the renderer's convention (`t` down: `t = 1 − v` of the
+    /// file's `vt`), one per vertex; `None` unless asked for.
+    pub uvs: Option<Vec<[f64; 2]>>,
     pub indices: Vec<[u32; 3]>,
 }
 
@@ -34,13 +38,31 @@ pub enum NormalSource {
     FaceAverage,
 }
 
-/// One corner of a triangle as the file gives it: indices into [`ObjFile::positions`] and
-/// [`ObjFile::normals`]. A per-corner attribute added later (a texture coordinate) becomes a
-/// field here and a part of [`ObjFile::split_key`] when it is used.
+/// One corner of a triangle as the file gives it: indices into [`ObjFile::positions`],
+/// [`ObjFile::normals`] and [`ObjFile::uvs`]. An attribute is a part of
+/// [`ObjFile::split_key`] when it is used.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Corner {
     pub position: u32,
     pub normal: Option<u32>,
+    pub uv: Option<u32>,
+}
+
+/// Which face corners of an OBJ file have a texture coordinate (`v/vt` or `v/vt/vn`).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Texcoords {
+    /// None has.
+    None,
+    /// Every corner has.
+    All,
+    /// Some have, some not: how many of each, and the first line of a face with a corner of
+    /// each kind.
+    Some {
+        with: usize,
+        without: usize,
+        line_with: usize,
+        line_without: usize,
+    },
 }
 
 /// An OBJ file's triangles with their corners' attributes, positions welded: equal
@@ -53,9 +75,14 @@ pub struct ObjFile {
     pub positions: Vec<[f64; 3]>,
     /// Distinct `vn` values (as given, not normalized), in order of first use.
     pub normals: Vec<[f64; 3]>,
+    /// Distinct `vt` values `(u, v)` as given (`v` up), in order of first use; read only when
+    /// every face corner has one.
+    pub uvs: Vec<[f64; 2]>,
     pub triangles: Vec<[Corner; 3]>,
     /// Whether every face corner has a `vn`.
     pub all_corners_have_normals: bool,
+    /// Which face corners have a `vt`.
+    pub texcoords: Texcoords,
 }
 
 impl ObjFile {
@@ -68,18 +95,46 @@ impl ObjFile {
         }
     }
 
-    /// What must be equal for two corners to be one vertex: the position, and the normal when
-    /// the file's normals are used. (Texture coordinates do not exist in the renderer yet, so
-    /// `vt` never splits a vertex.)
-    fn split_key(c: &Corner, normals: NormalSource) -> (u32, Option<u32>) {
-        match normals {
-            NormalSource::File => (c.position, c.normal),
-            NormalSource::FaceAverage => (c.position, None),
+    /// Whether the mesh is to have texture coordinates: every face corner has a `vt` (true),
+    /// none has (false), or an error when only some have.
+    pub fn uvs_present(&self) -> Result<bool, String> {
+        match self.texcoords {
+            Texcoords::None => Ok(false),
+            Texcoords::All => Ok(true),
+            Texcoords::Some {
+                with,
+                without,
+                line_with,
+                line_without,
+            } => Err(format!(
+                "{}: texture coordinates on only some faces: {with} face corners have a vt \
+                 (first on line {line_with}), {without} have none (first on line \
+                 {line_without}); give every face corner a vt, or none",
+                self.name
+            )),
         }
     }
 
-    /// The indexed mesh: one vertex per distinct [`Self::split_key`], in order of first use.
+    /// What must be equal for two corners to be one vertex: the position, the normal when the
+    /// file's normals are used, and the texture coordinate when texture coordinates are used
+    /// (a seam: faces that meet at a position with different `vt`).
+    fn split_key(c: &Corner, normals: NormalSource, uvs: bool) -> (u32, Option<u32>, Option<u32>) {
+        let normal = match normals {
+            NormalSource::File => c.normal,
+            NormalSource::FaceAverage => None,
+        };
+        (c.position, normal, if uvs { c.uv } else { None })
+    }
+
+    /// The indexed mesh without texture coordinates ([`Self::mesh_with`]).
     pub fn mesh(&self, normals: NormalSource) -> Result<BigMesh, String> {
+        self.mesh_with(normals, false)
+    }
+
+    /// The indexed mesh: one vertex per distinct [`Self::split_key`], in order of first use;
+    /// with `uvs`, texture coordinates `(s, t) = (u, 1 − v)` (an error unless every corner has
+    /// a `vt` and every one is within ±[`scanline3d::UV_LIMIT`] once stored in Q16.16).
+    pub fn mesh_with(&self, normals: NormalSource, uvs: bool) -> Result<BigMesh, String> {
         use std::collections::HashMap;
         if normals == NormalSource::File && !self.all_corners_have_normals {
             return Err(format!(
@@ -87,25 +142,66 @@ impl ObjFile {
                 self.name
             ));
         }
-        let mut ids: HashMap<(u32, Option<u32>), u32> = HashMap::new();
+        let st = if uvs {
+            if !self.uvs_present()? {
+                return Err(format!(
+                    "{}: texture coordinates were asked for, but no face has a vt",
+                    self.name
+                ));
+            }
+            self.uvs
+                .iter()
+                .map(|&uv| self.texture_coordinate(uv))
+                .collect::<Result<Vec<_>, _>>()?
+        } else {
+            Vec::new()
+        };
+        let mut ids: HashMap<(u32, Option<u32>, Option<u32>), u32> = HashMap::new();
         let mut out = BigMesh {
             positions: Vec::new(),
             normals: (normals == NormalSource::File).then(Vec::new),
+            uvs: uvs.then(Vec::new),
             indices: Vec::with_capacity(self.triangles.len()),
         };
         for t in &self.triangles {
             out.indices.push(t.map(|c| {
-                let key = Self::split_key(&c, normals);
+                let key = Self::split_key(&c, normals, uvs);
                 *ids.entry(key).or_insert_with(|| {
                     out.positions.push(self.positions[c.position as usize]);
                     if let (Some(ns), Some(n)) = (&mut out.normals, key.1) {
                         ns.push(self.normals[n as usize]);
+                    }
+                    if let (Some(us), Some(u)) = (&mut out.uvs, key.2) {
+                        us.push(st[u as usize]);
                     }
                     (out.positions.len() - 1) as u32
                 })
             }));
         }
         Ok(out)
+    }
+
+    /// The renderer's `(s, t)` of a `vt` `(u, v)`: `(u, 1 − v)` (OBJ's `v` goes up, the
+    /// renderer's `t` down from the top row), or an error naming the `vt` when a coordinate,
+    /// rounded to Q16.16 as baked, is not strictly within ±[`scanline3d::UV_LIMIT`].
+    fn texture_coordinate(&self, [u, v]: [f64; 2]) -> Result<[f64; 2], String> {
+        let st = [u, 1.0 - v];
+        let limit = (scanline3d::UV_LIMIT * 65536.0) as i64;
+        if st
+            .iter()
+            .all(|&c| c.is_finite() && (q16(c) as i64).abs() < limit)
+        {
+            Ok(st)
+        } else {
+            Err(format!(
+                "{}: texture coordinate `vt {u} {v}` gives (s, t) = ({}, {}) (t = 1 − v): \
+                 the renderer takes coordinates strictly within ±{} (scanline3d::UV_LIMIT)",
+                self.name,
+                st[0],
+                st[1],
+                scanline3d::UV_LIMIT
+            ))
+        }
     }
 }
 
@@ -125,6 +221,7 @@ impl BigMesh {
                  `cargo run --release --example bake -- {name} --max-triangles {target} --obj-out smaller.obj`"
             ));
         }
+        // Texture coordinates, if any, stay in `self.uvs`: an `ObjMesh` has none.
         Ok(ObjMesh {
             positions: self.positions.clone(),
             normals: self.normals.clone(),
@@ -145,7 +242,8 @@ pub fn suggest_triangles(tris: usize, verts: usize, cap: usize) -> usize {
 }
 
 /// Reads and parses an OBJ file (tobj parses; polygons triangulated, `v/vt/vn` forms and
-/// negative indices accepted, all objects merged, equal positions welded).
+/// negative indices accepted, all objects merged, equal positions welded; equal `vn` and,
+/// when every corner has one, equal `vt` values too).
 pub fn parse_obj(path: &Path) -> Result<ObjFile, String> {
     use std::collections::HashMap;
     let name = path.display();
@@ -165,8 +263,9 @@ pub fn parse_obj(path: &Path) -> Result<ObjFile, String> {
         ));
     }
     // The remaining options exist only with some tobj features: keep the update.
-    // `single_index: false`: corners keep their own position and normal indices; vertices are
-    // made here, split only where the attributes used differ ([`ObjFile::mesh`]).
+    // `single_index: false`: corners keep their own position, normal and texture-coordinate
+    // indices; vertices are made here, split only where the attributes used differ
+    // ([`ObjFile::mesh_with`]).
     #[allow(clippy::needless_update)]
     let opts = tobj::LoadOptions {
         triangulate: true,
@@ -180,17 +279,33 @@ pub fn parse_obj(path: &Path) -> Result<ObjFile, String> {
         Err(tobj::LoadError::MaterialParseError)
     })
     .map_err(|e| format!("{name}: {e}"))?;
+    let texcoords = match (
+        scan.first_face_with_texcoord,
+        scan.first_face_without_texcoord,
+    ) {
+        (None, _) => Texcoords::None,
+        (Some(_), None) => Texcoords::All,
+        (Some(line_with), Some(line_without)) => Texcoords::Some {
+            with: scan.corners_with_texcoord,
+            without: scan.corners_without_texcoord,
+            line_with,
+            line_without,
+        },
+    };
     let mut file = ObjFile {
         name: name.to_string(),
         positions: Vec::new(),
         normals: Vec::new(),
+        uvs: Vec::new(),
         triangles: Vec::new(),
         all_corners_have_normals: scan.corners_without_normal == 0,
+        texcoords,
     };
     // -0.0 and 0.0 are one coordinate.
     let key = |v: [f64; 3]| v.map(|c| (c + 0.0).to_bits());
     let mut pos_ids: HashMap<[u64; 3], u32> = HashMap::new();
     let mut nor_ids: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut uv_ids: HashMap<[u64; 2], u32> = HashMap::new();
     for m in &models {
         let m = &m.mesh;
         let read3 = |v: &[f32], i: u32| -> Option<[f64; 3]> {
@@ -203,10 +318,19 @@ pub fn parse_obj(path: &Path) -> Result<ObjFile, String> {
         };
         let use_normals =
             file.all_corners_have_normals && m.normal_indices.len() == m.indices.len();
+        let use_uvs = file.texcoords == Texcoords::All;
+        if use_uvs && m.texcoord_indices.len() != m.indices.len() {
+            return Err(format!(
+                "{name}: tobj gave {} texture-coordinate indices for {} face corners",
+                m.texcoord_indices.len(),
+                m.indices.len()
+            ));
+        }
         for (k, t) in m.indices.chunks_exact(3).enumerate() {
             let mut tri = [Corner {
                 position: 0,
                 normal: None,
+                uv: None,
             }; 3];
             for j in 0..3 {
                 let p = read3(&m.positions, t[j])
@@ -222,6 +346,22 @@ pub fn parse_obj(path: &Path) -> Result<ObjFile, String> {
                     let n = nor_ids.len() as u32;
                     tri[j].normal = Some(*nor_ids.entry(key(v)).or_insert_with(|| {
                         file.normals.push(v);
+                        n
+                    }));
+                }
+                if use_uvs {
+                    let i = 2 * m.texcoord_indices[3 * k + j] as usize;
+                    let uv = m
+                        .texcoords
+                        .get(i..i + 2)
+                        .map(|c| [c[0] as f64, c[1] as f64])
+                        .ok_or_else(|| {
+                            format!("{name}: a face refers to a missing texture coordinate")
+                        })?;
+                    let n = uv_ids.len() as u32;
+                    let bits = uv.map(|c| (c + 0.0).to_bits());
+                    tri[j].uv = Some(*uv_ids.entry(bits).or_insert_with(|| {
+                        file.uvs.push(uv);
                         n
                     }));
                 }
@@ -255,6 +395,12 @@ pub struct Scan {
     pub faces: usize,
     /// Face corners without a `vn` index.
     pub corners_without_normal: usize,
+    /// Face corners with and without a `vt` index, and the first line of a face with a corner
+    /// of each kind.
+    pub corners_with_texcoord: usize,
+    pub corners_without_texcoord: usize,
+    pub first_face_with_texcoord: Option<usize>,
+    pub first_face_without_texcoord: Option<usize>,
 }
 
 /// The first line of an OBJ text that tobj would reject or that refers to a vertex that does
@@ -291,7 +437,11 @@ pub fn scan(text: &str) -> Scan {
             "vn" if !floats(3) => {
                 Some("a normal needs three numbers, all finite (and within ±3.4e38)".to_string())
             }
-            "vt" if !floats(1) => Some("a texture coordinate needs numbers".to_string()),
+            // tobj needs u and v; their range matters only where they are used
+            // (`ObjFile::mesh_with`).
+            "vt" if rest.len() < 2 || !rest.iter().take(2).all(|w| w.parse::<f32>().is_ok()) => {
+                Some("a texture coordinate needs two numbers (u v)".to_string())
+            }
             "f" => {
                 if rest.len() < 3 {
                     Some("a face needs at least three vertices".to_string())
@@ -299,6 +449,13 @@ pub fn scan(text: &str) -> Scan {
                     rest.iter().find_map(|corner| {
                         if corner.split('/').nth(2).is_none_or(str::is_empty) {
                             out.corners_without_normal += 1;
+                        }
+                        if corner.split('/').nth(1).is_none_or(str::is_empty) {
+                            out.corners_without_texcoord += 1;
+                            out.first_face_without_texcoord.get_or_insert(k + 1);
+                        } else {
+                            out.corners_with_texcoord += 1;
+                            out.first_face_with_texcoord.get_or_insert(k + 1);
                         }
                         for (i, part) in corner.split('/').enumerate() {
                             if part.is_empty() {
@@ -348,9 +505,22 @@ pub fn to_obj<I: Copy + Into<u64>>(
     normals: Option<&[[f64; 3]]>,
     indices: &[[I; 3]],
 ) -> String {
+    to_obj_with_uvs(positions, normals, None, indices)
+}
+
+/// The same with texture coordinates `(s, t)` when given, written as `vt s 1−t` (OBJ's `v` up).
+pub fn to_obj_with_uvs<I: Copy + Into<u64>>(
+    positions: &[[f64; 3]],
+    normals: Option<&[[f64; 3]]>,
+    uvs: Option<&[[f64; 2]]>,
+    indices: &[[I; 3]],
+) -> String {
     let mut s = String::from("# written by scanline3d\n");
     for p in positions {
         let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+    }
+    for uv in uvs.into_iter().flatten() {
+        let _ = writeln!(s, "vt {} {}", uv[0], 1.0 - uv[1]);
     }
     if let Some(ns) = normals {
         for n in ns {
@@ -359,11 +529,12 @@ pub fn to_obj<I: Copy + Into<u64>>(
     }
     for t in indices {
         let [a, b, c] = t.map(|i| i.into() + 1);
-        if normals.is_some() {
-            let _ = writeln!(s, "f {a}//{a} {b}//{b} {c}//{c}");
-        } else {
-            let _ = writeln!(s, "f {a} {b} {c}");
-        }
+        let _ = match (uvs.is_some(), normals.is_some()) {
+            (false, false) => writeln!(s, "f {a} {b} {c}"),
+            (false, true) => writeln!(s, "f {a}//{a} {b}//{b} {c}//{c}"),
+            (true, false) => writeln!(s, "f {a}/{a} {b}/{b} {c}/{c}"),
+            (true, true) => writeln!(s, "f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}"),
+        };
     }
     s
 }
@@ -417,11 +588,59 @@ fn q16(v: f64) -> i32 {
         .clamp(i32::MIN as f64, i32::MAX as f64) as i32
 }
 
+/// Face-averaged unit normals per position: vertices at the same position (split at a texture
+/// seam) get the same normal, the average over all the faces around the position.
+pub fn normals_per_position(mesh: &ObjMesh) -> Vec<[f64; 3]> {
+    use std::collections::HashMap;
+    let mut first: HashMap<[u64; 3], u16> = HashMap::new();
+    let mut welded = ObjMesh {
+        positions: Vec::new(),
+        normals: None,
+        indices: Vec::new(),
+    };
+    // Vertex i is welded vertex weld[i].
+    let weld: Vec<u16> = mesh
+        .positions
+        .iter()
+        .map(|p| {
+            *first
+                .entry(p.map(|c| (c + 0.0).to_bits()))
+                .or_insert_with(|| {
+                    welded.positions.push(*p);
+                    (welded.positions.len() - 1) as u16
+                })
+        })
+        .collect();
+    welded.indices = mesh
+        .indices
+        .iter()
+        .map(|t| t.map(|i| weld[i as usize]))
+        .collect();
+    let normals = vertex_normals(&welded, false);
+    weld.iter().map(|&w| normals[w as usize]).collect()
+}
+
 /// Bakes `mesh` into Rust source for `include!`.
 pub fn bake(mesh: &ObjMesh, use_file_normals: bool, name: &str) -> Baked {
+    bake_with_uvs(mesh, None, use_file_normals, name)
+}
+
+/// The same with texture coordinates `(s, t)`, one per vertex, when given: a `UVS` array
+/// (Q16.16), and face-averaged normals averaged per position ([`normals_per_position`]) so that
+/// a texture seam is not a shading seam. Without them, the source is [`bake`]'s.
+pub fn bake_with_uvs(
+    mesh: &ObjMesh,
+    uvs: Option<&[[f64; 2]]>,
+    use_file_normals: bool,
+    name: &str,
+) -> Baked {
     let (lo, hi, c, r) = bounds(&mesh.positions);
     let scale = if r > 0.0 { r } else { 1.0 };
-    let normals = vertex_normals(mesh, use_file_normals);
+    let normals = if uvs.is_some() && !use_file_normals {
+        normals_per_position(mesh)
+    } else {
+        vertex_normals(mesh, use_file_normals)
+    };
     let mut err = 0.0f64;
     let mut pos_src = String::new();
     for p in &mesh.positions {
@@ -442,14 +661,33 @@ pub fn bake(mesh: &ObjMesh, use_file_normals: bool, name: &str) -> Baked {
         let _ = writeln!(idx_src, "    [{}, {}, {}],", t[0], t[1], t[2]);
     }
     let (nv, nt) = (mesh.positions.len(), mesh.indices.len());
-    let flash_bytes = 12 * nv + 12 * nv + 6 * nt;
+    let mut flash_bytes = 12 * nv + 12 * nv + 6 * nt;
+    // The texture-coordinate parts of the source: a header line and the array.
+    let (mut uv_note, mut uv_src) = (String::new(), String::new());
+    if let Some(uvs) = uvs {
+        assert_eq!(uvs.len(), nv, "one texture coordinate per vertex");
+        flash_bytes += 8 * nv;
+        let _ = writeln!(
+            uv_note,
+            "// Texture coordinates (s, t) = (u, 1 - v) of the OBJ's vt (t down), Q16.16."
+        );
+        let _ = writeln!(
+            uv_src,
+            "\n/// Texture coordinates (s, t), Q16.16: (0, 0) is the top-left corner of the \
+             image.\npub static UVS: [[Fx<I16F16>; 2]; {nv}] = ["
+        );
+        for uv in uvs {
+            let _ = writeln!(uv_src, "    [q({}), q({})],", q16(uv[0]), q16(uv[1]));
+        }
+        uv_src.push_str("];\n");
+    }
     let source = format!(
         "// Baked by `cargo run --release --example bake` from {name}. Do not edit.
 //
 // {nv} vertices, {nt} triangles, {flash_bytes} bytes of flash.
 // Positions are normalized: model = stored * SCALE + OFFSET (stored within ±1, Q16.16).
 // Largest position error after baking: {err:e} model units.
-
+{uv_note}
 use scanline3d::fixed::types::I16F16;
 use scanline3d::Fx;
 
@@ -477,7 +715,7 @@ pub static NORMALS: [[Fx<I16F16>; 3]; {nv}] = [
 /// Counter-clockwise triangles.
 pub static INDICES: [[u16; 3]; {nt}] = [
 {idx_src}];
-"
+{uv_src}"
     );
     Baked {
         source,
@@ -544,6 +782,10 @@ impl Simplified {
 /// triangles that share vertices come together and vertices are stored in order of first use:
 /// reads of the vertex store and of the mesh in flash stay local). Normals, when the mesh has
 /// the file's, follow their vertices; face-averaged ones are to be recomputed on the result.
+/// Texture coordinates follow their vertices too: the topology-keeping simplifier only removes
+/// vertices and keeps the seams (vertices that share a position, as the split ones at a
+/// texture seam do) as seams. Its vertex-clustering fallback would join vertices across a
+/// seam, so a mesh with texture coordinates that needs it is refused.
 ///
 /// Chosen over a hand-written simplifier: meshoptimizer is maintained, widely used (glTF
 /// tools, game engines) and reports its own error; the `meshopt` crate builds it from source.
@@ -587,6 +829,15 @@ pub fn simplify(
         );
         let mut sloppy = false;
         if idx.len() / 3 > target {
+            if mesh.uvs.is_some() {
+                return Err(format!(
+                    "meshoptimizer's topology-keeping simplifier stops at {} triangles, above the \
+                     {target} asked for, and its vertex-clustering one would join texture \
+                     coordinates across seams: allow more triangles or vertices, or remove the \
+                     vt from the file",
+                    idx.len() / 3
+                ));
+            }
             err = 0.0;
             idx = meshopt::simplify_sloppy(&flat, &adapter, 3 * target, 1.0, Some(&mut err));
             sloppy = true;
@@ -621,6 +872,10 @@ pub fn simplify(
             .normals
             .as_ref()
             .map(|ns| order.iter().map(|&i| ns[i as usize]).collect()),
+        uvs: mesh
+            .uvs
+            .as_ref()
+            .map(|us| order.iter().map(|&i| us[i as usize]).collect()),
         indices: idx.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
     };
     let (lo, hi, _, _) = bounds(&mesh.positions);
