@@ -113,11 +113,19 @@ pub enum Bench {
     TexturedAffine,
     /// [`Bench::Textured`] with [`crate::TextureMode::PerPixel`] spans (the reference).
     TexturedExact,
+    /// A coarse icosphere (2 subdivisions, 320 triangles) with a sharp specular highlight
+    /// (specular 0.8, shininess 40), [`crate::Shading::Phong`]: lit at every pixel.
+    Phong,
+    /// [`Bench::Phong`] with [`crate::Shading::FastPhong`] (lit every 8 pixels).
+    PhongFast,
+    /// [`Bench::Phong`] with Gouraud shading, for comparison: the highlight falls inside
+    /// triangles and mostly vanishes.
+    PhongGouraud,
 }
 
 impl Bench {
     /// Every benchmark scene.
-    pub const ALL: [Bench; 9] = [
+    pub const ALL: [Bench; 12] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -127,6 +135,9 @@ impl Bench {
         Bench::Textured,
         Bench::TexturedAffine,
         Bench::TexturedExact,
+        Bench::Phong,
+        Bench::PhongFast,
+        Bench::PhongGouraud,
     ];
 
     /// Its name in reports.
@@ -142,6 +153,9 @@ impl Bench {
             Bench::Textured => "textured",
             Bench::TexturedAffine => "textured_affine",
             Bench::TexturedExact => "textured_exact",
+            Bench::Phong => "phong",
+            Bench::PhongFast => "phong_fast",
+            Bench::PhongGouraud => "phong_gouraud",
         }
     }
 }
@@ -517,6 +531,30 @@ where
             // Room for the clipped floor and, with triangle ids (every triangle flat), one more
             // vertex record per triangle.
             render_with::<S, C, D, P, 240, 240, 96, 24, 16, 1, 1, 96, 16>(
+                &scene, dither, target, probe,
+            )
+        }
+        Bench::Phong | Bench::PhongFast | Bench::PhongGouraud => {
+            let shape = Shape::<S, 162, 320>::icosphere(1.0, 2).map_err(|_| BenchError::Scene)?;
+            let shading = match bench {
+                Bench::Phong => Shading::Phong,
+                Bench::PhongFast => Shading::FastPhong,
+                _ => Shading::Gouraud,
+            };
+            let m = Material::matte([60, 110, 210], S::from_f64(0.1), S::from_f64(0.8))
+                .specular(S::from_f64(0.8), 40)
+                .shading(shading);
+            let objects = [Object {
+                mesh: shape.mesh(),
+                transform: Mat4::rotate_y(deg(20.0)).then(&spin),
+                material: m,
+            }];
+            let cam = look([0.0, 0.3, 3.0], [0.0; 3], persp(45.0, 0.1, 10.0));
+            let camera = cam.map_err(|_| BenchError::Scene)?;
+            let light = [Light::white([-S::from_f64(0.6), S::from_f64(0.8), S::ONE])];
+            let scene = crate::Scene::new(&objects, camera, light);
+            // Room for triangle ids (one more vertex record per triangle).
+            render_with::<S, C, D, P, 240, 240, 512, 192, 32, 1, 1, 512, 40>(
                 &scene, dither, target, probe,
             )
         }

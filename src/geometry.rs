@@ -11,6 +11,7 @@ use crate::color::TargetColor;
 use crate::cull::{facing, Facing};
 use crate::math::{normalize, sub, Mat4, Vec3};
 use crate::mesh::face_normal;
+use crate::phong::{PhongLight, PhongLights, PhongMaterial, MAX_PHONG_LIGHTS};
 use crate::project::{
     pack_channels, pack_flat_channels, unpack_channels, ScreenVertex, Viewport, COORD_LIMIT,
 };
@@ -18,7 +19,7 @@ use crate::raster::{TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::{lit_color, lit_diffuse, PreparedLight, Shading};
-use crate::textured::{q_from_depth, VertexExtra};
+use crate::textured::{q_from_depth, VertexExtra, FREE, LIGHTS, MATERIAL};
 
 use crate::error::*;
 use crate::kernel;
@@ -51,9 +52,16 @@ pub(crate) struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
     /// `1 − near/far` in Q0.24 for a perspective camera, 0 for an orthographic one: the
     /// textured vertices' `near/w` from their depth ([`q_from_depth`]).
     k24: u32,
+    /// A Phong object's material entry in the pool (0: not Phong).
+    phong_material: u16,
 }
 
 impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
+    /// Mesh normal `n` in world space, unit, Q1.14 (a Phong vertex's attribute).
+    pub(crate) fn phong_normal(&self, n: Vec3<S>) -> [i32; 3] {
+        self.world_normal(n, true).map(|c| c.to_fixed_i32(14))
+    }
+
     pub(crate) fn to_eye(&self, p: Vec3<S>) -> Vec3<S> {
         if self.obj.material.specular > S::ZERO {
             let w = self.obj.transform.transform_point(p);
@@ -154,11 +162,14 @@ impl<
         self.next_row = self.vh;
         let mut stats = Stats::default();
         for (i, o) in scene.objects.iter().enumerate() {
-            if o.material.shading == Shading::Gouraud && o.mesh.normals().is_none() {
+            if o.material.shading != Shading::Flat && o.mesh.normals().is_none() {
                 return Err(Error::MissingNormals { object: i });
             }
-            if o.material.texture.is_some() {
-                if o.mesh.uvs().is_none() {
+            if o.material.needs_attribute_stores() {
+                if o.material.texture.is_some()
+                    && !o.material.shading.is_phong()
+                    && o.mesh.uvs().is_none()
+                {
                     return Err(Error::MissingUvs { object: i });
                 }
                 if XV == 0 || XA == 0 {
@@ -185,6 +196,13 @@ impl<
             .matrix(vp.aspect())
             .mul(&scene.camera.view);
         let mut need = (0usize, 0usize);
+        // The pool's Phong entries (the frame's lights, each Phong object's material).
+        let reserved = if XV > 0 {
+            self.phong_entries(scene)?
+        } else {
+            0
+        };
+        let mut phong_objects = 0usize;
         let k24 = match scene.camera.projection {
             _ if XV == 0 => 0,
             Projection::Perspective { near, far, .. } => {
@@ -232,11 +250,18 @@ impl<
                 eye: scene.camera.eye,
                 base: self.verts.len(),
                 k24,
+                // The material's pool entry (after the lights' entry).
+                phong_material: if obj.material.shading.is_phong() {
+                    phong_objects += 1;
+                    phong_objects as u16
+                } else {
+                    0
+                },
             };
             self.object(&setup, &vp, g, &mut stats, &mut need, probe);
             if XV > 0 {
                 let end = self.verts.len();
-                if obj.material.texture.is_some() && end > XV {
+                if obj.material.needs_attribute_stores() && end > XV {
                     return Err(Error::AttributeStore {
                         object: index,
                         vertices_needed: end,
@@ -245,7 +270,7 @@ impl<
                         active_capacity: XA,
                     });
                 }
-                if obj.material.texture.is_none() {
+                if !obj.material.needs_attribute_stores() {
                     for x in self.xverts.iter_mut().take(end).skip(setup.base) {
                         *x = VertexExtra::NONE;
                     }
@@ -262,17 +287,17 @@ impl<
         stats.max_active = max as u32;
         // The textured triangles' pool: under `OverflowPolicy::Error` the most triangles on a
         // row (a bound of the textured ones among them) must fit it, so that none is left out.
-        if XA > 0 && self.overflow == OverflowPolicy::Error && max as usize > XA {
+        if XA > 0 && self.overflow == OverflowPolicy::Error && max as usize + reserved > XA {
             if let Some(object) = scene
                 .objects
                 .iter()
-                .position(|o| o.material.texture.is_some())
+                .position(|o| o.material.needs_attribute_stores())
             {
                 return Err(Error::AttributeStore {
                     object,
                     vertices_needed: self.verts.len(),
                     vertex_capacity: XV,
-                    active_needed: max as usize,
+                    active_needed: max as usize + reserved,
                     active_capacity: XA,
                 });
             }
@@ -635,7 +660,7 @@ impl<
         let poly = clip_triangle(input, codes, g);
         // A textured triangle's polygon once more, with the barycentric weights of its
         // vertices 1 and 2 in place of the colour: the new vertices' texture coordinates.
-        let weights = (XV > 0 && o.obj.material.texture.is_some()).then(|| {
+        let weights = (XV > 0 && o.obj.material.needs_attribute_stores()).then(|| {
             let mut tagged = input;
             for (k, v) in tagged.iter_mut().enumerate() {
                 v.rgb = [(k == 1) as u16 * u16::MAX, (k == 2) as u16 * u16::MAX, 0];
@@ -706,9 +731,16 @@ impl<
     ) {
         let mesh = &o.obj.mesh;
         let end = (base + n).min(XV).min(self.verts.len());
+        let phong = o.obj.material.shading;
         for i in base..end {
-            self.xverts[i] = match (&o.obj.material.texture, mesh.uvs()) {
-                (Some(map), Some(uvs)) => {
+            self.xverts[i] = match (&o.obj.material.texture, mesh.uvs(), mesh.normals()) {
+                _ if C::triangle_id(0).is_some() => VertexExtra::NONE,
+                (_, _, Some(ns)) if phong.is_phong() => VertexExtra::phong(
+                    o.phong_normal(ns[i - base]),
+                    o.phong_material,
+                    phong == Shading::FastPhong,
+                ),
+                (Some(map), Some(uvs), _) => {
                     let st = uvs[i - base].map(|c| c.to_fixed_i32(16));
                     let q = q_from_depth(self.verts[i].depth() as u32 >> 4, o.k24);
                     VertexExtra::new(map, st, q)
@@ -737,21 +769,107 @@ impl<
         sv: &ScreenVertex,
     ) {
         let at = self.verts.len();
-        let (Some(map), Some(uvs)) = (&o.obj.material.texture, o.obj.mesh.uvs()) else {
-            return;
-        };
-        if at >= XV {
+        if at >= XV || C::triangle_id(0).is_some() {
             return;
         }
+        let (w1, w2) = (w[0] as i64, w[1] as i64);
+        // The weighted mix of three vertices' values (the weights in 2⁻¹⁶ units, 1 = 65535).
+        let mix = |a: i64, b: i64, c: i64| {
+            let d = (b - a) * w1 + (c - a) * w2;
+            (a + (d + (1 << 15)).div_euclid(65535)) as i32
+        };
+        let material = &o.obj.material;
+        if material.shading.is_phong() {
+            let Some(ns) = o.obj.mesh.normals() else {
+                return;
+            };
+            let n = [0, 1, 2].map(|k| o.phong_normal(ns[tri[k] as usize]).map(|v| v as i64));
+            let n = [0, 1, 2].map(|j| mix(n[0][j], n[1][j], n[2][j]));
+            let fast = material.shading == Shading::FastPhong;
+            self.xverts[at] = VertexExtra::phong(n, o.phong_material, fast);
+            return;
+        }
+        let (Some(map), Some(uvs)) = (&material.texture, o.obj.mesh.uvs()) else {
+            return;
+        };
         let st = |k: usize| uvs[tri[k] as usize].map(|c| c.to_fixed_i32(16) as i64);
         let (a, b, c) = (st(0), st(1), st(2));
-        let (w1, w2) = (w[0] as i64, w[1] as i64);
-        let mix = |j: usize| {
-            let d = (b[j] - a[j]) * w1 + (c[j] - a[j]) * w2;
-            (a[j] + (d + (1 << 15)).div_euclid(65535)) as i32
-        };
         let q = q_from_depth(sv.depth() as u32 >> 4, o.k24);
-        self.xverts[at] = VertexExtra::new(map, [mix(0), mix(1)], q);
+        self.xverts[at] = VertexExtra::new(map, [mix(a[0], b[0], c[0]), mix(a[1], b[1], c[1])], q);
+    }
+
+    /// Frees the pool and, when `scene` has Phong objects, gives its entry 0 the frame's
+    /// lights and one entry after it to each Phong object's material, in scene order (see
+    /// [`ObjectSetup::phong_material`]). Returns how many entries that takes.
+    pub(crate) fn phong_entries<E, const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+    ) -> Result<usize, Error<E>> {
+        for e in self.xactive.iter_mut() {
+            e.kind = FREE;
+        }
+        let phong: usize = scene
+            .objects
+            .iter()
+            .filter(|o| o.material.shading.is_phong())
+            .count();
+        if phong == 0 || C::triangle_id(0).is_some() {
+            return Ok(0);
+        }
+        if phong + 1 > XA {
+            let object = scene
+                .objects
+                .iter()
+                .position(|o| o.material.shading.is_phong());
+            return Err(Error::AttributeStore {
+                object: object.unwrap_or(0),
+                vertices_needed: 0,
+                vertex_capacity: XV,
+                active_needed: phong + 2,
+                active_capacity: XA,
+            });
+        }
+        let q14 = |v: Vec3<S>| v.map(|c| c.to_fixed_i32(14));
+        let mut lights = PhongLights::default();
+        for (k, l) in scene.lights.iter().take(MAX_PHONG_LIGHTS).enumerate() {
+            lights.lights[k] = PhongLight {
+                dir: q14(PreparedLight::new(l).dir()),
+                color: l.color,
+            };
+            lights.count = k as u8 + 1;
+        }
+        lights.store(&mut self.xactive[0]);
+        self.xactive[0].kind = LIGHTS;
+        let mut slot = 1;
+        for o in scene
+            .objects
+            .iter()
+            .filter(|o| o.material.shading.is_phong())
+        {
+            let m = &o.material;
+            let origin = o.transform.transform_point([S::ZERO; 3]);
+            let v = q14(normalize(sub(
+                scene.camera.eye,
+                [origin[0], origin[1], origin[2]],
+            )));
+            let k = |c: S| (c.max(S::ZERO).min(S::from_i32(255))).to_fixed_i32(14);
+            let mut lv = [0; MAX_PHONG_LIGHTS];
+            for (x, l) in lv.iter_mut().zip(&lights.lights) {
+                let s: i64 = (0..3).map(|j| l.dir[j] as i64 * v[j] as i64).sum();
+                *x = (s >> 14) as i32;
+            }
+            let pm = PhongMaterial {
+                color: m.color,
+                k: [k(m.ambient), k(m.diffuse), k(m.specular)],
+                shininess: m.shininess,
+                v,
+                lv,
+            };
+            pm.store(&mut self.xactive[slot]);
+            self.xactive[slot].kind = MATERIAL;
+            slot += 1;
+        }
+        Ok(slot)
     }
 
     /// Buckets a triangle by its first covered row, or counts it as empty or off-screen.

@@ -160,6 +160,7 @@ mod math;
 mod mesh;
 pub mod metrics;
 pub mod overlay;
+mod phong;
 mod project;
 mod raster;
 mod renderer;
@@ -189,6 +190,7 @@ pub use config::Capacities;
 pub use cull::{facing, signed_area2, Facing};
 pub use math::{add, cross, dot, length, normalize, scale, sub, Mat4, Vec3};
 pub use mesh::{face_normal, vertex_normals, Mesh, MeshError, UV_LIMIT};
+pub use phong::MAX_PHONG_LIGHTS;
 pub use project::{ScreenVertex, COORD_LIMIT, DEPTH_FRAC_BITS, MAX_SCREEN, SUBPIXEL_BITS};
 pub use raster::{DepthTest, COLOR_FRAC_BITS};
 pub use renderer::{

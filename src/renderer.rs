@@ -15,7 +15,7 @@ use crate::project::{ScreenVertex, MAX_SCREEN};
 use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
 use crate::scene::Scene;
-use crate::textured::{attach_pushed, is_textured, ActiveExtra, VertexExtra};
+use crate::textured::{attach_pushed, is_textured, ActiveExtra, VertexExtra, FREE, TRI};
 
 pub use crate::error::{Capacity, Error, Needs, OverflowPolicy, Shortfall, StripBufferTooSmall};
 pub use crate::stats::{NoProbe, Probe, Stage, Stats};
@@ -623,11 +623,14 @@ impl<
         }
     }
 
-    /// Empties the active list and the textured triangles' pool.
+    /// Empties the active list and frees the pool entries of its triangles (the frame's
+    /// Phong lights and materials stay).
     pub(crate) fn clear_active(&mut self) {
         self.active.clear();
         for e in self.xactive.iter_mut() {
-            e.used = false;
+            if e.kind == TRI {
+                e.kind = FREE;
+            }
         }
     }
 

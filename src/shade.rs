@@ -22,6 +22,23 @@ pub enum Shading {
     /// Per-vertex lighting from vertex normals, interpolated across the face.
     #[default]
     Gouraud,
+    /// Per-pixel lighting: the vertex normals interpolated across the face and lit at every
+    /// pixel (the seeds' model, directional lights, up to [`crate::MAX_PHONG_LIGHTS`]; the
+    /// view direction is the object origin's, one per object). Needs the renderer's attribute
+    /// stores, as a texture does ([`crate::Renderer`], "Textures"); not combined with a
+    /// texture (the texture is not drawn).
+    Phong,
+    /// [`Shading::Phong`] lit at every 8th pixel of a span, the colour linear in between:
+    /// most of Phong's highlights for additions per pixel.
+    FastPhong,
+}
+
+impl Shading {
+    /// Whether the shading lights per pixel ([`Shading::Phong`], [`Shading::FastPhong`]).
+    #[must_use]
+    pub const fn is_phong(self) -> bool {
+        matches!(self, Shading::Phong | Shading::FastPhong)
+    }
 }
 
 /// A directional light.
@@ -186,6 +203,19 @@ impl<S: Scalar> Material<S> {
         }
     }
 
+    /// This material with [`Shading::Phong`].
+    #[must_use]
+    pub const fn phong(self) -> Self {
+        self.shading(Shading::Phong)
+    }
+
+    /// Whether drawing this material needs the renderer's attribute stores (a texture, or
+    /// Phong shading).
+    #[must_use]
+    pub const fn needs_attribute_stores(&self) -> bool {
+        self.texture.is_some() || self.shading.is_phong()
+    }
+
     /// This material with a Phong specular term: coefficient `k` (zero, or below, removes the
     /// term and its per-vertex cost) and exponent `shininess`.
     #[must_use]
@@ -226,6 +256,11 @@ impl<S: Scalar> PreparedLight<S> {
             dir: d.map(|v| v * r),
             ..*self
         }
+    }
+
+    /// The unit direction toward the light.
+    pub(crate) fn dir(&self) -> Vec3<S> {
+        self.dir
     }
 
     /// The direction and colour fraction of a grey light (equal channels), else `None`.

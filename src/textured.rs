@@ -48,6 +48,19 @@ impl VertexExtra {
     };
 
     /// The attributes of a vertex of an object textured by `map`.
+    /// The attributes of a vertex of a Phong object: its unit normal (world space, Q1.14),
+    /// the pool entry of its object's material, and the variant.
+    pub(crate) fn phong(n: [i32; 3], material: u16, fast: bool) -> Self {
+        VertexExtra {
+            st: [n[0], n[1]],
+            q: n[2] as u32,
+            texture: None,
+            key: material,
+            has_key: false,
+            mode: if fast { MODE_FAST_PHONG } else { MODE_PHONG },
+        }
+    }
+
     pub(crate) fn new(map: &Texturing, st: [i32; 2], q: u32) -> Self {
         VertexExtra {
             st,
@@ -105,19 +118,39 @@ pub(crate) struct ActiveExtra {
     gy: [i64; 3],
     px0: i16,
     py0: i16,
-    /// Texel coordinates of the first vertex, Q16.16 texels.
-    base: [i32; 2],
+    /// Texel coordinates of the first vertex, Q16.16 texels (a Phong triangle: the pool
+    /// index of the frame's lights entry, −1 for none).
+    pub(crate) base: [i32; 2],
     /// The lit colour of a flat triangle, channel units with [`COLOR_FRAC_BITS`].
     flat: [i32; 3],
     texture: Option<&'static Texture>,
-    key: u16,
+    /// The colour key (a Phong triangle: the pool index of its material entry).
+    pub(crate) key: u16,
     has_key: bool,
-    mode: u8,
+    /// [`VertexExtra::mode`].
+    pub(crate) mode: u8,
     /// Fraction bits of `U`/`Q` and `V`/`Q` (0..=15).
     f: u8,
-    /// Whether the entry belongs to an active triangle.
-    pub(crate) used: bool,
+    /// What the entry holds: [`FREE`], a triangle's planes ([`TRI`]), or, in the plane
+    /// words, a frame's Phong lights ([`LIGHTS`], `phong::PhongLights`) or an object's Phong
+    /// material ([`MATERIAL`], `phong::PhongMaterial`).
+    pub(crate) kind: u8,
 }
+
+/// [`ActiveExtra::kind`]: free.
+pub(crate) const FREE: u8 = 0;
+/// [`ActiveExtra::kind`]: an active triangle's planes.
+pub(crate) const TRI: u8 = 1;
+/// [`ActiveExtra::kind`]: the frame's Phong lights.
+pub(crate) const LIGHTS: u8 = 2;
+/// [`ActiveExtra::kind`]: an object's Phong material.
+pub(crate) const MATERIAL: u8 = 3;
+
+/// [`VertexExtra::mode`] of a vertex of a [`crate::Shading::Phong`] object (after the
+/// texture modes' indices).
+pub(crate) const MODE_PHONG: u8 = 4;
+/// [`VertexExtra::mode`] of a vertex of a [`crate::Shading::FastPhong`] object.
+pub(crate) const MODE_FAST_PHONG: u8 = 5;
 
 impl ActiveExtra {
     pub(crate) const EMPTY: ActiveExtra = ActiveExtra {
@@ -133,8 +166,37 @@ impl ActiveExtra {
         has_key: false,
         mode: 0,
         f: 0,
-        used: false,
+        kind: FREE,
     };
+
+    /// The nine plane words, for a payload.
+    pub(crate) fn words(&self) -> [i64; 9] {
+        let (v, x, y) = (self.val, self.gx, self.gy);
+        [v[0], v[1], v[2], x[0], x[1], x[2], y[0], y[1], y[2]]
+    }
+
+    /// Stores a payload in the nine plane words.
+    pub(crate) fn set_words(&mut self, w: [i64; 9]) {
+        self.val = [w[0], w[1], w[2]];
+        self.gx = [w[3], w[4], w[5]];
+        self.gy = [w[6], w[7], w[8]];
+    }
+
+    /// The value of plane `k` at the centre of pixel `(x, y)` (16 fraction bits).
+    #[inline]
+    pub(crate) fn plane(&self, k: usize, x: i32, y: i32) -> i64 {
+        let (dx, dy) = ((x - self.px0 as i32) as i64, (y - self.py0 as i32) as i64);
+        let (val, gx, gy) = (self.val, self.gx, self.gy);
+        val[k]
+            .wrapping_add(gx[k].wrapping_mul(dx))
+            .wrapping_add(gy[k].wrapping_mul(dy))
+    }
+
+    /// Plane `k`'s step per pixel along a row.
+    pub(crate) fn step(&self, k: usize) -> i64 {
+        let gx = self.gx;
+        gx[k]
+    }
 }
 
 /// Flag of [`ActiveTri::flags`]: the triangle is textured; [`ActiveTri::spare`] is its pool
@@ -146,7 +208,9 @@ pub(crate) const TEXTURED: u8 = 64;
 #[inline(always)]
 pub(crate) fn is_textured(t: &TriRecord, xverts: &[VertexExtra]) -> bool {
     let i = (t.v[0] & !FLAT_BIT) as usize;
-    xverts.get(i).is_some_and(|x| x.texture.is_some())
+    xverts
+        .get(i)
+        .is_some_and(|x| x.texture.is_some() || x.mode >= MODE_PHONG)
 }
 
 /// Gives textured triangle `t`, just set up in `rec` (as an ordinary triangle, with the
@@ -160,17 +224,38 @@ pub(crate) fn attach_textured<C: TargetColor>(
     verts: &[ScreenVertex],
     xverts: &[VertexExtra],
 ) -> bool {
-    let Some(slot) = pool.iter().position(|e| !e.used) else {
+    let Some(slot) = pool.iter().position(|e| e.kind == FREE) else {
         return false;
     };
     let [i0, i1, i2] = t.indices();
     let x0 = xverts[(t.v[0] & !FLAT_BIT) as usize];
-    let (Some(x1), Some(x2), Some(texture)) = (xverts.get(i1), xverts.get(i2), x0.texture) else {
+    let (Some(x1), Some(x2)) = (xverts.get(i1), xverts.get(i2)) else {
         return false;
     };
     let p = [&verts[i0], &verts[i1], &verts[i2]];
     let e = &mut pool[slot];
     *e = ActiveExtra::EMPTY;
+    if x0.mode >= MODE_PHONG {
+        // The normals' planes; the material entry's index in `key`.
+        let n = |x: &VertexExtra| [x.st[0], x.st[1], x.q as i32];
+        let [a, b, c] = [n(&x0), n(x1), n(x2)];
+        let planes = [0, 1, 2].map(|k| [a[k] as i64, b[k] as i64, c[k] as i64]);
+        e.mode = x0.mode;
+        e.key = x0.key;
+        if !set_planes(e, p, planes) {
+            return false;
+        }
+        // The frame's lights entry.
+        let lights = pool.iter().position(|e| e.kind == LIGHTS);
+        let e = &mut pool[slot];
+        e.base = [lights.map_or(-1, |i| i as i32), 0];
+        rec.flags |= TEXTURED;
+        rec.spare = slot as i16;
+        return true;
+    }
+    let Some(texture) = x0.texture else {
+        return false;
+    };
     e.texture = Some(texture);
     e.key = x0.key;
     e.has_key = x0.has_key;
@@ -215,7 +300,17 @@ pub(crate) fn attach_textured<C: TargetColor>(
         }
     });
     let vals = |d: [i64; 3]| [0, 1, 2].map(|i| (d[i] >> (16 - f)) * qn[i]);
-    let planes = [vals(du), vals(dv), qn];
+    if !set_planes(e, p, [vals(du), vals(dv), qn]) {
+        return false;
+    }
+    rec.flags |= TEXTURED;
+    rec.spare = slot as i16;
+    true
+}
+
+/// Sets `e`'s planes through the values `planes[k]` at the vertices `p` (|values| < 2³¹),
+/// and marks it a triangle's entry; false for a triangle of no area.
+fn set_planes(e: &mut ActiveExtra, p: [&ScreenVertex; 3], planes: [[i64; 3]; 3]) -> bool {
     // Plane gradients per subpixel are N/det; per pixel, with 16 fraction bits,
     // 2⁴·2¹⁶·N/det, from N/det's quotient and remainder (N < 2⁴⁷, det < 2³¹: no overflow).
     let (ax, ay) = (p[0].x as i64, p[0].y as i64);
@@ -246,9 +341,7 @@ pub(crate) fn attach_textured<C: TargetColor>(
     }
     e.px0 = px0 as i16;
     e.py0 = py0 as i16;
-    e.used = true;
-    rec.flags |= TEXTURED;
-    rec.spare = slot as i16;
+    e.kind = TRI;
     true
 }
 
@@ -289,7 +382,16 @@ pub(crate) fn draw_row_textured<C: TargetColor>(
     let (lc, rc) = (rec.edges[0].c(), rec.edges[1].c());
     let (xs, xe) = (lc.max(0), rc.min(width));
     let mut counts = (0, 0);
-    if xs < xe {
+    if xs < xe && pool.get(slot).is_some_and(|e| e.mode >= MODE_PHONG) {
+        let z = rec.row[0].wrapping_add(rec.gx[0].wrapping_mul(xs - lc));
+        let z = z.clamp(0, DEPTH_MAX << DEPTH_FRAC_BITS) + (1 << (DEPTH_FRAC_BITS - 1));
+        let (zs, cs) = (
+            &mut depth[xs as usize..xe as usize],
+            &mut colors[xs as usize..xe as usize],
+        );
+        let written = crate::phong::fill::<C>(pool, slot, xs, row, [z, rec.gx[0]], zs, cs, test);
+        counts = ((xe - xs) as u32, written);
+    } else if xs < xe {
         if let Some(e) = pool.get(slot) {
             let e = *e;
             let skip = xs - lc;
@@ -330,7 +432,7 @@ pub(crate) fn draw_row_textured<C: TargetColor>(
     let (_, _, done) = rec.draw_row::<C>(row, &mut [], &mut [], test, false);
     if done {
         if let Some(e) = pool.get_mut(slot) {
-            e.used = false;
+            e.kind = FREE;
         }
     }
     (counts.0, counts.1, done)

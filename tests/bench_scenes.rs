@@ -44,6 +44,9 @@ fn every_scene_renders_over_a_full_turn() {
                 assert!(s.pixels_written > 2 * 240 * 240, "overdraw: {s:?}");
             }
             Bench::Deep => assert!(s.drawn >= 12, "deep: {s:?}"),
+            Bench::Phong | Bench::PhongFast | Bench::PhongGouraud => {
+                assert!(s.drawn > 100, "{b:?}: {s:?}")
+            }
             Bench::Textured | Bench::TexturedAffine | Bench::TexturedExact => {
                 assert!(s.clipped > 0, "the floor must cross the near plane: {s:?}");
             }

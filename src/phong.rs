@@ -1,0 +1,412 @@
+//! Phong shading: the seeds' lighting model evaluated per pixel from the vertex normals
+//! interpolated across the triangle, in integers (so the image is the same for every number
+//! type and on every core). [`Shading::Phong`](crate::Shading::Phong) lights every pixel;
+//! [`Shading::FastPhong`](crate::Shading::FastPhong) lights every 8th pixel of a span and
+//! interpolates the colour linearly in between (Gouraud within 8-pixel segments): per pixel
+//! additions only.
+//!
+//! Model (as the Gouraud path's, [`crate::Material`]): per channel
+//! `c = material·(ambient + Σ diffuse·light/255·max(0, N·L)) + Σ specular·light·max(0, R·V)^n`,
+//! clamped to 0..=255, with `N` the interpolated normal normalized per lit pixel, `L` each
+//! directional light's unit direction, `R·V = 2(N·L)(N·V) − L·V`, and `V` the unit direction
+//! from the object's origin toward the eye (one per object: a viewer distant compared with
+//! the object; Gouraud uses the exact direction at each vertex).
+//!
+//! Formats: directions and normals Q1.14 (`i32`, step 2⁻¹⁴); coefficients Q8.14 (ambient,
+//! diffuse and specular up to 255); the lit channel Q8.14 (0..=255·2¹⁴).
+
+use crate::color::TargetColor;
+use crate::project::DEPTH_FRAC_BITS;
+use crate::raster::{DepthTest, COLOR_FRAC_BITS};
+use crate::span::{passes, ALWAYS, EQUAL, LESS, LESS_EQUAL};
+use crate::textured::{ActiveExtra, MODE_FAST_PHONG};
+
+/// The most directional lights Phong shading takes (more are left out of it).
+pub const MAX_PHONG_LIGHTS: usize = 4;
+
+/// One light as Phong spans see it.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PhongLight {
+    /// Unit direction toward the light, world space, Q1.14.
+    pub(crate) dir: [i32; 3],
+    /// Light colour (0..=255 per channel).
+    pub(crate) color: [u8; 3],
+}
+
+/// The lights of a frame for Phong spans (world space).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PhongLights {
+    pub(crate) lights: [PhongLight; MAX_PHONG_LIGHTS],
+    pub(crate) count: u8,
+}
+
+/// An object's material and view direction as Phong spans see them.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PhongMaterial {
+    pub(crate) color: [u8; 3],
+    /// Ambient, diffuse and specular coefficients, Q8.14 (0..=255·2¹⁴).
+    pub(crate) k: [i32; 3],
+    pub(crate) shininess: u8,
+    /// Unit direction from the object's origin toward the eye, Q1.14.
+    pub(crate) v: [i32; 3],
+    /// `L·V` of each light, Q1.14.
+    pub(crate) lv: [i32; MAX_PHONG_LIGHTS],
+}
+
+/// Q1.14 one.
+const ONE: i32 = 1 << 14;
+
+fn pack3(v: [i32; 3]) -> i64 {
+    let h = |x: i32| (x as i16 as u16) as i64;
+    h(v[0]) | h(v[1]) << 16 | h(v[2]) << 32
+}
+
+fn unpack3(w: i64) -> [i32; 3] {
+    [0, 16, 32].map(|s| (w >> s) as i16 as i32)
+}
+
+impl PhongLights {
+    /// Stored in pool entry `e` (see [`ActiveExtra`]'s payloads).
+    pub(crate) fn store(&self, e: &mut ActiveExtra) {
+        let mut words = [0i64; 9];
+        for (k, l) in self.lights.iter().enumerate() {
+            words[k] = pack3(l.dir) | (l.color[0] as i64) << 48 | (l.color[1] as i64) << 56;
+            words[4 + k] = l.color[2] as i64;
+        }
+        words[8] = self.count as i64;
+        e.set_words(words);
+    }
+
+    pub(crate) fn load(e: &ActiveExtra) -> Self {
+        let w = e.words();
+        let mut lights = [PhongLight::default(); MAX_PHONG_LIGHTS];
+        for (k, l) in lights.iter_mut().enumerate() {
+            l.dir = unpack3(w[k]);
+            l.color = [(w[k] >> 48) as u8, (w[k] >> 56) as u8, w[4 + k] as u8];
+        }
+        PhongLights {
+            lights,
+            count: (w[8] as u8).min(MAX_PHONG_LIGHTS as u8),
+        }
+    }
+}
+
+impl PhongMaterial {
+    pub(crate) fn store(&self, e: &mut ActiveExtra) {
+        let mut words = [0i64; 9];
+        words[0] = self.k[0] as i64;
+        words[1] = self.k[1] as i64;
+        words[2] = self.k[2] as i64;
+        words[3] = self.color[0] as i64
+            | (self.color[1] as i64) << 8
+            | (self.color[2] as i64) << 16
+            | (self.shininess as i64) << 24;
+        words[4] = pack3(self.v);
+        for k in 0..MAX_PHONG_LIGHTS {
+            words[5 + k] = self.lv[k] as i64;
+        }
+        e.set_words(words);
+    }
+
+    pub(crate) fn load(e: &ActiveExtra) -> Self {
+        let w = e.words();
+        PhongMaterial {
+            k: [w[0] as i32, w[1] as i32, w[2] as i32],
+            color: [0, 8, 16].map(|s| (w[3] >> s) as u8),
+            shininess: (w[3] >> 24) as u8,
+            v: unpack3(w[4]),
+            lv: [w[5] as i32, w[6] as i32, w[7] as i32, w[8] as i32],
+        }
+    }
+}
+
+/// `⌊√x⌋`, bit by bit (16 steps).
+fn isqrt(x: u32) -> u32 {
+    let (mut r, mut rem, mut bit) = (0u32, x, 1u32 << 30);
+    while bit > rem {
+        bit >>= 2;
+    }
+    while bit != 0 {
+        if rem >= r + bit {
+            rem -= r + bit;
+            r = (r >> 1) + bit;
+        } else {
+            r >>= 1;
+        }
+        bit >>= 2;
+    }
+    r
+}
+
+/// `b^e` for `b` in Q1.14 (0..=1), by squaring.
+fn pow14(mut b: i32, mut e: u8) -> i32 {
+    let mut r = ONE;
+    while e > 0 {
+        if e & 1 == 1 {
+            r = (r * b) >> 14;
+        }
+        b = (b * b) >> 14;
+        e >>= 1;
+    }
+    r
+}
+
+/// The lit colour (Q8.14 per channel, clamped to 0..=255) of a point with the interpolated
+/// normal `n` (Q1.14, any length; zero lights ambient only).
+pub(crate) fn shade(n: [i32; 3], l: &PhongLights, m: &PhongMaterial) -> [i32; 3] {
+    // |n| ≤ 2^14 (a mix of unit normals) plus the planes' rounding: each square below 2^29.
+    let len2 = (n[0] as i64 * n[0] as i64 + n[1] as i64 * n[1] as i64 + n[2] as i64 * n[2] as i64)
+        .min(u32::MAX as i64) as u32;
+    let len = isqrt(len2) as i32; // Q1.14
+    let [ambient, diffuse, specular] = m.k;
+    // Q8.14 coefficient sums per channel, times 255.
+    let mut light = [ambient as i64 * 255; 3];
+    let mut spec = [0i64; 3];
+    if len > 0 {
+        // N̂·X = (n·X)/|n|, Q1.14.
+        let dot = |x: [i32; 3]| -> i32 {
+            let s =
+                n[0] as i64 * x[0] as i64 + n[1] as i64 * x[1] as i64 + n[2] as i64 * x[2] as i64;
+            (s / len as i64) as i32
+        };
+        let nv = dot(m.v);
+        for (pl, &lv) in l.lights[..l.count as usize].iter().zip(&m.lv) {
+            let nl = dot(pl.dir);
+            if nl <= 0 {
+                continue;
+            }
+            // diffuse · light_c/255 · N·L, times 255: diffuse · light_c · N·L (Q8.14).
+            let d = (diffuse as i64 * nl as i64) >> 14;
+            for c in 0..3 {
+                light[c] += d * pl.color[c] as i64;
+            }
+            if specular > 0 {
+                let rv = ((2 * nl as i64 * nv as i64) >> 14) as i32 - lv;
+                if rv > 0 {
+                    let p = (specular as i64 * pow14(rv.min(ONE), m.shininess) as i64) >> 14;
+                    for c in 0..3 {
+                        spec[c] += p * pl.color[c] as i64;
+                    }
+                }
+            }
+        }
+    }
+    let mut out = [0i32; 3];
+    for c in 0..3 {
+        // material_c · (Σ)/255 + specular sum, Q8.14.
+        let v = m.color[c] as i64 * light[c] / 255 + spec[c];
+        out[c] = v.clamp(0, 255 << 14) as i32;
+    }
+    out
+}
+
+/// Pixels per segment of [`crate::Shading::FastPhong`] (lit at both ends, linear between).
+pub(crate) const FAST_SEGMENT: i32 = 8;
+
+/// The lit colour of `shade` in the channel units of `C` with [`COLOR_FRAC_BITS`].
+#[inline]
+fn channels<C: TargetColor>(v: [i32; 3]) -> [i32; 3] {
+    // v ≤ 255·2¹⁴: the product shifted is below 2³⁶, the quotient at most the maximum·2²⁰.
+    [0, 1, 2].map(|c| (((v[c] as i64 * C::CHANNEL_MAX[c] as i64) << 6) / 255) as i32)
+}
+
+/// A Phong triangle's span: pixels `x0..` of `row` (the length of `zs` and `cs`) from its
+/// pool entry `slot`, depth `z` (16.12 with its rounding bias, and its step). Returns the
+/// pixels written.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fill<C: TargetColor>(
+    pool: &[ActiveExtra],
+    slot: usize,
+    x0: i32,
+    row: i32,
+    z: [i32; 2],
+    zs: &mut [u16],
+    cs: &mut [C],
+    test: DepthTest,
+) -> u32 {
+    match test {
+        DepthTest::Less => fill_t::<C, LESS>(pool, slot, x0, row, z, zs, cs),
+        DepthTest::LessEqual => fill_t::<C, LESS_EQUAL>(pool, slot, x0, row, z, zs, cs),
+        DepthTest::Equal => fill_t::<C, EQUAL>(pool, slot, x0, row, z, zs, cs),
+        DepthTest::Always => fill_t::<C, ALWAYS>(pool, slot, x0, row, z, zs, cs),
+    }
+}
+
+fn fill_t<C: TargetColor, const T: u8>(
+    pool: &[ActiveExtra],
+    slot: usize,
+    x0: i32,
+    row: i32,
+    z: [i32; 2],
+    zs: &mut [u16],
+    cs: &mut [C],
+) -> u32 {
+    let e = &pool[slot];
+    let lights = match usize::try_from(e.base[0]).ok().and_then(|i| pool.get(i)) {
+        Some(l) => PhongLights::load(l),
+        None => PhongLights::default(),
+    };
+    let Some(m) = pool.get(e.key as usize).map(PhongMaterial::load) else {
+        return 0;
+    };
+    let n = zs.len().min(cs.len()) as i32;
+    let seg = if e.mode == MODE_FAST_PHONG {
+        FAST_SEGMENT
+    } else {
+        1
+    };
+    // The normal's planes at the span's first pixel (integer part: Q1.14), stepped per pixel.
+    let mut nv = [0, 1, 2].map(|k| e.plane(k, x0, row));
+    let step = [0, 1, 2].map(|k| e.step(k));
+    let at = |nv: &[i64; 3]| nv.map(|v| (v >> 16) as i32);
+    let lit = |nv: &[i64; 3]| channels::<C>(shade(at(nv), &lights, &m));
+    let half = 1 << (COLOR_FRAC_BITS - 1);
+    let out =
+        |c: [i32; 3]| {
+            C::from_channels([0, 1, 2].map(|k| {
+                ((c[k] + half) >> COLOR_FRAC_BITS).clamp(0, C::CHANNEL_MAX[k] as i32) as u8
+            }))
+        };
+    let [mut z, gz] = z;
+    let mut written = 0;
+    let mut i = 0;
+    if seg == 1 {
+        while i < n {
+            let k = i as usize;
+            let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+            if passes::<T>(z16, zs[k]) {
+                zs[k] = z16;
+                cs[k] = out(lit(&nv));
+                written += 1;
+            }
+            z = z.wrapping_add(gz);
+            for k in 0..3 {
+                nv[k] = nv[k].wrapping_add(step[k]);
+            }
+            i += 1;
+        }
+        return written;
+    }
+    let mut c0 = lit(&nv);
+    while i < n {
+        let len = seg.min(n - i);
+        for k in 0..3 {
+            nv[k] = nv[k].wrapping_add(step[k].wrapping_mul(len as i64));
+        }
+        let c1 = lit(&nv);
+        let dc = [0, 1, 2].map(|k| (c1[k] - c0[k]) / len);
+        let mut c = c0;
+        for x in i..i + len {
+            let k = x as usize;
+            let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+            if passes::<T>(z16, zs[k]) {
+                zs[k] = z16;
+                cs[k] = out(c);
+                written += 1;
+            }
+            z = z.wrapping_add(gz);
+            for k in 0..3 {
+                c[k] += dc[k];
+            }
+        }
+        c0 = c1;
+        i += len;
+    }
+    written
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integer_square_root() {
+        for x in [
+            0u32,
+            1,
+            2,
+            3,
+            4,
+            15,
+            16,
+            17,
+            1 << 28,
+            (1 << 28) + 12345,
+            u32::MAX,
+        ] {
+            let r = isqrt(x) as u64;
+            assert!(r * r <= x as u64 && (r + 1) * (r + 1) > x as u64, "{x}");
+        }
+    }
+
+    #[test]
+    fn shade_matches_the_model_in_floating_point() {
+        let unit = |v: [f64; 3]| {
+            let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            v.map(|c| c / l)
+        };
+        let q = |v: [f64; 3]| v.map(|c| (c * ONE as f64).round() as i32);
+        let (ld, vd) = (unit([-1.0, 1.0, 1.0]), unit([0.2, 0.3, 1.0]));
+        let lv = ld[0] * vd[0] + ld[1] * vd[1] + ld[2] * vd[2];
+        let mut lights = PhongLights {
+            count: 1,
+            ..Default::default()
+        };
+        lights.lights[0] = PhongLight {
+            dir: q(ld),
+            color: [255, 200, 100],
+        };
+        let m = PhongMaterial {
+            color: [200, 60, 60],
+            k: [0.1, 0.8, 0.6].map(|c: f64| (c * ONE as f64).round() as i32),
+            shininess: 20,
+            v: q(vd),
+            lv: [(lv * ONE as f64).round() as i32, 0, 0, 0],
+        };
+        let mut worst = 0.0f64;
+        for i in 0..200 {
+            let a = i as f64 * 0.1;
+            let n = unit([a.sin(), (a * 0.7).cos(), 0.5 + (a * 1.3).sin().abs()]);
+            // A shorter normal (as interpolation gives) must light the same.
+            let got = shade(q(n.map(|c| c * 0.8)), &lights, &m);
+            let nl = n[0] * ld[0] + n[1] * ld[1] + n[2] * ld[2];
+            let nv = n[0] * vd[0] + n[1] * vd[1] + n[2] * vd[2];
+            for c in 0..3 {
+                let lc = lights.lights[0].color[c] as f64;
+                let mut v = m.color[c] as f64 * (0.1 + 0.8 * lc / 255.0 * nl.max(0.0));
+                let rv = 2.0 * nl * nv - lv;
+                if nl > 0.0 && rv > 0.0 {
+                    v += 0.6 * lc * rv.powi(20);
+                }
+                let want = v.clamp(0.0, 255.0);
+                worst = worst.max((got[c] as f64 / ONE as f64 - want).abs());
+            }
+        }
+        // Within a quarter of an 8-bit step (Q1.14 directions and the power's roundings).
+        assert!(worst < 0.25, "{worst}");
+    }
+
+    #[test]
+    fn pool_payloads_round_trip() {
+        let mut e = ActiveExtra::EMPTY;
+        let mut l = PhongLights {
+            count: 3,
+            ..Default::default()
+        };
+        l.lights[2] = PhongLight {
+            dir: [1, -2, 3],
+            color: [255, 0, 7],
+        };
+        l.store(&mut e);
+        assert_eq!(PhongLights::load(&e), l);
+        let m = PhongMaterial {
+            color: [1, 2, 3],
+            k: [255 << 14, 0, 12345],
+            shininess: 255,
+            v: [-16384, 5, 16383],
+            lv: [-12000, 16384, 0, -1],
+        };
+        m.store(&mut e);
+        assert_eq!(PhongMaterial::load(&e), m);
+    }
+}
