@@ -1,0 +1,288 @@
+//! Phong shading against the model evaluated exactly: a coarse icosphere whose specular
+//! highlight falls in the middle of a triangle (where Gouraud, which lights only the vertices,
+//! loses it), against a ray-cast sphere lit per pixel in f64 with the same light, view
+//! direction and material. `cargo test --test phong -- --nocapture` prints the figures.
+
+mod common;
+
+use common::Frame;
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::*;
+use scanline3d::prelude::*;
+use scanline3d::{Error, TexturedShape};
+
+type Q = Fx<scanline3d::fixed::types::I16F16>;
+
+const SIZE: u32 = 160;
+const EYE: f64 = 3.0;
+const FOV: f64 = 0.8;
+const COLOR: [u8; 3] = [60, 110, 210];
+const AMBIENT: f64 = 0.1;
+const DIFFUSE: f64 = 0.7;
+const SPECULAR: f64 = 0.8;
+const SHININESS: u8 = 40;
+
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    v.map(|c| c / l)
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The light direction that puts the highlight (the mirror direction of the view) at the
+/// centre of the icosphere's face nearest the viewer: for a face centre direction `c` and the
+/// view direction `v`, `L = 2(c·v)c − v`.
+fn light_into_a_face() -> [f64; 3] {
+    let s = Shape::<f64, 42, 80>::icosphere(1.0, 1).unwrap();
+    let v = [0.0, 0.0, 1.0];
+    let c = s
+        .indices
+        .iter()
+        .map(|t| unit([0, 1, 2].map(|j| t.iter().map(|&i| s.positions[i as usize][j]).sum())))
+        // A face a little off the centre, so that the highlight is not on the axis.
+        .filter(|c| c[2] < 0.95)
+        .max_by(|a, b| a[2].total_cmp(&b[2]))
+        .unwrap();
+    unit([0, 1, 2].map(|k| 2.0 * dot(c, v) * c[k] - v[k]))
+}
+
+fn render<S: Scalar>(shading: Shading, light: [f64; 3]) -> Frame<Rgb565> {
+    let shape = Shape::<S, 42, 80>::icosphere(1.0, 1).unwrap();
+    let objects = [Object {
+        mesh: shape.mesh(),
+        transform: Mat4::identity(),
+        material: Material::matte(COLOR, S::from_f64(AMBIENT), S::from_f64(DIFFUSE))
+            .specular(S::from_f64(SPECULAR), SHININESS)
+            .shading(shading),
+    }];
+    let cam = Camera::look_at(
+        [S::ZERO, S::ZERO, S::from_f64(EYE)],
+        [S::ZERO; 3],
+        [S::ZERO, S::ONE, S::ZERO],
+        Projection::Perspective {
+            fov_y: S::from_f64(FOV),
+            near: S::from_f64(0.1),
+            far: S::from_f64(10.0),
+        },
+    )
+    .unwrap();
+    let scene = Scene::new(&objects, cam, [Light::white(light.map(S::from_f64))]);
+    let mut r: Box<Renderer<S, Rgb565, 160, 160, 64, 96, 16, 1, 64, 18>> = Box::default();
+    let mut f = Frame::new(SIZE, SIZE, Rgb565::BLACK);
+    r.render(&scene, &mut f).unwrap();
+    f.assert_each_written_once();
+    f
+}
+
+/// The exact model on the unit sphere at the centre of pixel (x, y): 8-bit channels, or
+/// `None` off the sphere. The view direction is the object origin's (as Phong's).
+fn reference(x: u32, y: u32, light: [f64; 3]) -> Option<[f64; 3]> {
+    let th = (FOV / 2.0).tan();
+    let nx = ((x as f64 + 0.5) / SIZE as f64 * 2.0 - 1.0) * th;
+    let ny = (1.0 - (y as f64 + 0.5) / SIZE as f64 * 2.0) * th;
+    let d = unit([nx, ny, -1.0]);
+    let o = [0.0, 0.0, EYE];
+    // |o + t·d| = 1.
+    let b = dot(o, d);
+    let disc = b * b - (dot(o, o) - 1.0);
+    if disc < 0.0 {
+        return None;
+    }
+    let t = -b - disc.sqrt();
+    let n = unit([0, 1, 2].map(|k| o[k] + t * d[k]));
+    let (l, v) = (light, [0.0, 0.0, 1.0]);
+    let nl = dot(n, l);
+    let rv = 2.0 * nl * dot(n, v) - dot(l, v);
+    Some([0, 1, 2].map(|c| {
+        let mut s = COLOR[c] as f64 * (AMBIENT + DIFFUSE * nl.max(0.0));
+        if nl > 0.0 && rv > 0.0 {
+            s += SPECULAR * 255.0 * rv.powi(SHININESS as i32);
+        }
+        s.clamp(0.0, 255.0)
+    }))
+}
+
+/// Blue channel (5 bits) of a pixel, as 8-bit units.
+fn blue8(c: Rgb565) -> f64 {
+    c.b() as f64 * 255.0 / 31.0
+}
+
+/// Figures of one rendering against the reference, over the pixels the mesh covers at least
+/// 3 px inside the sphere's outline: the brightest blue (the highlight), and the largest and
+/// mean blue difference in 8-bit units.
+fn figures(f: &Frame<Rgb565>, light: [f64; 3]) -> (f64, f64, f64, f64) {
+    let (mut peak, mut ref_peak, mut worst, mut sum, mut n) = (0.0f64, 0.0f64, 0.0f64, 0.0, 0);
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            let inside = (-3i32..=3).all(|dy| {
+                (-3i32..=3).all(|dx| {
+                    reference((x as i32 + dx) as u32, (y as i32 + dy) as u32, light).is_some()
+                })
+            });
+            // (The coarse mesh lies inside the sphere: its outline is a few pixels in.)
+            if !inside || f.get(x, y) == Rgb565::BLACK {
+                continue;
+            }
+            let want = reference(x, y, light).unwrap()[2];
+            let got = blue8(f.get(x, y));
+            peak = peak.max(got);
+            ref_peak = ref_peak.max(want);
+            worst = worst.max((got - want).abs());
+            sum += (got - want).abs();
+            n += 1;
+        }
+    }
+    (peak, ref_peak, worst, sum / n as f64)
+}
+
+#[test]
+fn a_highlight_inside_a_triangle_appears_under_phong_and_not_under_gouraud() {
+    let light = light_into_a_face();
+    let show = |name: &str, f: &(f64, f64, f64, f64)| {
+        println!(
+            "{name}: highlight {:.0} (exact {:.0}), blue error worst {:.1}, mean {:.2} (8-bit units)",
+            f.0, f.1, f.2, f.3
+        );
+    };
+    for ty in ["I16F16", "f32", "f64"] {
+        let r = |s: Shading| match ty {
+            "I16F16" => render::<Q>(s, light),
+            "f32" => render::<f32>(s, light),
+            _ => render::<f64>(s, light),
+        };
+        let (g, p, fp) = (
+            figures(&r(Shading::Gouraud), light),
+            figures(&r(Shading::Phong), light),
+            figures(&r(Shading::FastPhong), light),
+        );
+        println!("{ty}:");
+        show("  gouraud", &g);
+        show("  phong", &p);
+        show("  fast phong", &fp);
+        // The exact highlight saturates blue; Phong reaches it, Gouraud stays far below.
+        assert!(p.1 > 250.0, "{p:?}");
+        assert!(p.0 > 240.0, "phong loses the highlight: {p:?}");
+        assert!(fp.0 > 230.0, "fast phong loses the highlight: {fp:?}");
+        assert!(
+            g.0 < 200.0,
+            "the highlight should vanish under gouraud: {g:?}"
+        );
+        // Phong is closer to the exact shading on average (the worst pixel, for every mode,
+        // is where the coarse mesh's interpolated normals put the highlight a few pixels
+        // away from the sphere's).
+        assert!(p.3 < 0.7 * g.3 && p.2 < g.2, "{p:?} {g:?}");
+        assert!(fp.3 < 0.7 * g.3, "{fp:?} {g:?}");
+    }
+}
+
+#[test]
+fn without_a_specular_term_phong_is_gouraud_on_a_flat_quad() {
+    // Every normal the same: Gouraud's vertex colours and Phong's per-pixel colour are the
+    // same lighting (rounded differently: within one RGB565 step).
+    let quad = [
+        [-1.0f32, -1.0, 0.0],
+        [1.0, -1.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [-1.0, 1.0, 0.0],
+    ];
+    let n = unit([0.3, 0.2, 1.0]);
+    let normals = [n.map(|c| c as f32); 4];
+    let idx = [[0u16, 1, 2], [0, 2, 3]];
+    let draw = |s: Shading| {
+        let mesh = Mesh::new(&quad, &idx)
+            .unwrap()
+            .with_normals(&normals)
+            .unwrap();
+        let objects = [Object {
+            mesh,
+            transform: Mat4::identity(),
+            material: Material::matte([200, 150, 90], 0.2, 0.8).shading(s),
+        }];
+        let cam = Camera::look_at(
+            [0.0, 0.0, 3.0],
+            [0.0; 3],
+            [0.0, 1.0, 0.0],
+            Projection::Perspective {
+                fov_y: 0.8,
+                near: 0.1,
+                far: 10.0,
+            },
+        )
+        .unwrap();
+        let lights = [
+            Light::white([-1.0, 1.0, 1.0]),
+            Light {
+                direction: [1.0, 0.0, 0.5],
+                color: [255, 60, 0],
+            },
+        ];
+        let scene = Scene::new(&objects, cam, lights);
+        let mut r: Box<Renderer<f32, Rgb565, 64, 64, 8, 8, 8, 1, 8, 8>> = Box::default();
+        let mut f = Frame::new(64, 64, Rgb565::BLACK);
+        r.render(&scene, &mut f).unwrap();
+        f
+    };
+    let (g, p) = (draw(Shading::Gouraud), draw(Shading::Phong));
+    let (max, differing, _) = common::compare565(&g, &p, Rgb565::BLACK);
+    assert!(max.iter().all(|&d| d <= 1), "{max:?} over {differing} px");
+    assert!(g.px.iter().filter(|&&c| c != Rgb565::BLACK).count() > 1000);
+}
+
+#[test]
+fn phong_needs_the_attribute_stores() {
+    let shape = TexturedShape::<f32, 64, 96>::icosphere(1.0, 1).unwrap();
+    let objects = [Object {
+        mesh: shape.shape.mesh(),
+        transform: Mat4::identity(),
+        material: Material::matte([255; 3], 0.2, 0.8).phong(),
+    }];
+    let cam = Camera::look_at(
+        [0.0, 0.0, 3.0],
+        [0.0; 3],
+        [0.0, 1.0, 0.0],
+        Projection::Perspective {
+            fov_y: 0.8,
+            near: 0.1,
+            far: 10.0,
+        },
+    )
+    .unwrap();
+    let scene = Scene::new(&objects, cam, [Light::white([0.0, 0.0, 1.0])]);
+    let mut plain: Box<Renderer<f32, Rgb565, 64, 64, 64, 96, 16>> = Box::default();
+    let mut f = Frame::new(64, 64, Rgb565::BLACK);
+    assert!(matches!(
+        plain.render(&scene, &mut f),
+        Err(Error::AttributeStore { object: 0, .. })
+    ));
+    // One pool entry is the lights', one the material's: one more is not enough for the
+    // triangles of a row.
+    let mut small: Box<Renderer<f32, Rgb565, 64, 64, 64, 96, 16, 1, 64, 3>> = Box::default();
+    assert!(matches!(
+        small.render(&scene, &mut f),
+        Err(Error::AttributeStore { .. })
+    ));
+    let mut enough: Box<Renderer<f32, Rgb565, 64, 64, 64, 96, 16, 1, 64, 18>> = Box::default();
+    let mut f = Frame::new(64, 64, Rgb565::BLACK);
+    enough.render(&scene, &mut f).unwrap();
+    f.assert_each_written_once();
+}
+
+/// The Phong benchmark frames in each variant and number type, against golden images
+/// (looked at).
+#[test]
+fn phong_frames_match_their_golden_images() {
+    use scanline3d::demo::{render_bench, Bench};
+    fn one<S: Scalar>(b: Bench, ty: &str) {
+        let mut f = Frame::new(240, 240, Rgb565::BLACK);
+        render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::NoProbe).unwrap();
+        f.assert_each_written_once();
+        common::check_golden(&format!("{}_{ty}", b.name()), &f);
+    }
+    for b in [Bench::Phong, Bench::PhongFast, Bench::PhongGouraud] {
+        one::<Q>(b, "I16F16");
+        one::<f32>(b, "f32");
+        one::<f64>(b, "f64");
+    }
+}
