@@ -15,6 +15,7 @@ use common::compare::Timer;
 use common::obj::{
     bounds, parse_obj, simplify, suggest_triangles, vertex_normals, NormalSource, ObjMesh,
 };
+use common::texture_io::load_png_texture;
 use common::Frame;
 use embedded_graphics::pixelcolor::{PixelColor, Rgb565, Rgb888, RgbColor};
 use scanline3d::demo::{self, deg};
@@ -22,14 +23,16 @@ use scanline3d::fixed::types::I16F16;
 use scanline3d::internals::ram_formula;
 use scanline3d::metrics::Metrics;
 use scanline3d::prelude::*;
-use scanline3d::{Capacity, Error, Needs, Stats};
+use scanline3d::{Capacity, Error, Needs, Stats, Texture, TextureMode, TexturedShape, Texturing};
 
 /// Largest preview size and capacities (host only; `--budget` prints what a device needs): the
 /// library's largest renderer (`Renderer`'s limits: 32 768 vertices, 32 767 triangles, 32 768
 /// triangles active on one row).
 const MAX_W: usize = 1024;
 const MAX_H: usize = 1024;
-type Big<S, C> = Renderer<S, C, MAX_W, MAX_H, 32768, 32767, 32768>;
+/// With texture and Phong attribute stores for every vertex and 4 096 textured (or Phong)
+/// triangles on one row.
+type Big<S, C> = Renderer<S, C, MAX_W, MAX_H, 32768, 32767, 32768, 1, 32768, 4096>;
 /// The same with one strip over the whole image, for a frame too large for one renderer: it is
 /// drawn in passes ([`Renderer::render_passes`]), each a piece of the mesh that fits. Its lines
 /// are 5 MB at 1024x1024 (made only when a frame needs them).
@@ -65,6 +68,22 @@ enum SceneArg {
 enum ShadingArg {
     Flat,
     Gouraud,
+    /// Lit at every pixel
+    Phong,
+    /// Phong lit every 8 pixels, linear between
+    FastPhong,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum TexModeArg {
+    /// Perspective-correct every 16 pixels (TextureMode::Subdivided16)
+    Perspective,
+    /// Perspective-correct every 8 pixels (TextureMode::Subdivided8)
+    Perspective8,
+    /// Perspective-correct at every pixel (TextureMode::PerPixel)
+    Exact,
+    /// Linear in screen space (TextureMode::Affine)
+    Affine,
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -201,6 +220,14 @@ struct Args {
     /// Shading mode
     #[arg(long, value_enum, default_value = "gouraud")]
     shading: ShadingArg,
+    /// Texture image (PNG, power-of-two sides up to 1024): multiplies the lit colour (use
+    /// --color 255,255,255 for the image's own colours); the OBJ needs vt, the built-in scenes
+    /// have texture coordinates; transparent pixels are not drawn
+    #[arg(long, value_name = "FILE.png")]
+    texture: Option<PathBuf>,
+    /// How textured spans find their texture coordinates
+    #[arg(long, value_enum, default_value = "perspective", requires = "texture")]
+    texture_mode: TexModeArg,
     /// Vertex normals: averaged from the faces, or the OBJ's own vn [default: file when the OBJ has them]
     #[arg(long, value_enum)]
     normals: Option<NormalsArg>,
@@ -252,6 +279,8 @@ struct Model {
     positions: Vec<[f64; 3]>,
     normals: Vec<[f64; 3]>,
     indices: Vec<[u16; 3]>,
+    /// Texture coordinates, one per vertex (with `--texture`).
+    uvs: Option<Vec<[f64; 2]>>,
     /// What the simplification did (`--max-triangles`, `--max-vertices`).
     simplified: Option<String>,
 }
@@ -272,7 +301,15 @@ fn model(args: &Args) -> Result<Model, String> {
             Some(NormalsArg::FaceAverage) => NormalSource::FaceAverage,
             None => file.default_normals(),
         };
-        let mut big = file.mesh(source)?;
+        let mut big = file
+            .mesh_with(source, args.texture.is_some())
+            .map_err(|e| {
+                if args.texture.is_some() && !e.contains("only some") {
+                    format!("{e} (--texture needs texture coordinates: vt on every face corner)")
+                } else {
+                    e
+                }
+            })?;
         let mut simplified = None;
         if args.max_triangles.is_some() || args.max_vertices.is_some() {
             let s = simplify(&big, args.max_triangles, args.max_vertices)
@@ -287,6 +324,7 @@ fn model(args: &Args) -> Result<Model, String> {
             positions: mesh.positions,
             normals,
             indices: mesh.indices,
+            uvs: big.uvs,
             simplified,
         });
     }
@@ -306,10 +344,45 @@ fn model(args: &Args) -> Result<Model, String> {
             normals: vertex_normals(&mesh, use_file),
             positions: mesh.positions,
             indices: mesh.indices,
+            uvs: None,
             simplified: None,
         }
     }
     let e = |e: scanline3d::ShapeError| format!("shape: {e}");
+    if args.texture.is_some() {
+        // The textured shapes: the same geometry with texture coordinates (seams split).
+        fn textured<const V: usize, const T: usize>(
+            name: &str,
+            s: TexturedShape<f64, V, T>,
+            args: &Args,
+        ) -> Model {
+            let mut m = from_shape(name, s.shape, args);
+            m.uvs = Some(s.uvs.to_vec());
+            m
+        }
+        return Ok(match args.scene.unwrap_or(SceneArg::Torus) {
+            SceneArg::Torus => textured(
+                "torus",
+                TexturedShape::<f64, 561, 1024>::torus(1.0, 0.4, 32, 16).map_err(e)?,
+                args,
+            ),
+            SceneArg::Cube => textured(
+                "cube",
+                TexturedShape::<f64, 24, 12>::cube(1.0).map_err(e)?,
+                args,
+            ),
+            SceneArg::Icosphere => textured(
+                "icosphere",
+                TexturedShape::<f64, 760, 1280>::icosphere(1.0, 3).map_err(e)?,
+                args,
+            ),
+            SceneArg::Terrain => textured(
+                "terrain",
+                TexturedShape::<f64, 289, 512>::terrain(4.0, 16, 0.4).map_err(e)?,
+                args,
+            ),
+        });
+    }
     Ok(match args.scene.unwrap_or(SceneArg::Torus) {
         SceneArg::Torus => from_shape("torus", demo::torus::<f64>().map_err(e)?, args),
         SceneArg::Cube => from_shape("cube", Shape::<f64, 24, 12>::cube(1.0).map_err(e)?, args),
@@ -329,6 +402,8 @@ fn model(args: &Args) -> Result<Model, String> {
 /// Camera, model placement and everything else a frame needs, in f64.
 #[derive(Clone)]
 struct Setup {
+    /// The texture (`--texture`), loaded once.
+    texture: Option<Texturing>,
     eye: [f64; 3],
     target: [f64; 3],
     up: [f64; 3],
@@ -339,7 +414,27 @@ struct Setup {
 
 fn setup(args: &Args, m: &Model) -> Result<Setup, String> {
     let (w, h) = args.size;
+    let texture = match &args.texture {
+        None => None,
+        Some(path) => {
+            let png = load_png_texture(path)?;
+            let texels: &'static [u16] = Box::leak(png.texels.into_boxed_slice());
+            let texture = Texture::new(texels, png.width, png.height)
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            Some(Texturing {
+                texture: Box::leak(Box::new(texture)),
+                mode: match args.texture_mode {
+                    TexModeArg::Perspective => TextureMode::Subdivided16,
+                    TexModeArg::Perspective8 => TextureMode::Subdivided8,
+                    TexModeArg::Exact => TextureMode::PerPixel,
+                    TexModeArg::Affine => TextureMode::Affine,
+                },
+                key: png.key,
+            })
+        }
+    };
     let mut s = Setup {
+        texture,
         eye: args.eye,
         target: args.target,
         up: args.up,
@@ -568,6 +663,13 @@ fn run<S: Scalar, C: TargetColor>(
     let mesh = mesh
         .with_normals(&nor)
         .map_err(|e| format!("{}: {e}", m.name))?;
+    let uvs: Vec<[S; 2]> = m.uvs.iter().flatten().map(|t| t.map(S::from_f64)).collect();
+    let mesh = if m.uvs.is_some() {
+        mesh.with_uvs(&uvs)
+            .map_err(|e| format!("{}: {e}", m.name))?
+    } else {
+        mesh
+    };
     let projection = match s.projection {
         Projection::Perspective { fov_y, near, far } => Projection::Perspective {
             fov_y: S::from_f64(fov_y),
@@ -598,12 +700,13 @@ fn run<S: Scalar, C: TargetColor>(
         diffuse: S::from_f64(args.diffuse),
         specular: S::from_f64(args.specular),
         shininess: args.shininess,
-        shading: if args.shading == ShadingArg::Flat {
-            Shading::Flat
-        } else {
-            Shading::Gouraud
+        shading: match args.shading {
+            ShadingArg::Flat => Shading::Flat,
+            ShadingArg::Gouraud => Shading::Gouraud,
+            ShadingArg::Phong => Shading::Phong,
+            ShadingArg::FastPhong => Shading::FastPhong,
         },
-        texture: None,
+        texture: s.texture,
     };
     let mut r: Box<Big<S, C>> = Box::default();
     r.set_viewport(w, h);
@@ -656,6 +759,14 @@ fn run<S: Scalar, C: TargetColor>(
                 out.needs.push(Needs::from_stats(&stats));
                 out.stats.push(stats);
                 out.passes.push(1);
+            }
+            // Textures and Phong need one renderer's attribute stores: no passes.
+            Err(Error::Shortfall(sf)) if material.needs_attribute_stores() => {
+                return Err(format!(
+                    "{}: {sf}: a textured or Phong frame is drawn in one pass; simplify the \
+                     model (--max-triangles)",
+                    m.name
+                ));
             }
             // More than one renderer holds: drawn in passes, each a piece of the mesh that fits.
             Ok(None) | Err(Error::Shortfall(_)) => {
@@ -1160,7 +1271,26 @@ fn budget<C: TargetColor>(
         scanline3d::internals::TRIANGLE_BYTES,
         scanline3d::internals::ACTIVE_BYTES
     );
-    println!("  renderer type: Renderer<Fx<I16F16>, {color}, {w}, {h}, {verts}, {tris}, {active}, {lines}>");
+    if s.texture.is_some() || matches!(args.shading, ShadingArg::Phong | ShadingArg::FastPhong) {
+        // The attribute stores: every vertex, and every active triangle plus the Phong lights'
+        // and material's entries.
+        let reserved = if matches!(args.shading, ShadingArg::Phong | ShadingArg::FastPhong) {
+            2
+        } else {
+            0
+        };
+        let (xv, xa) = (verts, active + reserved);
+        println!(
+            "  attribute stores (texture, Phong): XV = {xv}, XA = {xa}: + {} bytes on a 32-bit core \
+             ({xv}·{} + {xa}·{})",
+            xv * scanline3d::VERTEX_EXTRA_BYTES_32 + xa * scanline3d::ACTIVE_EXTRA_BYTES_32,
+            scanline3d::VERTEX_EXTRA_BYTES_32,
+            scanline3d::ACTIVE_EXTRA_BYTES_32
+        );
+        println!("  renderer type: Renderer<Fx<I16F16>, {color}, {w}, {h}, {verts}, {tris}, {active}, {lines}, {xv}, {xa}>");
+    } else {
+        println!("  renderer type: Renderer<Fx<I16F16>, {color}, {w}, {h}, {verts}, {tris}, {active}, {lines}>");
+    }
     // Work the scene does not need.
     let closed_convex = is_closed_convex(m);
     if closed_convex {

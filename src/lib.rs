@@ -195,7 +195,8 @@ pub use project::{ScreenVertex, COORD_LIMIT, DEPTH_FRAC_BITS, MAX_SCREEN, SUBPIX
 pub use raster::{DepthTest, COLOR_FRAC_BITS};
 pub use renderer::{
     Capacity, Error, Needs, NoProbe, OverflowPolicy, Probe, Renderer, Shortfall, Stage, Stats,
-    StripBufferTooSmall, ACTIVE_EXTRA_BYTES, VERTEX_EXTRA_BYTES,
+    StripBufferTooSmall, ACTIVE_EXTRA_BYTES, ACTIVE_EXTRA_BYTES_32, VERTEX_EXTRA_BYTES,
+    VERTEX_EXTRA_BYTES_32,
 };
 pub use scalar::{Fx, FxRecip, Scalar, NDC_FRAC_BITS};
 pub use scene::{Object, Scene};

@@ -678,6 +678,11 @@ pub const VERTEX_EXTRA_BYTES: usize = core::mem::size_of::<VertexExtra>();
 /// Bytes per entry of the textured triangles' pool (`XA`): 108 on a 32-bit core, 112 on a
 /// 64-bit host.
 pub const ACTIVE_EXTRA_BYTES: usize = core::mem::size_of::<ActiveExtra>();
+/// [`VERTEX_EXTRA_BYTES`] on a 32-bit core (for sizing a device's renderer on the host;
+/// checked at compile time on 32-bit targets).
+pub const VERTEX_EXTRA_BYTES_32: usize = 20;
+/// [`ACTIVE_EXTRA_BYTES`] on a 32-bit core.
+pub const ACTIVE_EXTRA_BYTES_32: usize = 108;
 
 /// The documented RAM formula (see the crate docs): colour and depth lines, vertex store,
 /// triangle list, active list, row buckets; `extra` covers alignment and a few words of state.

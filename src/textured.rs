@@ -580,5 +580,6 @@ fn scaled_div(n: i64, det: i64, s: u32) -> i64 {
 // The documented record sizes on 32-bit cores (`VERTEX_EXTRA_BYTES`, `ACTIVE_EXTRA_BYTES`).
 #[cfg(target_pointer_width = "32")]
 const _: () = assert!(
-    core::mem::size_of::<VertexExtra>() == 20 && core::mem::size_of::<ActiveExtra>() == 108
+    core::mem::size_of::<VertexExtra>() == crate::renderer::VERTEX_EXTRA_BYTES_32
+        && core::mem::size_of::<ActiveExtra>() == crate::renderer::ACTIVE_EXTRA_BYTES_32
 );
