@@ -221,6 +221,7 @@ fn main() {
     );
     md.push_str(&table);
     md.push_str(&texture_modes(&mcu));
+    md.push_str(&phong_variants(&mcu));
     std::fs::write(out.join("report.md"), md).unwrap_or_else(|e| fail(&e.to_string()));
 
     if let Err(e) = plot(&rows, &mcu, &out.join("speed_vs_error.png")) {
@@ -300,6 +301,58 @@ fn texture_modes(mcu: &BTreeMap<(String, String, String), u64>) -> String {
                 t.worst,
                 t.mean,
                 100.0 * t.exact as f64 / t.drawn.max(1) as f64,
+                cell("m0"),
+                cell("m4f"),
+            );
+        }
+    }
+    md
+}
+
+/// Gouraud, Phong and fast Phong side by side on the `phong` scene (a coarse icosphere with a
+/// sharp highlight): each frame against the f64 frame lit at every pixel (`phong`), and the
+/// instructions per frame on the Cortex-M0 and M4F.
+fn phong_variants(mcu: &BTreeMap<(String, String, String), u64>) -> String {
+    use common::compare::compare_with;
+    let variants = [
+        (Bench::Phong, "Phong (every pixel)"),
+        (Bench::PhongFast, "fast Phong (every 8 px)"),
+        (Bench::PhongGouraud, "Gouraud"),
+    ];
+    let mut md = String::new();
+    let _ = writeln!(md, "\n## Phong variants\n");
+    let _ = writeln!(
+        md,
+        "Each variant's `phong*` frame against the f64 frame lit at every pixel (`phong`): the colour error a user sees from the variant and the number type together (Gouraud loses the highlight that falls inside a triangle: `tests/phong.rs` measures that against a ray-cast sphere). Instructions: renderer instructions per frame from `scripts/mcu-bench` (empty when it has not been run).\n"
+    );
+    let _ = writeln!(
+        md,
+        "| variant | number | max LSB (r,g,b) | mean abs LSB | PSNR dB | differing px | M0 instr. | M4F instr. |"
+    );
+    let _ = writeln!(md, "|---|---|---|---:|---:|---:|---:|---:|");
+    for (b, name) in variants {
+        let rows: [(&str, Metrics); 3] = [
+            ("f64", compare_with::<f64>(b, Bench::Phong)),
+            ("f32", compare_with::<f32>(b, Bench::Phong)),
+            ("I16F16", compare_with::<Fx<I16F16>>(b, Bench::Phong)),
+        ];
+        for (number, m) in rows {
+            let cell = |core: &str| {
+                mcu.get(&(b.name().to_string(), number.to_string(), core.to_string()))
+                    .map_or(String::new(), |i| i.to_string())
+            };
+            let psnr = m.psnr_db();
+            let _ = writeln!(
+                md,
+                "| {name} | {number} | {:?} | {:.4} | {} | {} | {} | {} |",
+                m.max_lsb,
+                m.mean_abs(),
+                if psnr.is_finite() {
+                    format!("{psnr:.1}")
+                } else {
+                    "∞".into()
+                },
+                m.differing,
                 cell("m0"),
                 cell("m4f"),
             );

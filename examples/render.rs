@@ -421,16 +421,16 @@ fn setup(args: &Args, m: &Model) -> Result<Setup, String> {
             let texels: &'static [u16] = Box::leak(png.texels.into_boxed_slice());
             let texture = Texture::new(texels, png.width, png.height)
                 .map_err(|e| format!("{}: {e}", path.display()))?;
-            Some(Texturing {
-                texture: Box::leak(Box::new(texture)),
-                mode: match args.texture_mode {
-                    TexModeArg::Perspective => TextureMode::Subdivided16,
-                    TexModeArg::Perspective8 => TextureMode::Subdivided8,
-                    TexModeArg::Exact => TextureMode::PerPixel,
-                    TexModeArg::Affine => TextureMode::Affine,
-                },
-                key: png.key,
-            })
+            Some(
+                Texturing::new(Box::leak(Box::new(texture)))
+                    .with_mode(match args.texture_mode {
+                        TexModeArg::Perspective => TextureMode::Subdivided16,
+                        TexModeArg::Perspective8 => TextureMode::Subdivided8,
+                        TexModeArg::Exact => TextureMode::PerPixel,
+                        TexModeArg::Affine => TextureMode::Affine,
+                    })
+                    .with_key(png.key),
+            )
         }
     };
     let mut s = Setup {

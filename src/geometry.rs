@@ -49,14 +49,25 @@ pub(crate) struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
     mirrored: bool,
     eye: Vec3<S>,
     base: usize,
-    /// `1 − near/far` in Q0.24 for a perspective camera, 0 for an orthographic one: the
-    /// textured vertices' `near/w` from their depth ([`q_from_depth`]).
-    k24: u32,
-    /// A Phong object's material entry in the pool (0: not Phong).
-    phong_material: u16,
+    /// For the attribute stores, in one word (the deepest stack of a frame, on a 16 KB part,
+    /// has no room for two): bits 0..=24, `1 − near/far` in Q0.24 for a perspective camera,
+    /// 0 for an orthographic one (the textured vertices' `near/w` from their depth,
+    /// [`q_from_depth`]); bits 25..=31, a Phong object's material entry in the pool (0: not
+    /// Phong; at most 127 Phong objects).
+    extra: u32,
 }
 
 impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
+    /// `1 − near/far` in Q0.24 (see [`Self::extra`]).
+    pub(crate) fn k24(&self) -> u32 {
+        self.extra & ((1 << 25) - 1)
+    }
+
+    /// A Phong object's material entry in the pool (see [`Self::extra`]).
+    pub(crate) fn phong_material(&self) -> u16 {
+        (self.extra >> 25) as u16
+    }
+
     /// Mesh normal `n` in world space, unit, Q1.14 (a Phong vertex's attribute).
     pub(crate) fn phong_normal(&self, n: Vec3<S>) -> [i32; 3] {
         self.world_normal(n, true).map(|c| c.to_fixed_i32(14))
@@ -249,14 +260,14 @@ impl<
                 mirrored,
                 eye: scene.camera.eye,
                 base: self.verts.len(),
-                k24,
                 // The material's pool entry (after the lights' entry).
-                phong_material: if obj.material.shading.is_phong() {
-                    phong_objects += 1;
-                    phong_objects as u16
-                } else {
-                    0
-                },
+                extra: k24
+                    | if XV > 0 && obj.material.shading.is_phong() {
+                        phong_objects += 1;
+                        (phong_objects as u32) << 25
+                    } else {
+                        0
+                    },
             };
             self.object(&setup, &vp, g, &mut stats, &mut need, probe);
             if XV > 0 {
@@ -737,12 +748,12 @@ impl<
                 _ if C::triangle_id(0).is_some() => VertexExtra::NONE,
                 (_, _, Some(ns)) if phong.is_phong() => VertexExtra::phong(
                     o.phong_normal(ns[i - base]),
-                    o.phong_material,
+                    o.phong_material(),
                     phong == Shading::FastPhong,
                 ),
                 (Some(map), Some(uvs), _) => {
                     let st = uvs[i - base].map(|c| c.to_fixed_i32(16));
-                    let q = q_from_depth(self.verts[i].depth() as u32 >> 4, o.k24);
+                    let q = q_from_depth(self.verts[i].depth() as u32 >> 4, o.k24());
                     VertexExtra::new(map, st, q)
                 }
                 _ => VertexExtra::NONE,
@@ -786,7 +797,7 @@ impl<
             let n = [0, 1, 2].map(|k| o.phong_normal(ns[tri[k] as usize]).map(|v| v as i64));
             let n = [0, 1, 2].map(|j| mix(n[0][j], n[1][j], n[2][j]));
             let fast = material.shading == Shading::FastPhong;
-            self.xverts[at] = VertexExtra::phong(n, o.phong_material, fast);
+            self.xverts[at] = VertexExtra::phong(n, o.phong_material(), fast);
             return;
         }
         let (Some(map), Some(uvs)) = (&material.texture, o.obj.mesh.uvs()) else {
@@ -794,7 +805,7 @@ impl<
         };
         let st = |k: usize| uvs[tri[k] as usize].map(|c| c.to_fixed_i32(16) as i64);
         let (a, b, c) = (st(0), st(1), st(2));
-        let q = q_from_depth(sv.depth() as u32 >> 4, o.k24);
+        let q = q_from_depth(sv.depth() as u32 >> 4, o.k24());
         self.xverts[at] = VertexExtra::new(map, [mix(a[0], b[0], c[0]), mix(a[1], b[1], c[1])], q);
     }
 

@@ -382,8 +382,10 @@ mod tests {
                 worst = worst.max((got[c] as f64 / ONE as f64 - want).abs());
             }
         }
-        // Within a quarter of an 8-bit step (Q1.14 directions and the power's roundings).
-        assert!(worst < 0.25, "{worst}");
+        // Within 3/4 of an 8-bit step (a tenth of an RGB565 step): Q1.14 directions, whose
+        // 2⁻¹⁴ rounding the specular power multiplies (20·2⁻¹⁴·0.6·255 ≈ 0.2 a step, from each
+        // of the products in R·V), and the power's truncated squarings.
+        assert!(worst < 0.75, "{worst}");
     }
 
     #[test]

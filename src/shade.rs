@@ -181,7 +181,7 @@ impl<S: Scalar> Material<S> {
     pub const fn texture_mode(self, mode: TextureMode) -> Self {
         match self.texture {
             Some(t) => Material {
-                texture: Some(Texturing { mode, ..t }),
+                texture: Some(t.with_mode(mode)),
                 ..self
             },
             None => self,
@@ -193,10 +193,7 @@ impl<S: Scalar> Material<S> {
     pub const fn color_key(self, key: u16) -> Self {
         match self.texture {
             Some(t) => Material {
-                texture: Some(Texturing {
-                    key: Some(key),
-                    ..t
-                }),
+                texture: Some(t.with_key(Some(key))),
                 ..self
             },
             None => self,

@@ -193,6 +193,7 @@ impl Texture {
 
 /// How a textured triangle's spans find their texture coordinates.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Default, Hash)]
+#[repr(u8)]
 pub enum TextureMode {
     /// Perspective-correct at every pixel (a reciprocal per pixel): the reference, slowest.
     PerPixel,
@@ -220,15 +221,15 @@ impl TextureMode {
 }
 
 /// A material's texture: the image, how spans map it, and an optional colour key (a texel
-/// value that is not drawn: the pixel keeps what it had, its depth is not written).
+/// value that is not drawn: the pixel keeps what it had, its depth is not written). Built
+/// with [`Texturing::new`] and the `with_` methods (or [`crate::Material::textured`]); 8
+/// bytes on a 32-bit core (a [`crate::Material`] is on the deepest stack of a frame).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Texturing {
-    /// The image.
-    pub texture: &'static Texture,
-    /// Perspective-correct or affine spans.
-    pub mode: TextureMode,
-    /// Texels equal to this are see-through.
-    pub key: Option<u16>,
+    texture: &'static Texture,
+    key: u16,
+    keyed: bool,
+    mode: TextureMode,
 }
 
 impl Texturing {
@@ -237,8 +238,54 @@ impl Texturing {
     pub const fn new(texture: &'static Texture) -> Self {
         Texturing {
             texture,
+            key: 0,
+            keyed: false,
             mode: TextureMode::Subdivided16,
-            key: None,
+        }
+    }
+
+    /// This texturing with span mode `mode`.
+    #[must_use]
+    pub const fn with_mode(self, mode: TextureMode) -> Self {
+        Texturing { mode, ..self }
+    }
+
+    /// This texturing with colour key `key` (`None`: every texel is drawn).
+    #[must_use]
+    pub const fn with_key(self, key: Option<u16>) -> Self {
+        match key {
+            Some(k) => Texturing {
+                key: k,
+                keyed: true,
+                ..self
+            },
+            None => Texturing {
+                key: 0,
+                keyed: false,
+                ..self
+            },
+        }
+    }
+
+    /// The image.
+    #[must_use]
+    pub const fn texture(&self) -> &'static Texture {
+        self.texture
+    }
+
+    /// The span mode.
+    #[must_use]
+    pub const fn mode(&self) -> TextureMode {
+        self.mode
+    }
+
+    /// The colour key, if any.
+    #[must_use]
+    pub const fn key(&self) -> Option<u16> {
+        if self.keyed {
+            Some(self.key)
+        } else {
+            None
         }
     }
 }
@@ -270,6 +317,25 @@ mod tests {
             Texture::new(&BIG, 2048, 1),
             Err(TextureError::BadSize { .. })
         ));
+    }
+
+    #[test]
+    fn texturing_is_two_words_on_a_32_bit_core() {
+        static T: [u16; 1] = [0];
+        static TEX: Texture = match Texture::new(&T, 1, 1) {
+            Ok(t) => t,
+            Err(_) => panic!(),
+        };
+        let t = Texturing::new(&TEX)
+            .with_key(Some(7))
+            .with_mode(TextureMode::Affine);
+        assert_eq!((t.key(), t.mode()), (Some(7), TextureMode::Affine));
+        assert_eq!(t.with_key(None).key(), None);
+        let words = core::mem::size_of::<usize>();
+        assert_eq!(
+            core::mem::size_of::<Option<Texturing>>(),
+            words + 4.max(words)
+        );
     }
 
     #[test]

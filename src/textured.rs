@@ -65,10 +65,10 @@ impl VertexExtra {
         VertexExtra {
             st,
             q,
-            texture: Some(map.texture),
-            key: map.key.unwrap_or(0),
-            has_key: map.key.is_some(),
-            mode: mode_index(map.mode),
+            texture: Some(map.texture()),
+            key: map.key().unwrap_or(0),
+            has_key: map.key().is_some(),
+            mode: mode_index(map.mode()),
         }
     }
 }

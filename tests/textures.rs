@@ -106,11 +106,22 @@ fn textured_scene_without_attribute_stores_is_a_clear_error() {
 }
 
 #[test]
-fn renderer_without_textures_is_the_same_size() {
+fn attribute_stores_cost_exactly_their_records() {
+    // A renderer pays for the stores exactly their records, so one without them (XV = XA = 0,
+    // the default) pays nothing (`ram_formula` itself is checked against `size_of` in the
+    // library's tests).
     type Plain = Renderer<Q, Rgb565, 240, 240, 512, 466, 61>;
-    type Zero = Renderer<Q, Rgb565, 240, 240, 512, 466, 61, 1, 0, 0>;
-    assert_eq!(std::mem::size_of::<Plain>(), std::mem::size_of::<Zero>());
-    assert_eq!(std::mem::align_of::<Plain>(), std::mem::align_of::<Zero>());
+    type Stores = Renderer<Q, Rgb565, 240, 240, 512, 466, 61, 1, 512, 61>;
+    assert_eq!(
+        std::mem::size_of::<Stores>(),
+        std::mem::size_of::<Plain>()
+            + 512 * scanline3d::VERTEX_EXTRA_BYTES
+            + 61 * scanline3d::ACTIVE_EXTRA_BYTES
+    );
+    assert_eq!(
+        std::mem::align_of::<Plain>(),
+        std::mem::align_of::<Stores>()
+    );
 }
 
 /// The textured benchmark frame in every span mode and number type, against golden images
