@@ -51,6 +51,29 @@ fn perspective_modes_are_within_their_bounds_and_affine_is_not() {
 }
 
 #[test]
+fn clipped_texture_coordinates_are_exact() {
+    // The floor reaches behind the eye: the near plane cuts it, and the new vertices' texture
+    // coordinates come from the clip (barycentric weights carried through it).
+    for (name, e) in [
+        (
+            "Q16.16",
+            common::textures::clipped_floor_error::<Q>
+                as fn(&'static Texture, TextureMode) -> TexError,
+        ),
+        ("f32", common::textures::clipped_floor_error::<f32>),
+        ("f64", common::textures::clipped_floor_error::<f64>),
+    ] {
+        let e = e(
+            coded_texture(Wrap::Repeat, Wrap::Repeat),
+            TextureMode::PerPixel,
+        );
+        println!("{name}, clipped floor, per pixel: {e}");
+        assert!(e.drawn > 5_000 && e.foreign == 0, "{name}: {e}");
+        assert!(e.worst < 0.1, "{name}: {e}");
+    }
+}
+
+#[test]
 fn colour_key_leaves_the_background_and_depth_alone() {
     // Every texel with an even column is see-through: those pixels keep the background.
     static TEXELS: std::sync::OnceLock<Vec<u16>> = std::sync::OnceLock::new();

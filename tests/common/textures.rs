@@ -40,12 +40,25 @@ pub struct Floor<S> {
 }
 
 pub fn floor<S: Scalar>() -> Floor<S> {
+    floor_to::<S>(0.0)
+}
+
+/// The floor's near edge when it reaches behind the eye (crossing the near plane).
+pub const BEHIND: f64 = 2.0;
+
+/// The floor from z = −4 to `z_near` (0, or [`BEHIND`]).
+pub fn floor_to<S: Scalar>(z_near: f64) -> Floor<S> {
     let p = |x: f64, z: f64| [S::from_f64(x), S::ZERO, S::from_f64(z)];
     let uv = |x: f64, z: f64| [S::from_f64(x + 1.0), S::from_f64(-z)];
     Floor {
-        positions: [p(-1.0, 0.0), p(1.0, 0.0), p(1.0, -4.0), p(-1.0, -4.0)],
+        positions: [p(-1.0, z_near), p(1.0, z_near), p(1.0, -4.0), p(-1.0, -4.0)],
         normals: [[S::ZERO, S::ONE, S::ZERO]; 4],
-        uvs: [uv(-1.0, 0.0), uv(1.0, 0.0), uv(1.0, -4.0), uv(-1.0, -4.0)],
+        uvs: [
+            uv(-1.0, z_near),
+            uv(1.0, z_near),
+            uv(1.0, -4.0),
+            uv(-1.0, -4.0),
+        ],
         indices: [[0, 1, 2], [0, 2, 3]],
     }
 }
@@ -73,7 +86,17 @@ pub fn floor_scene<S: Scalar>(
     mode: TextureMode,
     key: Option<u16>,
 ) -> Frame<Rgb565> {
-    let f = floor::<S>();
+    floor_scene_to::<S>(tex, mode, key, 0.0)
+}
+
+/// [`floor_scene`] with the floor reaching to `z_near`.
+pub fn floor_scene_to<S: Scalar>(
+    tex: &'static Texture,
+    mode: TextureMode,
+    key: Option<u16>,
+    z_near: f64,
+) -> Frame<Rgb565> {
+    let f = floor_to::<S>(z_near);
     let mesh = Mesh::new(&f.positions, &f.indices)
         .unwrap()
         .with_normals(&f.normals)
@@ -131,7 +154,7 @@ pub fn render_without_stores<S: Scalar>(
 }
 
 /// The exact texture coordinate (s, t) at the centre of pixel (x, y), or `None` off the floor.
-pub fn exact_st(x: u32, y: u32) -> Option<[f64; 2]> {
+pub fn exact_st(x: u32, y: u32, z_near: f64) -> Option<[f64; 2]> {
     let (w, h) = FLOOR_VIEW;
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let cross = |a: [f64; 3], b: [f64; 3]| {
@@ -158,7 +181,7 @@ pub fn exact_st(x: u32, y: u32) -> Option<[f64; 2]> {
     }
     let k = -EYE[1] / d[1];
     let p = [EYE[0] + k * d[0], EYE[2] + k * d[2]];
-    if p[0].abs() > 1.0 || p[1] > 0.0 || p[1] < -4.0 {
+    if p[0].abs() > 1.0 || p[1] > z_near || p[1] < -4.0 {
         return None;
     }
     Some([p[0] + 1.0, -p[1]])
@@ -206,10 +229,17 @@ fn wrap_distance(u: f64, i: u32, n: u32) -> f64 {
 /// whose centre's ray meets the floor.
 pub fn floor_error<S: Scalar>(tex: &'static Texture, mode: TextureMode) -> TexError {
     let frame = floor_scene::<S>(tex, mode, None);
-    measure_coded(&frame)
+    measure_coded(&frame, 0.0)
 }
 
-pub fn measure_coded(frame: &Frame<Rgb565>) -> TexError {
+/// [`floor_error`] with the floor reaching behind the eye: clipped at the near plane, so the
+/// clipped vertices' texture coordinates are measured too.
+pub fn clipped_floor_error<S: Scalar>(tex: &'static Texture, mode: TextureMode) -> TexError {
+    let frame = floor_scene_to::<S>(tex, mode, None, BEHIND);
+    measure_coded(&frame, BEHIND)
+}
+
+pub fn measure_coded(frame: &Frame<Rgb565>, z_near: f64) -> TexError {
     let (w, h) = FLOOR_VIEW;
     let mut e = TexError::default();
     let mut sum = 0.0;
@@ -225,7 +255,7 @@ pub fn measure_coded(frame: &Frame<Rgb565>) -> TexError {
                 continue;
             }
             let (i, j) = ((raw >> 11) as u32, ((raw >> 5) & 63) as u32);
-            let Some([s, t]) = exact_st(x, y) else {
+            let Some([s, t]) = exact_st(x, y, z_near) else {
                 continue;
             };
             let n = CODED as f64;
