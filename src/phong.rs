@@ -18,6 +18,7 @@
 use crate::color::TargetColor;
 use crate::project::DEPTH_FRAC_BITS;
 use crate::raster::{DepthTest, COLOR_FRAC_BITS};
+use crate::scalar::{mul_wide, recip_norm};
 use crate::span::{passes, ALWAYS, EQUAL, LESS, LESS_EQUAL};
 use crate::textured::{ActiveExtra, MODE_FAST_PHONG};
 
@@ -151,51 +152,87 @@ fn pow14(mut b: i32, mut e: u8) -> i32 {
     r
 }
 
-/// The lit colour (Q8.14 per channel, clamped to 0..=255) of a point with the interpolated
-/// normal `n` (Q1.14, any length; zero lights ambient only).
-pub(crate) fn shade(n: [i32; 3], l: &PhongLights, m: &PhongMaterial) -> [i32; 3] {
-    // |n| ≤ 2^14 (a mix of unit normals) plus the planes' rounding: each square below 2^29.
-    let len2 = (n[0] as i64 * n[0] as i64 + n[1] as i64 * n[1] as i64 + n[2] as i64 * n[2] as i64)
-        .min(u32::MAX as i64) as u32;
-    let len = isqrt(len2) as i32; // Q1.14
-    let [ambient, diffuse, specular] = m.k;
-    // Q8.14 coefficient sums per channel, times 255.
-    let mut light = [ambient as i64 * 255; 3];
-    let mut spec = [0i64; 3];
-    if len > 0 {
-        // N̂·X = (n·X)/|n|, Q1.14.
-        let dot = |x: [i32; 3]| -> i32 {
-            let s =
-                n[0] as i64 * x[0] as i64 + n[1] as i64 * x[1] as i64 + n[2] as i64 * x[2] as i64;
-            (s / len as i64) as i32
+/// The lights and material of a span in the forms [`shade`] uses (built once per row).
+#[derive(Copy, Clone, Debug, Default)]
+pub(crate) struct ShadeCtx {
+    /// Directions (Q1.14) and colours as fractions `light/255` (Q0.16, 0..=65536).
+    dir: [[i32; 3]; MAX_PHONG_LIGHTS],
+    frac: [[i32; 3]; MAX_PHONG_LIGHTS],
+    /// `light` (0..=255) per channel, for the specular term.
+    full: [[i32; 3]; MAX_PHONG_LIGHTS],
+    lv: [i32; MAX_PHONG_LIGHTS],
+    count: usize,
+    v: [i32; 3],
+    color: [i32; 3],
+    /// Ambient, diffuse, specular (Q8.14).
+    k: [i32; 3],
+    shininess: u8,
+}
+
+impl ShadeCtx {
+    pub(crate) fn new(l: &PhongLights, m: &PhongMaterial) -> Self {
+        let mut c = ShadeCtx {
+            count: l.count as usize,
+            v: m.v,
+            color: m.color.map(|x| x as i32),
+            k: m.k,
+            shininess: m.shininess,
+            lv: m.lv,
+            ..Default::default()
         };
-        let nv = dot(m.v);
-        for (pl, &lv) in l.lights[..l.count as usize].iter().zip(&m.lv) {
-            let nl = dot(pl.dir);
+        for (k, pl) in l.lights.iter().enumerate() {
+            c.dir[k] = pl.dir;
+            c.full[k] = pl.color.map(|x| x as i32);
+            c.frac[k] = pl.color.map(|x| ((x as u32 * 65536 + 127) / 255) as i32);
+        }
+        c
+    }
+}
+
+/// The lit colour (Q8.14 per channel, clamped to 0..=255) of a point with the interpolated
+/// normal `n` (Q1.14, at most unit length plus the planes' rounding; zero lights ambient
+/// only). No division: `1/|n|` is a normalized reciprocal ([`recip_norm`]) of `⌊√(n·n)⌋`;
+/// 64-bit products are 32 × 32-bit ones ([`mul_wide`]).
+pub(crate) fn shade(n: [i32; 3], c: &ShadeCtx) -> [i32; 3] {
+    // |n| ≤ 2^14 (a mix of unit normals, plus rounding): each dot product with a unit
+    // direction, and n·n, below 2^29.
+    let dot = |x: [i32; 3]| n[0] * x[0] + n[1] * x[1] + n[2] * x[2];
+    let len = isqrt(dot(n).max(0) as u32) as i32; // Q1.14
+    let [ambient, diffuse, specular] = c.k;
+    let mut light = [ambient; 3]; // Q8.14 coefficient sums
+    let mut spec = [0i32; 3]; // Q8.14 channel sums
+    if len > 0 {
+        // N̂·X = (n·X)/|n| in Q1.14: (n·X)·m·2^-e with 1/|n| = m·2^-e.
+        let (m, e) = recip_norm(len as u64);
+        let unit = |s: i32| (mul_wide(s, m) >> e) as i32;
+        let nv = unit(dot(c.v));
+        for k in 0..c.count.min(MAX_PHONG_LIGHTS) {
+            let nl = unit(dot(c.dir[k]));
             if nl <= 0 {
                 continue;
             }
-            // diffuse · light_c/255 · N·L, times 255: diffuse · light_c · N·L (Q8.14).
-            let d = (diffuse as i64 * nl as i64) >> 14;
-            for c in 0..3 {
-                light[c] += d * pl.color[c] as i64;
+            // diffuse · light/255 · N·L (Q8.14; below 2^22 · 4 lights · 1).
+            let d = (mul_wide(diffuse, nl) >> 14) as i32;
+            for ch in 0..3 {
+                light[ch] += (mul_wide(d, c.frac[k][ch]) >> 16) as i32;
             }
             if specular > 0 {
-                let rv = ((2 * nl as i64 * nv as i64) >> 14) as i32 - lv;
+                let rv = ((2 * mul_wide(nl, nv)) >> 14) as i32 - c.lv[k];
                 if rv > 0 {
-                    let p = (specular as i64 * pow14(rv.min(ONE), m.shininess) as i64) >> 14;
-                    for c in 0..3 {
-                        spec[c] += p * pl.color[c] as i64;
+                    let p = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
+                    for ch in 0..3 {
+                        // Saturating: the channel is clamped at 255 anyway.
+                        spec[ch] = (spec[ch] + p * c.full[k][ch]).min(255 << 14);
                     }
                 }
             }
         }
     }
     let mut out = [0i32; 3];
-    for c in 0..3 {
-        // material_c · (Σ)/255 + specular sum, Q8.14.
-        let v = m.color[c] as i64 * light[c] / 255 + spec[c];
-        out[c] = v.clamp(0, 255 << 14) as i32;
+    for ch in 0..3 {
+        // material · (Σ), Q8.14, plus the specular sum.
+        let v = mul_wide(c.color[ch], light[ch]) + spec[ch] as i64;
+        out[ch] = v.clamp(0, 255 << 14) as i32;
     }
     out
 }
@@ -203,11 +240,17 @@ pub(crate) fn shade(n: [i32; 3], l: &PhongLights, m: &PhongMaterial) -> [i32; 3]
 /// Pixels per segment of [`crate::Shading::FastPhong`] (lit at both ends, linear between).
 pub(crate) const FAST_SEGMENT: i32 = 8;
 
-/// The lit colour of `shade` in the channel units of `C` with [`COLOR_FRAC_BITS`].
+/// The factors of [`channels`]: `max·2²²/255` rounded, per channel of `C`.
+fn channel_factors<C: TargetColor>() -> [i32; 3] {
+    C::CHANNEL_MAX.map(|m| ((((m as u32) << 22) + 127) / 255) as i32)
+}
+
+/// The lit colour of `shade` (Q8.14, ≤ 255·2¹⁴) in the channel units of `C` with
+/// [`COLOR_FRAC_BITS`]: `v·max/255·2⁶` as `v·factor/2¹⁶` (no division; the factor's rounding
+/// is below 2⁻¹⁵ of a unit).
 #[inline]
-fn channels<C: TargetColor>(v: [i32; 3]) -> [i32; 3] {
-    // v ≤ 255·2¹⁴: the product shifted is below 2³⁶, the quotient at most the maximum·2²⁰.
-    [0, 1, 2].map(|c| (((v[c] as i64 * C::CHANNEL_MAX[c] as i64) << 6) / 255) as i32)
+fn channels(v: [i32; 3], f: &[i32; 3]) -> [i32; 3] {
+    [0, 1, 2].map(|c| (mul_wide(v[c], f[c]) >> 16) as i32)
 }
 
 /// A Phong triangle's span: pixels `x0..` of `row` (the length of `zs` and `cs`) from its
@@ -249,6 +292,7 @@ fn fill_t<C: TargetColor, const T: u8>(
     let Some(m) = pool.get(e.key as usize).map(PhongMaterial::load) else {
         return 0;
     };
+    let ctx = ShadeCtx::new(&lights, &m);
     let n = zs.len().min(cs.len()) as i32;
     let seg = if e.mode == MODE_FAST_PHONG {
         FAST_SEGMENT
@@ -259,7 +303,8 @@ fn fill_t<C: TargetColor, const T: u8>(
     let mut nv = [0, 1, 2].map(|k| e.plane(k, x0, row));
     let step = [0, 1, 2].map(|k| e.step(k));
     let at = |nv: &[i64; 3]| nv.map(|v| (v >> 16) as i32);
-    let lit = |nv: &[i64; 3]| channels::<C>(shade(at(nv), &lights, &m));
+    let factors = channel_factors::<C>();
+    let lit = |nv: &[i64; 3]| channels(shade(at(nv), &ctx), &factors);
     let half = 1 << (COLOR_FRAC_BITS - 1);
     let out =
         |c: [i32; 3]| {
@@ -294,7 +339,14 @@ fn fill_t<C: TargetColor, const T: u8>(
             nv[k] = nv[k].wrapping_add(step[k].wrapping_mul(len as i64));
         }
         let c1 = lit(&nv);
-        let dc = [0, 1, 2].map(|k| (c1[k] - c0[k]) / len);
+        // A whole segment's step by a shift (8 px), a shorter last one by a division.
+        let dc = [0, 1, 2].map(|k| {
+            if len == FAST_SEGMENT {
+                (c1[k] - c0[k]) >> 3
+            } else {
+                (c1[k] - c0[k]) / len
+            }
+        });
         let mut c = c0;
         for x in i..i + len {
             let k = x as usize;
@@ -368,7 +420,7 @@ mod tests {
             let a = i as f64 * 0.1;
             let n = unit([a.sin(), (a * 0.7).cos(), 0.5 + (a * 1.3).sin().abs()]);
             // A shorter normal (as interpolation gives) must light the same.
-            let got = shade(q(n.map(|c| c * 0.8)), &lights, &m);
+            let got = shade(q(n.map(|c| c * 0.8)), &ShadeCtx::new(&lights, &m));
             let nl = n[0] * ld[0] + n[1] * ld[1] + n[2] * ld[2];
             let nv = n[0] * vd[0] + n[1] * vd[1] + n[2] * vd[2];
             for c in 0..3 {

@@ -510,10 +510,17 @@ impl TexSpan<'_> {
             } else {
                 self.uv_at(self.x0 + i + len)
             };
-            let step = if len > 1 || seg > 1 {
+            // A whole segment's step by a shift (16 or 8 px), a shorter one by a division.
+            let step = if len == seg && seg.count_ones() == 1 {
+                let sh = seg.trailing_zeros();
                 [
-                    (end[0].wrapping_sub(uv[0])) / len,
-                    (end[1].wrapping_sub(uv[1])) / len,
+                    end[0].wrapping_sub(uv[0]) >> sh,
+                    end[1].wrapping_sub(uv[1]) >> sh,
+                ]
+            } else if len > 1 {
+                [
+                    end[0].wrapping_sub(uv[0]) / len,
+                    end[1].wrapping_sub(uv[1]) / len,
                 ]
             } else {
                 [0, 0]
