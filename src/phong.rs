@@ -34,6 +34,11 @@ pub(crate) struct PhongLight {
     pub(crate) color: [u8; 3],
 }
 
+/// `c/255` in Q0.16 (0..=65536), rounded: a light channel as a fraction.
+fn fraction(c: u8) -> i64 {
+    (c as i64 * 65536 + 127) / 255
+}
+
 /// The lights of a frame for Phong spans (world space).
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
 pub(crate) struct PhongLights {
@@ -72,7 +77,9 @@ impl PhongLights {
         let mut words = [0i64; 9];
         for (k, l) in self.lights.iter().enumerate() {
             words[k] = pack3(l.dir) | (l.color[0] as i64) << 48 | (l.color[1] as i64) << 56;
-            words[4 + k] = l.color[2] as i64;
+            // The fractions (17 bits each), computed once a frame, and the third colour.
+            let f = l.color.map(fraction);
+            words[4 + k] = f[0] | f[1] << 17 | f[2] << 34 | (l.color[2] as i64) << 51;
         }
         words[8] = self.count as i64;
         e.set_words(words);
@@ -83,7 +90,11 @@ impl PhongLights {
         let mut lights = [PhongLight::default(); MAX_PHONG_LIGHTS];
         for (k, l) in lights.iter_mut().enumerate() {
             l.dir = unpack3(w[k]);
-            l.color = [(w[k] >> 48) as u8, (w[k] >> 56) as u8, w[4 + k] as u8];
+            l.color = [
+                (w[k] >> 48) as u8,
+                (w[k] >> 56) as u8,
+                (w[4 + k] >> 51) as u8,
+            ];
         }
         PhongLights {
             lights,
@@ -170,6 +181,27 @@ pub(crate) struct ShadeCtx {
 }
 
 impl ShadeCtx {
+    /// From the pool's lights entry `lights` (or none) and material entry `m`, without
+    /// unpacking the lights' structure: the fractions were computed when they were stored.
+    pub(crate) fn from_entries(lights: Option<&ActiveExtra>, m: &PhongMaterial) -> Self {
+        let mut c = Self::new(&PhongLights::default(), m);
+        if let Some(e) = lights {
+            let w = e.words();
+            c.count = (w[8] as usize).min(MAX_PHONG_LIGHTS);
+            for k in 0..MAX_PHONG_LIGHTS {
+                c.dir[k] = unpack3(w[k]);
+                c.full[k] = [
+                    (w[k] >> 48) as u8,
+                    (w[k] >> 56) as u8,
+                    (w[4 + k] >> 51) as u8,
+                ]
+                .map(|x| x as i32);
+                c.frac[k] = [0, 17, 34].map(|s| ((w[4 + k] >> s) & 0x1_ffff) as i32);
+            }
+        }
+        c
+    }
+
     pub(crate) fn new(l: &PhongLights, m: &PhongMaterial) -> Self {
         let mut c = ShadeCtx {
             count: l.count as usize,
@@ -183,7 +215,7 @@ impl ShadeCtx {
         for (k, pl) in l.lights.iter().enumerate() {
             c.dir[k] = pl.dir;
             c.full[k] = pl.color.map(|x| x as i32);
-            c.frac[k] = pl.color.map(|x| ((x as u32 * 65536 + 127) / 255) as i32);
+            c.frac[k] = pl.color.map(|x| fraction(x) as i32);
         }
         c
     }
@@ -285,14 +317,11 @@ fn fill_t<C: TargetColor, const T: u8>(
     cs: &mut [C],
 ) -> u32 {
     let e = &pool[slot];
-    let lights = match usize::try_from(e.base[0]).ok().and_then(|i| pool.get(i)) {
-        Some(l) => PhongLights::load(l),
-        None => PhongLights::default(),
-    };
+    let lights = usize::try_from(e.base[0]).ok().and_then(|i| pool.get(i));
     let Some(m) = pool.get(e.key as usize).map(PhongMaterial::load) else {
         return 0;
     };
-    let ctx = ShadeCtx::new(&lights, &m);
+    let ctx = ShadeCtx::from_entries(lights, &m);
     let n = zs.len().min(cs.len()) as i32;
     let seg = if e.mode == MODE_FAST_PHONG {
         FAST_SEGMENT
@@ -453,6 +482,15 @@ mod tests {
         };
         l.store(&mut e);
         assert_eq!(PhongLights::load(&e), l);
+        let m0 = PhongMaterial::default();
+        let (a, b) = (
+            ShadeCtx::from_entries(Some(&e), &m0),
+            ShadeCtx::new(&l, &m0),
+        );
+        assert_eq!(
+            (a.dir, a.frac, a.full, a.count),
+            (b.dir, b.frac, b.full, b.count)
+        );
         let m = PhongMaterial {
             color: [1, 2, 3],
             k: [255 << 14, 0, 12345],
