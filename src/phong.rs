@@ -85,6 +85,8 @@ impl PhongLights {
         e.set_words(words);
     }
 
+    /// The lights stored in `e` (the spans read them with [`ShadeCtx::from_entries`]).
+    #[cfg(test)]
     pub(crate) fn load(e: &ActiveExtra) -> Self {
         let w = e.words();
         let mut lights = [PhongLight::default(); MAX_PHONG_LIGHTS];
