@@ -145,6 +145,7 @@
 // scene → geometry (camera, math, clip, project, shade; the cull kernel) → bin → strip (setup,
 // span, with the raster formats) → the target. Architecture-specific code lives in `kernel`
 // only (see "Cortex-M kernels" above).
+mod attrs;
 mod bin;
 mod camera;
 mod clip;
@@ -152,8 +153,10 @@ mod color;
 mod config;
 mod cull;
 pub mod demo;
+mod demo_assets;
 mod error;
 mod geometry;
+mod geometry_attrs;
 pub mod hash;
 mod kernel;
 mod math;

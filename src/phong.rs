@@ -15,12 +15,12 @@
 //! Formats: directions and normals Q1.14 (`i32`, step 2⁻¹⁴); coefficients Q8.14 (ambient,
 //! diffuse and specular up to 255); the lit channel Q8.14 (0..=255·2¹⁴).
 
+use crate::attrs::{ActiveExtra, MODE_FAST_PHONG};
 use crate::color::TargetColor;
 use crate::project::DEPTH_FRAC_BITS;
 use crate::raster::{DepthTest, COLOR_FRAC_BITS};
 use crate::scalar::{mul_wide, recip_norm};
 use crate::span::{passes, ALWAYS, EQUAL, LESS, LESS_EQUAL};
-use crate::textured::{ActiveExtra, MODE_FAST_PHONG};
 
 /// The most directional lights Phong shading takes (more are left out of it).
 pub const MAX_PHONG_LIGHTS: usize = 4;

@@ -10,12 +10,13 @@ use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Drawable;
 use heapless::Vec;
 
+use crate::attrs::{ActiveExtra, FREE, TRI};
 use crate::color::TargetColor;
 use crate::project::{ScreenVertex, MAX_SCREEN};
 use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
 use crate::scene::Scene;
-use crate::textured::{attach_pushed, is_textured, ActiveExtra, VertexExtra, FREE, TRI};
+use crate::textured::{attach_pushed, is_textured, VertexExtra};
 
 pub use crate::error::{Capacity, Error, Needs, OverflowPolicy, Shortfall, StripBufferTooSmall};
 pub use crate::stats::{NoProbe, Probe, Stage, Stats};
@@ -683,6 +684,12 @@ pub const ACTIVE_EXTRA_BYTES: usize = core::mem::size_of::<ActiveExtra>();
 pub const VERTEX_EXTRA_BYTES_32: usize = 20;
 /// [`ACTIVE_EXTRA_BYTES`] on a 32-bit core.
 pub const ACTIVE_EXTRA_BYTES_32: usize = 108;
+
+// The documented record sizes on 32-bit cores.
+#[cfg(target_pointer_width = "32")]
+const _: () = assert!(
+    VERTEX_EXTRA_BYTES == VERTEX_EXTRA_BYTES_32 && ACTIVE_EXTRA_BYTES == ACTIVE_EXTRA_BYTES_32
+);
 
 /// The documented RAM formula (see the crate docs): colour and depth lines, vertex store,
 /// triangle list, active list, row buckets; `extra` covers alignment and a few words of state.

@@ -335,7 +335,7 @@ impl<
 #[inline(never)]
 fn draw_row_with_textures<C: TargetColor, const N: usize>(
     active: &mut crate::raster::ActiveList<N>,
-    pool: &mut [crate::textured::ActiveExtra],
+    pool: &mut [crate::attrs::ActiveExtra],
     row: usize,
     colors: &mut [C],
     depth: &mut [u16],

@@ -13,6 +13,7 @@
 //! additions, shifts and masks for the texel's address, a load, the depth test and one
 //! product per channel for the lighting (a 32-bit `muls`, one cycle on a Cortex-M0+).
 
+use crate::attrs::*;
 use crate::color::TargetColor;
 use crate::project::{vertex_frac_bits, ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS};
 use crate::raster::*;
@@ -99,104 +100,6 @@ pub(crate) fn q_from_depth(depth: u32, k24: u32) -> u32 {
     const D_MAX: u64 = 65535 << 8;
     let dk = (depth.min(D_MAX as u32) as u64 * k24 as u64 + D_MAX / 2) / D_MAX;
     ((1u64 << 24) - dk.min(1 << 24)) as u32
-}
-
-/// The extra planes of an active textured triangle: values at the centre of pixel `(px0,
-/// py0)` and per-pixel gradients, all with 16 fraction bits and in wrapping 64-bit
-/// arithmetic (exact modulo 2⁶⁴ up to the gradients' rounding, ½ of 2⁻¹⁶ per pixel).
-/// `U`, `V`: texel offsets from the first vertex in units of 2^-`f` texel, times `Q`
-/// (|U| < 2³⁰ at the vertices); `Q`: `near/w` normalized so that its largest vertex value is
-/// in [2¹⁴, 2¹⁵) (or 2¹⁴ everywhere for [`TextureMode::Affine`]).
-///
-/// `packed(4)`: 4-byte aligned on every target, so that an empty pool (`[ActiveExtra; 0]`)
-/// does not change the renderer's alignment.
-#[derive(Copy, Clone, Debug)]
-#[repr(C, packed(4))]
-pub(crate) struct ActiveExtra {
-    val: [i64; 3],
-    gx: [i64; 3],
-    gy: [i64; 3],
-    px0: i16,
-    py0: i16,
-    /// Texel coordinates of the first vertex, Q16.16 texels (a Phong triangle: the pool
-    /// index of the frame's lights entry, −1 for none).
-    pub(crate) base: [i32; 2],
-    /// The lit colour of a flat triangle, channel units with [`COLOR_FRAC_BITS`].
-    flat: [i32; 3],
-    texture: Option<&'static Texture>,
-    /// The colour key (a Phong triangle: the pool index of its material entry).
-    pub(crate) key: u16,
-    has_key: bool,
-    /// [`VertexExtra::mode`].
-    pub(crate) mode: u8,
-    /// Fraction bits of `U`/`Q` and `V`/`Q` (0..=15).
-    f: u8,
-    /// What the entry holds: [`FREE`], a triangle's planes ([`TRI`]), or, in the plane
-    /// words, a frame's Phong lights ([`LIGHTS`], `phong::PhongLights`) or an object's Phong
-    /// material ([`MATERIAL`], `phong::PhongMaterial`).
-    pub(crate) kind: u8,
-}
-
-/// [`ActiveExtra::kind`]: free.
-pub(crate) const FREE: u8 = 0;
-/// [`ActiveExtra::kind`]: an active triangle's planes.
-pub(crate) const TRI: u8 = 1;
-/// [`ActiveExtra::kind`]: the frame's Phong lights.
-pub(crate) const LIGHTS: u8 = 2;
-/// [`ActiveExtra::kind`]: an object's Phong material.
-pub(crate) const MATERIAL: u8 = 3;
-
-/// [`VertexExtra::mode`] of a vertex of a [`crate::Shading::Phong`] object (after the
-/// texture modes' indices).
-pub(crate) const MODE_PHONG: u8 = 4;
-/// [`VertexExtra::mode`] of a vertex of a [`crate::Shading::FastPhong`] object.
-pub(crate) const MODE_FAST_PHONG: u8 = 5;
-
-impl ActiveExtra {
-    pub(crate) const EMPTY: ActiveExtra = ActiveExtra {
-        val: [0; 3],
-        gx: [0; 3],
-        gy: [0; 3],
-        px0: 0,
-        py0: 0,
-        base: [0; 2],
-        flat: [0; 3],
-        texture: None,
-        key: 0,
-        has_key: false,
-        mode: 0,
-        f: 0,
-        kind: FREE,
-    };
-
-    /// The nine plane words, for a payload.
-    pub(crate) fn words(&self) -> [i64; 9] {
-        let (v, x, y) = (self.val, self.gx, self.gy);
-        [v[0], v[1], v[2], x[0], x[1], x[2], y[0], y[1], y[2]]
-    }
-
-    /// Stores a payload in the nine plane words.
-    pub(crate) fn set_words(&mut self, w: [i64; 9]) {
-        self.val = [w[0], w[1], w[2]];
-        self.gx = [w[3], w[4], w[5]];
-        self.gy = [w[6], w[7], w[8]];
-    }
-
-    /// The value of plane `k` at the centre of pixel `(x, y)` (16 fraction bits).
-    #[inline]
-    pub(crate) fn plane(&self, k: usize, x: i32, y: i32) -> i64 {
-        let (dx, dy) = ((x - self.px0 as i32) as i64, (y - self.py0 as i32) as i64);
-        let (val, gx, gy) = (self.val, self.gx, self.gy);
-        val[k]
-            .wrapping_add(gx[k].wrapping_mul(dx))
-            .wrapping_add(gy[k].wrapping_mul(dy))
-    }
-
-    /// Plane `k`'s step per pixel along a row.
-    pub(crate) fn step(&self, k: usize) -> i64 {
-        let gx = self.gx;
-        gx[k]
-    }
 }
 
 /// Flag of [`ActiveTri::flags`]: the triangle is textured; [`ActiveTri::spare`] is its pool
@@ -583,10 +486,3 @@ fn scaled_div(n: i64, det: i64, s: u32) -> i64 {
     let (q, r) = (n / det, n % det);
     q.wrapping_shl(s).wrapping_add(round_div(r << s, det))
 }
-
-// The documented record sizes on 32-bit cores (`VERTEX_EXTRA_BYTES`, `ACTIVE_EXTRA_BYTES`).
-#[cfg(target_pointer_width = "32")]
-const _: () = assert!(
-    core::mem::size_of::<VertexExtra>() == crate::renderer::VERTEX_EXTRA_BYTES_32
-        && core::mem::size_of::<ActiveExtra>() == crate::renderer::ACTIVE_EXTRA_BYTES_32
-);
