@@ -228,8 +228,11 @@ impl ShadeCtx {
 /// only). No division: `1/|n|` is a normalized reciprocal ([`recip_norm`]) of `⌊√(n·n)⌋`;
 /// 64-bit products are 32 × 32-bit ones ([`mul_wide`]).
 pub(crate) fn shade(n: [i32; 3], c: &ShadeCtx) -> [i32; 3] {
-    // |n| ≤ 2^14 (a mix of unit normals, plus rounding): each dot product with a unit
-    // direction, and n·n, below 2^29.
+    // |n| ≤ 2^14 inside the triangle (a mix of unit normals, plus rounding); a fast-Phong
+    // segment's end may lie a pixel outside, where a sliver's planes take any value: clamped
+    // to 2^14 + 2^10 a component, so that each dot product with a unit direction, and n·n,
+    // stays below 2^30.
+    let n = n.map(|v| v.clamp(-(ONE + 1024), ONE + 1024));
     let dot = |x: [i32; 3]| n[0] * x[0] + n[1] * x[1] + n[2] * x[2];
     let len = isqrt(dot(n).max(0) as u32) as i32; // Q1.14
     let [ambient, diffuse, specular] = c.k;

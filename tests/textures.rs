@@ -283,3 +283,89 @@ fn seeking_a_row_gives_the_rows_of_the_whole_frame() {
     assert!(worst <= 1, "{worst}");
     assert!(full.px.iter().filter(|&&c| c != Rgb565::BLACK).count() > 5000);
 }
+
+mod random {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Random triangles (slivers and near-plane crossings included) with random texture
+    /// coordinates and normals, textured in every mode or lit by Phong: no panic (debug
+    /// builds check every overflow), every pixel written once.
+    fn draw(tris: &[([f32; 3], [f32; 3], [f32; 3])], uv: &[[f32; 2]], mode: u8) {
+        let mut pos = Vec::new();
+        let mut idx = Vec::new();
+        for (k, (a, b, c)) in tris.iter().enumerate() {
+            pos.extend([*a, *b, *c]);
+            let i = 3 * k as u16;
+            idx.push([i, i + 1, i + 2]);
+        }
+        let uvs: Vec<[f32; 2]> = (0..pos.len()).map(|i| uv[i % uv.len()]).collect();
+        let normals: Vec<[f32; 3]> = pos
+            .iter()
+            .map(|p| {
+                let l = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt().max(1e-3);
+                [p[0] / l, p[1] / l, p[2] / l]
+            })
+            .collect();
+        let mesh = Mesh::new(&pos, &idx)
+            .unwrap()
+            .with_normals(&normals)
+            .unwrap()
+            .with_uvs(&uvs)
+            .unwrap();
+        let tex = coded_texture(Wrap::Repeat, Wrap::Clamp);
+        let material = match mode {
+            0 => Material::matte([255; 3], 0.3, 0.7).textured(tex),
+            1 => Material::matte([255; 3], 0.3, 0.7)
+                .textured(tex)
+                .texture_mode(TextureMode::Affine),
+            2 => Material::matte([255; 3], 0.3, 0.7)
+                .textured(tex)
+                .texture_mode(TextureMode::PerPixel)
+                .color_key(0x001f),
+            3 => Material::matte([200, 100, 50], 0.1, 0.8)
+                .specular(0.9, 60)
+                .phong(),
+            _ => Material::matte([200, 100, 50], 0.1, 0.8)
+                .specular(0.9, 60)
+                .shading(Shading::FastPhong),
+        };
+        let objects = [Object {
+            mesh,
+            transform: Mat4::identity(),
+            material,
+        }];
+        let cam = Camera::look_at(
+            [0.0, 0.0, 2.0],
+            [0.0; 3],
+            [0.0, 1.0, 0.0],
+            Projection::Perspective {
+                fov_y: 1.0,
+                near: 0.05,
+                far: 20.0,
+            },
+        )
+        .unwrap();
+        let scene = Scene::new(&objects, cam, [Light::white([-1.0, 1.0, 1.0])]);
+        let mut r: Box<Renderer<f32, Rgb565, 48, 40, 256, 128, 64, 1, 256, 66>> = Box::default();
+        let mut f = common::Frame::new(48, 40, Rgb565::BLACK);
+        r.render(&scene, &mut f).unwrap();
+        f.assert_each_written_once();
+    }
+
+    fn point() -> impl Strategy<Value = [f32; 3]> {
+        [-3.0f32..3.0, -3.0f32..3.0, -4.0f32..2.5]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+        #[test]
+        fn random_textured_and_phong_triangles(
+            tris in proptest::collection::vec((point(), point(), point()), 1..12),
+            uv in proptest::collection::vec([-15.9f32..15.9, -15.9f32..15.9], 3..9),
+            mode in 0u8..5,
+        ) {
+            draw(&tris, &uv, mode);
+        }
+    }
+}
