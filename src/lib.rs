@@ -91,6 +91,40 @@
 //! | depth | 16.8 at vertices, 16.12 interpolated, `u16` stored (0 = near) | |
 //! | colour | channel units, 10-bit at vertices (RGB565: 5.5 / 6.4), 20 fraction bits in spans | rounding to RGB565 happens once, per pixel, by a shift |
 //!
+//! ## Textures and Phong shading
+//!
+//! A material can carry an RGB565 texture in flash ([`Material::textured`], [`Texture`]) and
+//! be lit per pixel ([`Shading::Phong`], [`Shading::FastPhong`]). Both need the renderer's
+//! attribute stores, its last two capacities `XV` and `XA` ([`Renderer`], "Textures"); a
+//! renderer without them (the default, 0 and 0) has the size and the code it had before.
+//!
+//! ```
+//! # use embedded_graphics::mock_display::MockDisplay;
+//! # use embedded_graphics::pixelcolor::Rgb565;
+//! use scanline3d::prelude::*;
+//! use scanline3d::{Texture, TexturedShape};
+//!
+//! static TEXELS: [u16; 4] = [0xf800, 0x07e0, 0x001f, 0xffff];
+//! static TEX: Texture = match Texture::new(&TEXELS, 2, 2) {
+//!     Ok(t) => t,
+//!     Err(_) => panic!("2 x 2"),
+//! };
+//! let cube = TexturedShape::<f32, 24, 12>::cube(1.0).unwrap();
+//! let objects = [Object {
+//!     mesh: cube.mesh(),
+//!     transform: Mat4::rotate_y(0.6),
+//!     material: Material::matte([255; 3], 0.3, 0.7).textured(&TEX),
+//! }];
+//! let camera = Camera::look_at([0.0, 1.5, 4.0], [0.0; 3], [0.0, 1.0, 0.0],
+//!     Projection::Perspective { fov_y: 0.8, near: 0.1, far: 10.0 }).unwrap();
+//! let scene = Scene::new(&objects, camera, [Light::white([-1.0, 1.0, 1.0])]);
+//! // 64 × 64; 24 vertices, 12 triangles, 8 active; 1 line; stores for 24 vertices and
+//! // 8 triangles on a row.
+//! let mut r = Renderer::<f32, Rgb565, 64, 64, 24, 12, 8, 1, 24, 8>::new();
+//! let mut display = MockDisplay::<Rgb565>::new();
+//! assert!(r.render(&scene, &mut display).unwrap().pixels_written > 0);
+//! ```
+//!
 //! ## Cortex-M kernels
 //!
 //! On Cortex-M targets (`target_os = "none"`) the hot path runs **hand-written Thumb
