@@ -177,6 +177,21 @@ fn a_highlight_inside_a_triangle_appears_under_phong_and_not_under_gouraud() {
     }
 }
 
+/// An f32 camera on the +Z axis, 3 units out, looking at the origin.
+fn camera3() -> Camera<f32> {
+    Camera::look_at(
+        [0.0, 0.0, 3.0],
+        [0.0; 3],
+        [0.0, 1.0, 0.0],
+        Projection::Perspective {
+            fov_y: 0.8,
+            near: 0.1,
+            far: 10.0,
+        },
+    )
+    .unwrap()
+}
+
 #[test]
 fn without_a_specular_term_phong_is_gouraud_on_a_flat_quad() {
     // Every normal the same: Gouraud's vertex colours and Phong's per-pixel colour are the
@@ -200,17 +215,7 @@ fn without_a_specular_term_phong_is_gouraud_on_a_flat_quad() {
             transform: Mat4::identity(),
             material: Material::matte([200, 150, 90], 0.2, 0.8).shading(s),
         }];
-        let cam = Camera::look_at(
-            [0.0, 0.0, 3.0],
-            [0.0; 3],
-            [0.0, 1.0, 0.0],
-            Projection::Perspective {
-                fov_y: 0.8,
-                near: 0.1,
-                far: 10.0,
-            },
-        )
-        .unwrap();
+        let cam = camera3();
         let lights = [
             Light::white([-1.0, 1.0, 1.0]),
             Light {
@@ -238,17 +243,7 @@ fn phong_needs_the_attribute_stores() {
         transform: Mat4::identity(),
         material: Material::matte([255; 3], 0.2, 0.8).phong(),
     }];
-    let cam = Camera::look_at(
-        [0.0, 0.0, 3.0],
-        [0.0; 3],
-        [0.0, 1.0, 0.0],
-        Projection::Perspective {
-            fov_y: 0.8,
-            near: 0.1,
-            far: 10.0,
-        },
-    )
-    .unwrap();
+    let cam = camera3();
     let scene = Scene::new(&objects, cam, [Light::white([0.0, 0.0, 1.0])]);
     let mut plain: Box<Renderer<f32, Rgb565, 64, 64, 64, 96, 16>> = Box::default();
     let mut f = Frame::new(64, 64, Rgb565::BLACK);

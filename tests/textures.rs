@@ -176,12 +176,7 @@ fn floor_with_pool<const XA: usize>(
     Option<scanline3d::Shortfall>,
 ) {
     let f = common::textures::floor::<f32>();
-    let mesh = Mesh::new(&f.positions, &f.indices)
-        .unwrap()
-        .with_normals(&f.normals)
-        .unwrap()
-        .with_uvs(&f.uvs)
-        .unwrap();
+    let mesh = f.mesh();
     let tex = coded_texture(Wrap::Repeat, Wrap::Repeat);
     let objects = [Object {
         mesh,

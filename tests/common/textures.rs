@@ -39,6 +39,16 @@ pub struct Floor<S> {
     pub indices: [[u16; 3]; 2],
 }
 
+impl<S: Scalar> Floor<S> {
+    /// The mesh, with normals and texture coordinates.
+    pub fn mesh(&self) -> Mesh<'_, S> {
+        Mesh::new(&self.positions, &self.indices)
+            .and_then(|m| m.with_normals(&self.normals))
+            .and_then(|m| m.with_uvs(&self.uvs))
+            .unwrap()
+    }
+}
+
 pub fn floor<S: Scalar>() -> Floor<S> {
     floor_to::<S>(0.0)
 }
@@ -97,12 +107,7 @@ pub fn floor_scene_to<S: Scalar>(
     z_near: f64,
 ) -> Frame<Rgb565> {
     let f = floor_to::<S>(z_near);
-    let mesh = Mesh::new(&f.positions, &f.indices)
-        .unwrap()
-        .with_normals(&f.normals)
-        .unwrap()
-        .with_uvs(&f.uvs)
-        .unwrap();
+    let mesh = f.mesh();
     let mut material = Material::matte([255; 3], S::ONE, S::ZERO)
         .textured(tex)
         .texture_mode(mode);
@@ -132,12 +137,7 @@ pub fn render_without_stores<S: Scalar>(
     tex: &'static Texture,
 ) -> Option<Error<core::convert::Infallible>> {
     let f = floor::<S>();
-    let mesh = Mesh::new(&f.positions, &f.indices)
-        .unwrap()
-        .with_normals(&f.normals)
-        .unwrap()
-        .with_uvs(&f.uvs)
-        .unwrap();
+    let mesh = f.mesh();
     let objects = [Object {
         mesh,
         transform: Mat4::identity(),
