@@ -364,3 +364,149 @@ mod random {
         }
     }
 }
+
+/// The reference rasterizer's approach (`tests/reference_raster.rs`) extended to texture
+/// coordinates: random screen-space triangles with their vertices imposed on the subpixel
+/// grid (a probe snaps them) and random texture coordinates, in an orthographic view (where
+/// every span mode is exact: `1/w` is constant). At every drawn pixel whose centre is inside
+/// the triangle, the texel must be the one the f64 barycentric interpolation of the vertex
+/// coordinates at the centre falls in, except within 2⁻⁶ texel of a texel's edge.
+mod reference {
+    use super::*;
+    use proptest::prelude::*;
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    use scanline3d::{Probe, Stage};
+
+    const SIZE: u32 = 64;
+    const SEED: [u8; 32] = *b"scanline3d issue 23 texel refs 1";
+
+    struct Snap<'a>(&'a [[i32; 2]]);
+
+    impl Probe for Snap<'_> {
+        fn enter(&mut self, _: Stage) {}
+        fn snap(&mut self, index: u32, x: i32, y: i32) -> (i32, i32) {
+            self.0.get(index as usize).map_or((x, y), |q| (q[0], q[1]))
+        }
+    }
+
+    /// Mismatching texels over the drawn pixels inside the triangle, and those pixels.
+    fn check(p: [[i32; 2]; 3], uv: [[f64; 2]; 3], mode: TextureMode) -> (u32, u32) {
+        // Counter-clockwise on screen as the renderer's front (y down: negative area).
+        let area = |p: &[[i32; 2]; 3]| {
+            let [a, b, c] = p.map(|q| q.map(i64::from));
+            (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])
+        };
+        let (mut p, mut uv) = (p, uv);
+        if area(&p) > 0 {
+            p.swap(1, 2);
+            uv.swap(1, 2);
+        }
+        let det = area(&p);
+        if det == 0 {
+            return (0, 0);
+        }
+        let pos: Vec<[f32; 3]> = p
+            .iter()
+            .map(|q| common::at(SIZE, SIZE, q[0] as f64 / 16.0, q[1] as f64 / 16.0, 0.0))
+            .collect();
+        let uvs: Vec<[f32; 2]> = uv.iter().map(|t| t.map(|c| c as f32)).collect();
+        let normals = [[0.0f32, 0.0, 1.0]; 3];
+        let idx = [[0u16, 1, 2]];
+        let mesh = Mesh::new(&pos, &idx)
+            .and_then(|m| m.with_normals(&normals))
+            .and_then(|m| m.with_uvs(&uvs))
+            .unwrap();
+        let objects = [Object {
+            mesh,
+            transform: Mat4::identity(),
+            material: Material::matte([255; 3], 1.0, 0.0)
+                .textured(coded_texture(Wrap::Repeat, Wrap::Repeat))
+                .texture_mode(mode),
+        }];
+        let scene = Scene::new(
+            &objects,
+            common::screen_camera(SIZE),
+            [Light::white([0.0, 0.0, 1.0])],
+        );
+        let mut r: Box<Renderer<f32, Rgb565, 64, 64, 8, 8, 8, 1, 8, 8>> = Box::default();
+        let mut f = common::Frame::new(SIZE, SIZE, Rgb565::BLACK);
+        r.render_probed(&scene, &mut f, &mut Snap(&p)).unwrap();
+        let n = common::textures::CODED as f64;
+        let (mut bad, mut seen) = (0, 0);
+        for y in 0..SIZE {
+            for x in 0..SIZE {
+                let c = f.get(x, y);
+                if c == Rgb565::BLACK {
+                    continue;
+                }
+                // Barycentric weights of the centre (in subpixels), from exact integers.
+                let (cx, cy) = (16 * x as i64 + 8, 16 * y as i64 + 8);
+                let [a, b, d] = p.map(|q| q.map(i64::from));
+                let w1 = (cx - a[0]) * (d[1] - a[1]) - (d[0] - a[0]) * (cy - a[1]);
+                let w2 = (b[0] - a[0]) * (cy - a[1]) - (cx - a[0]) * (b[1] - a[1]);
+                let (l1, l2) = (w1 as f64 / det as f64, w2 as f64 / det as f64);
+                if l1 <= 0.0 || l2 <= 0.0 || l1 + l2 >= 1.0 {
+                    continue; // on an edge (the coverage rule is tested elsewhere)
+                }
+                let at =
+                    |k: usize| uv[0][k] + l1 * (uv[1][k] - uv[0][k]) + l2 * (uv[2][k] - uv[0][k]);
+                let (u, v) = (at(0) * n, at(1) * n);
+                let near_edge = |t: f64| (t - t.round()).abs() < 1.0 / 64.0;
+                if near_edge(u) || near_edge(v) {
+                    continue;
+                }
+                let raw = embedded_graphics::pixelcolor::raw::RawU16::from(c).into_inner();
+                let (i, j) = ((raw >> 11) as i64, ((raw >> 5) & 63) as i64);
+                let want = (
+                    u.floor().rem_euclid(n) as i64,
+                    v.floor().rem_euclid(n) as i64,
+                );
+                seen += 1;
+                bad += u32::from((i, j) != want);
+            }
+        }
+        (bad, seen)
+    }
+
+    #[test]
+    fn texels_match_the_f64_interpolation_in_every_mode() {
+        let coord = -16..(SIZE as i32 * 16 + 16);
+        let tri = [
+            [coord.clone(), coord.clone()],
+            [coord.clone(), coord.clone()],
+            [coord.clone(), coord],
+        ];
+        let t = || [-3.0f64..3.0, -3.0f64..3.0];
+        let uv = [t(), t(), t()];
+        let mut runner = TestRunner::new_with_rng(
+            Config {
+                cases: 200,
+                ..Config::default()
+            },
+            TestRng::from_seed(RngAlgorithm::ChaCha, &SEED),
+        );
+        let total = std::cell::Cell::new([0u32; 3]);
+        runner
+            .run(&(tri, uv), |(p, uv)| {
+                for (k, mode) in [
+                    TextureMode::PerPixel,
+                    TextureMode::Subdivided16,
+                    TextureMode::Affine,
+                ]
+                .into_iter()
+                .enumerate()
+                {
+                    let (bad, seen) = check(p, uv, mode);
+                    let mut t = total.get();
+                    t[k] += seen;
+                    total.set(t);
+                    prop_assert_eq!(bad, 0, "{:?}: {} of {} texels differ", mode, bad, seen);
+                }
+                Ok(())
+            })
+            .unwrap();
+        let total = total.get();
+        println!("texels checked per mode: {total:?}");
+        assert!(total.iter().all(|&t| t > 20_000), "{total:?}");
+    }
+}
