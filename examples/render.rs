@@ -123,6 +123,101 @@ fn v3(s: &str) -> Result<[f64; 3], String> {
     }
 }
 
+/// `--point-light`: position, colour, attenuation.
+#[derive(Copy, Clone, Debug, PartialEq)]
+struct PointArg {
+    position: [f64; 3],
+    color: [u8; 3],
+    attenuation: [f64; 3],
+}
+
+/// `--fog`: view depths and colour.
+#[derive(Copy, Clone, Debug, PartialEq)]
+struct FogArg {
+    near: f64,
+    far: f64,
+    color: [u8; 3],
+}
+
+/// Comma-separated finite numbers.
+fn numbers(s: &str) -> Result<Vec<f64>, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("{s:?}: {e}"))?;
+    if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+        return Err(format!("{s:?}: {x} is not a finite number"));
+    }
+    Ok(v)
+}
+
+/// A colour channel 0-255 given as a number.
+fn channel(s: &str, v: f64) -> Result<u8, String> {
+    if v.fract() != 0.0 || !(0.0..=255.0).contains(&v) {
+        return Err(format!(
+            "{s:?}: colour channels are integers 0-255, got {v}"
+        ));
+    }
+    Ok(v as u8)
+}
+
+fn point_light(s: &str) -> Result<PointArg, String> {
+    let v = numbers(s)?;
+    if ![3, 6, 9].contains(&v.len()) {
+        return Err(format!(
+            "{s:?}: expected x,y,z or x,y,z,r,g,b or x,y,z,r,g,b,c,l,q ({} numbers given)",
+            v.len()
+        ));
+    }
+    let color = if v.len() >= 6 {
+        [channel(s, v[3])?, channel(s, v[4])?, channel(s, v[5])?]
+    } else {
+        [255; 3]
+    };
+    let attenuation = if v.len() == 9 {
+        [v[6], v[7], v[8]]
+    } else {
+        [1.0, 0.0, 0.0]
+    };
+    if attenuation
+        .iter()
+        .any(|&a| !(0.0..=MAX_ATTENUATION).contains(&a))
+    {
+        return Err(format!(
+            "{s:?}: attenuation coefficients must be in [0, {MAX_ATTENUATION}]"
+        ));
+    }
+    Ok(PointArg {
+        position: [v[0], v[1], v[2]],
+        color,
+        attenuation,
+    })
+}
+
+fn fog(s: &str) -> Result<FogArg, String> {
+    let v = numbers(s)?;
+    let [near, far, r, g, b] = v[..] else {
+        return Err(format!(
+            "{s:?}: expected near,far,r,g,b ({} numbers given)",
+            v.len()
+        ));
+    };
+    if near >= far {
+        return Err(format!(
+            "{s:?}: the fog's near depth must be below its far depth"
+        ));
+    }
+    Ok(FogArg {
+        near,
+        far,
+        color: [channel(s, r)?, channel(s, g)?, channel(s, b)?],
+    })
+}
+
+/// The largest attenuation coefficient (what Phong spans store, Q5.16).
+const MAX_ATTENUATION: f64 = 31.0;
+
 fn rgb(s: &str) -> Result<[u8; 3], String> {
     let v: Vec<u8> = s
         .split(',')
@@ -199,6 +294,15 @@ struct Args {
     /// Direction toward a light, world space (not 0,0,0); repeat for up to 4 lights [default: -1,1,1]
     #[arg(long, allow_hyphen_values = true, value_parser = v3)]
     light: Vec<[f64; 3]>,
+    /// A point light: position x,y,z (world units), then optionally its colour r,g,b (0-255,
+    /// default white) and attenuation constant,linear,quadratic (default 1,0,0): the light is
+    /// scaled by 1/max(1, c + l·d + q·d²) at distance d; repeat for more (Phong objects use the
+    /// first 2)
+    #[arg(long = "point-light", value_name = "X,Y,Z[,R,G,B[,C,L,Q]]", allow_hyphen_values = true, value_parser = point_light)]
+    point_light: Vec<PointArg>,
+    /// Linear depth fog: none before view depth NEAR, only fog colour r,g,b beyond FAR
+    #[arg(long, value_name = "NEAR,FAR,R,G,B", allow_hyphen_values = true, value_parser = fog)]
+    fog: Option<FogArg>,
     /// Ambient coefficient, 0-255
     #[arg(long, allow_hyphen_values = true, default_value_t = 0.15)]
     ambient: f64,
@@ -577,6 +681,8 @@ fn piece<S: Copy>(
 struct FrameSetup<S: Scalar> {
     camera: Camera<S>,
     lights: [Light<S>; LIGHTS],
+    points: Vec<PointLight<S>>,
+    fog: Option<Fog<S>>,
     background: [u8; 3],
     transform: Mat4<S>,
     material: Material<S>,
@@ -591,9 +697,11 @@ impl<S: Scalar> FrameSetup<S> {
         }]
     }
 
-    fn scene<'a>(&self, objects: &'a [Object<'a, S>]) -> Scene<'a, S, LIGHTS> {
-        let mut scene = Scene::new(objects, self.camera, self.lights);
-        scene.background = self.background;
+    fn scene<'a>(&'a self, objects: &'a [Object<'a, S>]) -> Scene<'a, S, LIGHTS> {
+        let mut scene = Scene::new(objects, self.camera, self.lights)
+            .with_point_lights(&self.points)
+            .with_background(self.background);
+        scene.fog = self.fog;
         scene
     }
 }
@@ -725,6 +833,17 @@ fn run<S: Scalar, C: TargetColor>(
         let fs = FrameSetup {
             camera,
             lights: lights::<S>(args),
+            points: args
+                .point_light
+                .iter()
+                .map(|p| {
+                    let [c, l, q] = p.attenuation.map(S::from_f64);
+                    PointLight::new(p.position.map(S::from_f64), p.color).attenuation(c, l, q)
+                })
+                .collect(),
+            fog: args
+                .fog
+                .map(|f| Fog::linear(S::from_f64(f.near), S::from_f64(f.far), f.color)),
             background: args.background,
             transform: transform::<S>(args, s, k),
             material,

@@ -49,6 +49,12 @@ pub(crate) const LIGHTS: u8 = 2;
 /// [`ActiveExtra::kind`]: an object's Phong material.
 pub(crate) const MATERIAL: u8 = 3;
 
+/// [`ActiveExtra::kind`]: the frame's fog for the spans (`effects::FogSpan`), always entry 0.
+pub(crate) const FOG: u8 = 4;
+/// [`ActiveExtra::kind`]: the frame's point lights for Phong spans (`phong::PhongPoints`),
+/// right after the [`LIGHTS`] entry.
+pub(crate) const POINTS: u8 = 5;
+
 /// [`VertexExtra::mode`] of a vertex of a [`crate::Shading::Phong`] object (after the
 /// texture modes' indices).
 pub(crate) const MODE_PHONG: u8 = 4;
@@ -85,19 +91,36 @@ impl ActiveExtra {
         self.gy = [w[6], w[7], w[8]];
     }
 
-    /// The value of plane `k` at the centre of pixel `(x, y)` (16 fraction bits).
+    /// Plane `j` (0..6) of a Phong triangle's entry, whose words hold six planes of 32 bits
+    /// (the low halves planes 0..3, the high halves 3..6: [`ActiveExtra::set_planes32`]) at the
+    /// centre of pixel `(x, y)`, in wrapping 32-bit arithmetic (16 fraction bits).
     #[inline]
-    pub(crate) fn plane(&self, k: usize, x: i32, y: i32) -> i64 {
-        let (dx, dy) = ((x - self.px0 as i32) as i64, (y - self.py0 as i32) as i64);
+    pub(crate) fn plane32(&self, j: usize, x: i32, y: i32) -> i32 {
+        let (dx, dy) = (x - self.px0 as i32, y - self.py0 as i32);
+        let h = |w: [i64; 3]| (w[j % 3] >> (32 * (j / 3))) as i32;
         let (val, gx, gy) = (self.val, self.gx, self.gy);
-        val[k]
-            .wrapping_add(gx[k].wrapping_mul(dx))
-            .wrapping_add(gy[k].wrapping_mul(dy))
+        h(val)
+            .wrapping_add(h(gx).wrapping_mul(dx))
+            .wrapping_add(h(gy).wrapping_mul(dy))
     }
 
-    /// Plane `k`'s step per pixel along a row.
-    pub(crate) fn step(&self, k: usize) -> i64 {
+    /// Plane `j`'s step per pixel along a row (see [`ActiveExtra::plane32`]).
+    pub(crate) fn step32(&self, j: usize) -> i32 {
         let gx = self.gx;
-        gx[k]
+        (gx[j % 3] >> (32 * (j / 3))) as i32
+    }
+
+    /// Packs the low 32 bits of the planes of `a` (planes 0..3) and `b` (planes 3..6) into
+    /// this entry's words; `a`'s pixel origin (which `b`'s must equal).
+    pub(crate) fn set_planes32(&mut self, a: &ActiveExtra, b: &ActiveExtra) {
+        let pack =
+            |x: [i64; 3], y: [i64; 3]| [0, 1, 2].map(|k| (x[k] as u32 as i64) | (y[k] << 32));
+        let (av, ax, ay, bv, bx, by) = (a.val, a.gx, a.gy, b.val, b.gx, b.gy);
+        self.val = pack(av, bv);
+        self.gx = pack(ax, bx);
+        self.gy = pack(ay, by);
+        self.px0 = a.px0;
+        self.py0 = a.py0;
+        self.kind = a.kind;
     }
 }

@@ -8,7 +8,7 @@
 
 use crate::camera::{Camera, CameraError, Projection};
 use crate::demo_assets::Floor;
-pub use crate::demo_assets::{CHECKER, CHECKER_TEXELS};
+pub use crate::demo_assets::{Bench, CHECKER, CHECKER_TEXELS};
 use crate::math::Mat4;
 use crate::scalar::Scalar;
 use crate::scene::Object;
@@ -89,78 +89,6 @@ pub type TorusRenderer<S, C> = crate::Renderer<S, C, 240, 240, 512, 480, 64>;
 /// Capacities of the benchmark torus renderer: exactly what a full turn in 1° steps needs
 /// (see [`TorusRenderer`] for one with a margin).
 pub const TORUS_CAPACITY: (usize, usize, usize) = (512, 466, 61);
-
-/// The benchmark scenes, shared by the examples, the host tests and the microcontroller
-/// benchmark so that every figure is measured on the same frames.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub enum Bench {
-    /// A flat-shaded cube filling about a third of the screen.
-    Cube,
-    /// The default scene: the Gouraud torus.
-    Torus,
-    /// An icosphere (3 subdivisions, 642 vertices) with Gouraud shading and a specular term.
-    Icosphere,
-    /// A 16 × 16-cell height field seen from low above, whose near part crosses the near plane.
-    Terrain,
-    /// Eight large overlapping quads at close depths: every pixel tests up to eight layers, and
-    /// most layers pass (heavy overdraw).
-    Overdraw,
-    /// Six cubes from 0.05 to 800 units away with near 0.01 and far 1000 (depth precision).
-    Deep,
-    /// A checkerboard floor receding to the far plane with a textured cube on it, lit
-    /// (Gouraud), the floor crossing the near plane: perspective-correct texturing by
-    /// 16-pixel segments ([`crate::TextureMode::Subdivided16`]).
-    Textured,
-    /// [`Bench::Textured`] with [`crate::TextureMode::Affine`] spans.
-    TexturedAffine,
-    /// [`Bench::Textured`] with [`crate::TextureMode::PerPixel`] spans (the reference).
-    TexturedExact,
-    /// A coarse icosphere (2 subdivisions, 320 triangles) with a sharp specular highlight
-    /// (specular 0.8, shininess 40), [`crate::Shading::Phong`]: lit at every pixel.
-    Phong,
-    /// [`Bench::Phong`] with [`crate::Shading::FastPhong`] (lit every 8 pixels).
-    PhongFast,
-    /// [`Bench::Phong`] with Gouraud shading, for comparison: the highlight falls inside
-    /// triangles and mostly vanishes.
-    PhongGouraud,
-}
-
-impl Bench {
-    /// Every benchmark scene.
-    pub const ALL: [Bench; 12] = [
-        Bench::Cube,
-        Bench::Torus,
-        Bench::Icosphere,
-        Bench::Terrain,
-        Bench::Overdraw,
-        Bench::Deep,
-        Bench::Textured,
-        Bench::TexturedAffine,
-        Bench::TexturedExact,
-        Bench::Phong,
-        Bench::PhongFast,
-        Bench::PhongGouraud,
-    ];
-
-    /// Its name in reports.
-    #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Bench::Cube => "cube",
-            Bench::Torus => "torus",
-            Bench::Icosphere => "icosphere",
-            Bench::Terrain => "terrain",
-            Bench::Overdraw => "overdraw",
-            Bench::Deep => "deep",
-            Bench::Textured => "textured",
-            Bench::TexturedAffine => "textured_affine",
-            Bench::TexturedExact => "textured_exact",
-            Bench::Phong => "phong",
-            Bench::PhongFast => "phong_fast",
-            Bench::PhongGouraud => "phong_gouraud",
-        }
-    }
-}
 
 /// What one benchmark frame produced.
 #[derive(Copy, Clone, Debug)]
@@ -378,6 +306,7 @@ where
         }};
     }
     let spin = Mat4::rotate_y(deg(spin_deg));
+    let fog = |near, far| crate::Fog::linear(S::from_f64(near), S::from_f64(far), [150, 170, 200]);
     match bench {
         Bench::Cube => {
             let shape = Shape::<S, 24, 12>::cube(1.0).map_err(|_| BenchError::Scene)?;
@@ -486,7 +415,7 @@ where
                 16
             )
         }
-        Bench::Textured | Bench::TexturedAffine | Bench::TexturedExact => {
+        Bench::Textured | Bench::TexturedAffine | Bench::TexturedExact | Bench::TexturedFog => {
             let mode = match bench {
                 Bench::TexturedAffine => crate::TextureMode::Affine,
                 Bench::TexturedExact => crate::TextureMode::PerPixel,
@@ -525,22 +454,31 @@ where
             ];
             let cam = look([-0.8, 1.0, 2.2], [0.3, 0.2, -1.5], persp(60.0, 0.1, 12.0));
             let camera = cam.map_err(|_| BenchError::Scene)?;
-            let scene = crate::Scene::new(
+            let mut scene = crate::Scene::new(
                 &objects,
                 camera,
                 [Light::white([-S::ONE, S::from_f64(2.0), S::ONE])],
             );
+            if bench == Bench::TexturedFog {
+                scene = scene.with_fog(fog(2.0, 9.0));
+            }
             // Room for the clipped floor and, with triangle ids (every triangle flat), one more
             // vertex record per triangle.
             render_with::<S, C, D, P, 240, 240, 96, 24, 16, 1, 1, 96, 16>(
                 &scene, dither, target, probe,
             )
         }
-        Bench::Phong | Bench::PhongFast | Bench::PhongGouraud => {
+        Bench::Phong
+        | Bench::PhongFast
+        | Bench::PhongGouraud
+        | Bench::PointPhong
+        | Bench::PointPhongFast
+        | Bench::PointGouraud
+        | Bench::FogGouraud => {
             let shape = Shape::<S, 162, 320>::icosphere(1.0, 2).map_err(|_| BenchError::Scene)?;
             let shading = match bench {
-                Bench::Phong => Shading::Phong,
-                Bench::PhongFast => Shading::FastPhong,
+                Bench::Phong | Bench::PointPhong => Shading::Phong,
+                Bench::PhongFast | Bench::PointPhongFast => Shading::FastPhong,
                 _ => Shading::Gouraud,
             };
             let m = Material::matte([60, 110, 210], S::from_f64(0.1), S::from_f64(0.8))
@@ -554,7 +492,23 @@ where
             let cam = look([0.0, 0.3, 3.0], [0.0; 3], persp(45.0, 0.1, 10.0));
             let camera = cam.map_err(|_| BenchError::Scene)?;
             let light = [Light::white([-S::from_f64(0.6), S::from_f64(0.8), S::ONE])];
-            let scene = crate::Scene::new(&objects, camera, light);
+            let v = |x: f64, y: f64, z: f64| [S::from_f64(x), S::from_f64(y), S::from_f64(z)];
+            let lamp = [
+                crate::PointLight::new(v(1.3, -0.4, 1.6), [255, 200, 140]).attenuation(
+                    S::from_f64(0.5),
+                    S::from_f64(0.3),
+                    S::from_f64(0.2),
+                ),
+            ];
+            let mut scene = crate::Scene::new(&objects, camera, light);
+            if matches!(
+                bench,
+                Bench::PointPhong | Bench::PointPhongFast | Bench::PointGouraud
+            ) {
+                scene = scene.with_point_lights(&lamp);
+            } else if bench == Bench::FogGouraud {
+                scene = scene.with_fog(fog(2.2, 3.6));
+            }
             // Room for triangle ids (one more vertex record per triangle).
             render_with::<S, C, D, P, 240, 240, 512, 192, 32, 1, 1, 512, 40>(
                 &scene, dither, target, probe,

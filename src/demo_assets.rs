@@ -51,3 +51,95 @@ impl<S: Scalar> Floor<S> {
         }
     }
 }
+
+/// The benchmark scenes, shared by the examples, the host tests and the microcontroller
+/// benchmark so that every figure is measured on the same frames.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Bench {
+    /// A flat-shaded cube filling about a third of the screen.
+    Cube,
+    /// The default scene: the Gouraud torus.
+    Torus,
+    /// An icosphere (3 subdivisions, 642 vertices) with Gouraud shading and a specular term.
+    Icosphere,
+    /// A 16 × 16-cell height field seen from low above, whose near part crosses the near plane.
+    Terrain,
+    /// Eight large overlapping quads at close depths: every pixel tests up to eight layers, and
+    /// most layers pass (heavy overdraw).
+    Overdraw,
+    /// Six cubes from 0.05 to 800 units away with near 0.01 and far 1000 (depth precision).
+    Deep,
+    /// A checkerboard floor receding to the far plane with a textured cube on it, lit
+    /// (Gouraud), the floor crossing the near plane: perspective-correct texturing by
+    /// 16-pixel segments ([`crate::TextureMode::Subdivided16`]).
+    Textured,
+    /// [`Bench::Textured`] with [`crate::TextureMode::Affine`] spans.
+    TexturedAffine,
+    /// [`Bench::Textured`] with [`crate::TextureMode::PerPixel`] spans (the reference).
+    TexturedExact,
+    /// A coarse icosphere (2 subdivisions, 320 triangles) with a sharp specular highlight
+    /// (specular 0.8, shininess 40), [`crate::Shading::Phong`]: lit at every pixel.
+    Phong,
+    /// [`Bench::Phong`] with [`crate::Shading::FastPhong`] (lit every 8 pixels).
+    PhongFast,
+    /// [`Bench::Phong`] with Gouraud shading, for comparison: the highlight falls inside
+    /// triangles and mostly vanishes.
+    PhongGouraud,
+    /// [`Bench::Phong`] with an attenuated point light besides the directional one.
+    PointPhong,
+    /// [`Bench::PointPhong`] with [`crate::Shading::FastPhong`].
+    PointPhongFast,
+    /// [`Bench::PointPhong`] with Gouraud shading (the point light per vertex).
+    PointGouraud,
+    /// [`Bench::PhongGouraud`] in fog (per vertex).
+    FogGouraud,
+    /// [`Bench::Textured`] in fog (per 16-pixel segment).
+    TexturedFog,
+}
+
+impl Bench {
+    /// Every benchmark scene.
+    pub const ALL: [Bench; 17] = [
+        Bench::Cube,
+        Bench::Torus,
+        Bench::Icosphere,
+        Bench::Terrain,
+        Bench::Overdraw,
+        Bench::Deep,
+        Bench::Textured,
+        Bench::TexturedAffine,
+        Bench::TexturedExact,
+        Bench::Phong,
+        Bench::PhongFast,
+        Bench::PhongGouraud,
+        Bench::PointPhong,
+        Bench::PointPhongFast,
+        Bench::PointGouraud,
+        Bench::FogGouraud,
+        Bench::TexturedFog,
+    ];
+
+    /// Its name in reports.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Bench::Cube => "cube",
+            Bench::Torus => "torus",
+            Bench::Icosphere => "icosphere",
+            Bench::Terrain => "terrain",
+            Bench::Overdraw => "overdraw",
+            Bench::Deep => "deep",
+            Bench::Textured => "textured",
+            Bench::TexturedAffine => "textured_affine",
+            Bench::TexturedExact => "textured_exact",
+            Bench::Phong => "phong",
+            Bench::PhongFast => "phong_fast",
+            Bench::PhongGouraud => "phong_gouraud",
+            Bench::PointPhong => "point_phong",
+            Bench::PointPhongFast => "point_phong_fast",
+            Bench::PointGouraud => "point_gouraud",
+            Bench::FogGouraud => "fog_gouraud",
+            Bench::TexturedFog => "textured_fog",
+        }
+    }
+}

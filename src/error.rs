@@ -66,6 +66,9 @@ pub enum Error<E> {
         /// The renderer's `XA`.
         active_capacity: usize,
     },
+    /// The scene's fog ([`crate::Scene::fog`]) has `near ≥ far`, or a number that is NaN,
+    /// infinite or at a fixed-point rail. Nothing was drawn.
+    Fog,
     /// The scene's camera fails [`crate::Camera::validate`] (its fields are public and may
     /// have been changed after [`crate::Camera::look_at`]). Nothing was drawn.
     Camera(crate::CameraError),
@@ -138,6 +141,10 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
                 "object {object} is textured: the frame needs XV >= {vertices_needed} and up to \
                  {active_needed} textured triangles active on a row (the renderer has XV = \
                  {vertex_capacity}, XA = {active_capacity}); nothing was drawn"
+            ),
+            Error::Fog => write!(
+                f,
+                "the scene's fog needs finite numbers with near < far; nothing was drawn"
             ),
             Error::Camera(e) => write!(f, "{e}; nothing was drawn"),
             Error::Shortfall(s) => {

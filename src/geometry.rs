@@ -34,6 +34,9 @@ pub(crate) type QuickLight<'n, S> = (&'n [Vec3<S>], Vec3<S>, S);
 /// Per-object state of the geometry stage.
 pub(crate) struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
     pub(crate) obj: &'o Object<'a, S>,
+    /// The scene (its point lights, fog and camera; the object-space path and the lighting
+    /// kernels are for scenes without point lights and fog).
+    pub(crate) scene: &'o Scene<'a, S, L>,
     mvp: Mat4<S>,
     normal_matrix: Mat4<S>,
     similar: bool,
@@ -72,6 +75,14 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         self.world_normal(n, true).map(|c| c.to_fixed_i32(14))
     }
 
+    /// Object point `p` in world space less the eye, in 2^-`bits` units (a Phong vertex's
+    /// attribute, for point lights).
+    pub(crate) fn phong_position(&self, p: Vec3<S>, bits: u32) -> [i32; 3] {
+        let w = self.obj.transform.transform_point(p);
+        let d = sub([w[0], w[1], w[2]], self.eye);
+        d.map(|c| c.to_fixed_i32(bits))
+    }
+
     pub(crate) fn to_eye(&self, p: Vec3<S>) -> Vec3<S> {
         if self.obj.material.specular > S::ZERO {
             let w = self.obj.transform.transform_point(p);
@@ -105,6 +116,37 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         Some((self.obj.mesh.normals()?, dir, frac))
     }
 
+    /// Whether the scene has point lights or fog (lit by [`Self::lit_fx`]).
+    #[inline(always)]
+    fn has_fx(&self) -> bool {
+        !self.scene.point_lights.is_empty() || self.scene.fog.is_some()
+    }
+
+    /// The lit and fogged colour (8.8 per channel) at object point `p` with unit world normal
+    /// `n`, with the scene's point lights and fog: the world point's direction to the eye and
+    /// view depth. Out of line: the deepest stack of a frame without them does not grow.
+    #[inline(never)]
+    fn lit_fx(&self, p: Vec3<S>, n: Vec3<S>) -> [u16; 3] {
+        let w = self.obj.transform.transform_point(p);
+        let w = [w[0], w[1], w[2]];
+        let m = &self.obj.material;
+        let to_eye = if m.specular > S::ZERO {
+            normalize(sub(self.eye, w))
+        } else {
+            [S::ZERO; 3]
+        };
+        let lit =
+            crate::shade::lit_color_points(m, self.lights, self.scene.point_lights, n, w, to_eye);
+        match &self.scene.fog {
+            // A textured material's spans fog its pixels (texel × light, then fog).
+            Some(f) if m.texture.is_none() => {
+                let r = self.scene.camera.view.m[2];
+                f.apply(lit, -S::dot3_add([r[0], r[1], r[2]], w, r[3]))
+            }
+            _ => lit,
+        }
+    }
+
     /// Lights record `v` as mesh vertex `i` ([`Self::vertex_color`]) and marks it [`LIT`].
     #[inline(always)]
     pub(crate) fn light<C: TargetColor>(&self, v: &mut ScreenVertex, i: usize) {
@@ -117,7 +159,9 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         let mesh = &self.obj.mesh;
         let p = mesh.positions()[i];
         let n = mesh.normals().map_or([S::ZERO; 3], |ns| ns[i]);
-        let lit = if self.in_object {
+        let lit = if self.has_fx() {
+            self.lit_fx(p, self.world_normal(n, false))
+        } else if self.in_object {
             // The same dot products without a normal transform per vertex (and no specular
             // term: `in_object` requires none).
             lit_diffuse(&self.obj.material, self.lights, n)
@@ -141,6 +185,9 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         let n = self.world_normal(face_normal(a, b, c), true);
         let k = S::from_f64(1.0 / 3.0);
         let centroid = [0, 1, 2].map(|j| (a[j] + b[j] + c[j]) * k);
+        if self.has_fx() {
+            return C::vertex_channels(self.lit_fx(centroid, n));
+        }
         let lit = lit_color(&self.obj.material, self.lights, n, self.to_eye(centroid));
         C::vertex_channels(lit)
     }
@@ -207,10 +254,10 @@ impl<
             .mul(&scene.camera.view);
         let mut need = (0usize, 0usize);
         // The pool's Phong entries (the frame's lights, each Phong object's material).
-        let reserved = if XV > 0 {
+        let (reserved, first_material) = if XV > 0 {
             self.phong_entries(scene)?
         } else {
-            0
+            (0, 0)
         };
         let mut phong_objects = 0usize;
         let k24 = match scene.camera.projection {
@@ -224,7 +271,11 @@ impl<
         // NaN, infinite or (fixed point) saturated inputs are skipped and counted per object,
         // the same for every number type (a float NaN would poison every vertex).
         let ok = |v: &S| v.is_valid();
-        let lights_ok = scene.lights.iter().all(|l| l.direction.iter().all(ok));
+        if scene.fog.is_some_and(|f| !f.is_valid()) {
+            return Err(Error::Fog);
+        }
+        let lights_ok = scene.lights.iter().all(|l| l.direction.iter().all(ok))
+            && scene.point_lights.iter().all(|l| l.is_valid());
         for (index, obj) in scene.objects.iter().enumerate() {
             let m = &obj.material;
             if !(lights_ok
@@ -239,6 +290,8 @@ impl<
             }
             let (normal_matrix, similar, mirrored) = obj.transform.normal_matrix_mirrored();
             let in_object = similar
+                && scene.point_lights.is_empty()
+                && scene.fog.is_none()
                 && obj.material.shading == Shading::Gouraud
                 && obj.material.specular <= S::ZERO;
             // Prepared per object, in place (one array of lights on the stack: a 16 KB part
@@ -251,6 +304,7 @@ impl<
             }
             let setup = ObjectSetup {
                 obj,
+                scene,
                 mvp: pv.mul(&obj.transform),
                 normal_matrix,
                 similar,
@@ -259,11 +313,11 @@ impl<
                 mirrored,
                 eye: scene.camera.eye,
                 base: self.verts.len(),
-                // The material's pool entry (after the lights' entry).
+                // The material's pool entry (after the lights' entries).
                 extra: k24
                     | if XV > 0 && obj.material.shading.is_phong() {
                         phong_objects += 1;
-                        (phong_objects as u32) << 25
+                        ((first_material + phong_objects - 1) as u32) << 25
                     } else {
                         0
                     },

@@ -4,10 +4,13 @@
 
 use crate::attrs::{FREE, LIGHTS, MATERIAL};
 use crate::color::TargetColor;
+use crate::effects::{position_bits, FogSpan, MAX_PHONG_POINT_LIGHTS};
 use crate::error::Error;
 use crate::geometry::ObjectSetup;
 use crate::math::{normalize, sub, Vec3};
-use crate::phong::{PhongLight, PhongLights, PhongMaterial, MAX_PHONG_LIGHTS};
+use crate::phong::{
+    PhongLight, PhongLights, PhongMaterial, PhongPoint, PhongPoints, MAX_PHONG_LIGHTS,
+};
 use crate::project::ScreenVertex;
 use crate::renderer::Renderer;
 use crate::scalar::Scalar;
@@ -40,11 +43,13 @@ impl<
         let mesh = &o.obj.mesh;
         let end = (base + n).min(XV).min(self.verts.len());
         let phong = o.obj.material.shading;
+        let bits = position_bits(&o.scene.camera);
         for i in base..end {
             self.xverts[i] = match (&o.obj.material.texture, mesh.uvs(), mesh.normals()) {
                 _ if C::triangle_id(0).is_some() => VertexExtra::NONE,
                 (_, _, Some(ns)) if phong.is_phong() => VertexExtra::phong(
                     o.phong_normal(ns[i - base]),
+                    o.phong_position(mesh.positions()[i - base], bits),
                     o.phong_material(),
                     phong == Shading::FastPhong,
                 ),
@@ -91,10 +96,15 @@ impl<
             let Some(ns) = o.obj.mesh.normals() else {
                 return;
             };
+            let bits = position_bits(&o.scene.camera);
+            let ps = o.obj.mesh.positions();
             let n = [0, 1, 2].map(|k| o.phong_normal(ns[tri[k] as usize]).map(|v| v as i64));
+            let x = [0, 1, 2].map(|k| o.phong_position(ps[tri[k] as usize], bits));
+            let x = x.map(|v| v.map(|c| c.clamp(-32768, 32767) as i64));
             let n = [0, 1, 2].map(|j| mix(n[0][j], n[1][j], n[2][j]));
+            let x = [0, 1, 2].map(|j| mix(x[0][j], x[1][j], x[2][j]));
             let fast = material.shading == Shading::FastPhong;
-            self.xverts[at] = VertexExtra::phong(n, o.phong_material(), fast);
+            self.xverts[at] = VertexExtra::phong(n, x, o.phong_material(), fast);
             return;
         }
         let (Some(map), Some(uvs)) = (&material.texture, o.obj.mesh.uvs()) else {
@@ -106,36 +116,57 @@ impl<
         self.xverts[at] = VertexExtra::new(map, [mix(a[0], b[0], c[0]), mix(a[1], b[1], c[1])], q);
     }
 
-    /// Frees the pool and, when `scene` has Phong objects, gives its entry 0 the frame's
-    /// lights and one entry after it to each Phong object's material, in scene order (see
-    /// [`ObjectSetup::phong_material`]). Returns how many entries that takes.
+    /// Frees the pool and gives the frame's payloads their entries: entry 0 the fog (when
+    /// the scene has fog and a Phong or textured object), then, when it has Phong objects,
+    /// the directional lights, the point lights (when it has any) and one entry to each Phong
+    /// object's material, in scene order (see [`ObjectSetup::phong_material`]). Returns how
+    /// many entries that takes and the first material's.
     pub(crate) fn phong_entries<E, const L: usize>(
         &mut self,
         scene: &Scene<'_, S, L>,
-    ) -> Result<usize, Error<E>> {
+    ) -> Result<(usize, usize), Error<E>> {
         for e in self.xactive.iter_mut() {
             e.kind = FREE;
+        }
+        if C::triangle_id(0).is_some() {
+            return Ok((0, 0));
         }
         let phong: usize = scene
             .objects
             .iter()
             .filter(|o| o.material.shading.is_phong())
             .count();
-        if phong == 0 || C::triangle_id(0).is_some() {
-            return Ok(0);
+        let stores = scene
+            .objects
+            .iter()
+            .position(|o| o.material.needs_attribute_stores());
+        let fog = scene.fog.filter(|_| stores.is_some());
+        let points = !scene.point_lights.is_empty() && phong > 0;
+        let need = fog.is_some() as usize
+            + if phong > 0 {
+                phong + 1 + points as usize
+            } else {
+                0
+            };
+        if need == 0 {
+            return Ok((0, 0));
         }
-        if phong + 1 > XA {
-            let object = scene
-                .objects
-                .iter()
-                .position(|o| o.material.shading.is_phong());
+        if need > XA {
             return Err(Error::AttributeStore {
-                object: object.unwrap_or(0),
+                object: stores.unwrap_or(0),
                 vertices_needed: 0,
                 vertex_capacity: XV,
-                active_needed: phong + 2,
+                active_needed: need + 1,
                 active_capacity: XA,
             });
+        }
+        let mut slot = 0;
+        if let Some(f) = &fog {
+            FogSpan::new(f, &scene.camera).store(&mut self.xactive[0]);
+            slot = 1;
+        }
+        if phong == 0 {
+            return Ok((slot, slot));
         }
         let q14 = |v: Vec3<S>| v.map(|c| c.to_fixed_i32(14));
         let mut lights = PhongLights::default();
@@ -146,9 +177,40 @@ impl<
             };
             lights.count = k as u8 + 1;
         }
-        lights.store(&mut self.xactive[0]);
-        self.xactive[0].kind = LIGHTS;
-        let mut slot = 1;
+        lights.store(&mut self.xactive[slot]);
+        self.xactive[slot].kind = LIGHTS;
+        slot += 1;
+        if points {
+            let bits = position_bits(&scene.camera);
+            let mut p = PhongPoints {
+                bits: bits as u8,
+                ..Default::default()
+            };
+            let eye = scene.camera.eye;
+            let far = (1i64 << 30) as f64;
+            for (k, l) in scene
+                .point_lights
+                .iter()
+                .take(MAX_PHONG_POINT_LIGHTS)
+                .enumerate()
+            {
+                let d = sub(l.position, eye);
+                p.lights[k] = PhongPoint {
+                    // Through f64: a far light's position may exceed Q16.16's range here.
+                    pos: d.map(|c| {
+                        libm::round(c.to_f64() * (1u32 << bits) as f64).clamp(-far, far) as i32
+                    }),
+                    color: l.color,
+                    att: l
+                        .attenuation
+                        .map(|c| c.max(S::ZERO).min(S::from_i32(31)).to_fixed_i32(16)),
+                };
+                p.count = k as u8 + 1;
+            }
+            p.store(&mut self.xactive[slot]);
+            slot += 1;
+        }
+        let first = slot;
         for o in scene
             .objects
             .iter()
@@ -177,6 +239,6 @@ impl<
             self.xactive[slot].kind = MATERIAL;
             slot += 1;
         }
-        Ok(slot)
+        Ok((slot, first))
     }
 }

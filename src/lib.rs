@@ -188,6 +188,7 @@ mod config;
 mod cull;
 pub mod demo;
 mod demo_assets;
+mod effects;
 mod error;
 mod geometry;
 mod geometry_attrs;
@@ -225,6 +226,7 @@ pub use color::{luma, quantize, scale_channels, TargetColor, TriangleId, BAYER};
 pub use config::__macro as __renderer_type;
 pub use config::Capacities;
 pub use cull::{facing, signed_area2, Facing};
+pub use effects::{Fog, PointLight, MAX_PHONG_POINT_LIGHTS};
 pub use math::{add, cross, dot, length, normalize, scale, sub, Mat4, Vec3};
 pub use mesh::{face_normal, vertex_normals, Mesh, MeshError, UV_LIMIT};
 pub use phong::MAX_PHONG_LIGHTS;
@@ -259,8 +261,9 @@ pub mod internals {
 pub mod prelude {
     pub use crate::vertex_normals;
     pub use crate::{
-        renderer_type, Camera, Capacities, DepthTest, Fx, Light, Mat4, Material, Mesh, Needs,
-        Object, OverflowPolicy, Projection, Renderer, Scalar, Scene, Shading, Shape, TargetColor,
+        renderer_type, Camera, Capacities, DepthTest, Fog, Fx, Light, Mat4, Material, Mesh, Needs,
+        Object, OverflowPolicy, PointLight, Projection, Renderer, Scalar, Scene, Shading, Shape,
+        TargetColor,
     };
 }
 

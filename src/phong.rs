@@ -15,11 +15,12 @@
 //! Formats: directions and normals Q1.14 (`i32`, step 2⁻¹⁴); coefficients Q8.14 (ambient,
 //! diffuse and specular up to 255); the lit channel Q8.14 (0..=255·2¹⁴).
 
-use crate::attrs::{ActiveExtra, MODE_FAST_PHONG};
+use crate::attrs::{ActiveExtra, MODE_FAST_PHONG, POINTS};
 use crate::color::TargetColor;
+use crate::effects::{FogSpan, MAX_PHONG_POINT_LIGHTS};
 use crate::project::DEPTH_FRAC_BITS;
 use crate::raster::{DepthTest, COLOR_FRAC_BITS};
-use crate::scalar::{mul_wide, recip_norm};
+use crate::scalar::{bitlen32, mul_wide, recip_norm};
 use crate::span::{passes, ALWAYS, EQUAL, LESS, LESS_EQUAL};
 
 /// The most directional lights Phong shading takes (more are left out of it).
@@ -57,6 +58,63 @@ pub(crate) struct PhongMaterial {
     pub(crate) v: [i32; 3],
     /// `L·V` of each light, Q1.14.
     pub(crate) lv: [i32; MAX_PHONG_LIGHTS],
+}
+
+/// A point light as Phong spans see it.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PhongPoint {
+    /// Position less the eye's, world space, in units of 2^-`bits` ([`PhongPoints::bits`];
+    /// clamped to ±2³⁰).
+    pub(crate) pos: [i32; 3],
+    /// Light colour (0..=255 per channel).
+    pub(crate) color: [u8; 3],
+    /// Attenuation coefficients (constant, linear, quadratic; world units), Q5.16
+    /// (0..2²¹, step 2⁻¹⁶).
+    pub(crate) att: [i32; 3],
+}
+
+/// The point lights of a frame for Phong spans.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PhongPoints {
+    pub(crate) lights: [PhongPoint; MAX_PHONG_POINT_LIGHTS],
+    pub(crate) count: u8,
+    /// Fraction bits of the positions (theirs and the vertices', `effects::position_bits`).
+    pub(crate) bits: u8,
+}
+
+impl PhongPoints {
+    /// Stored in pool entry `e` (see [`ActiveExtra`]'s payloads).
+    pub(crate) fn store(&self, e: &mut ActiveExtra) {
+        let mut w = [0i64; 9];
+        let lo = |v: i32| v as u32 as i64;
+        for (k, l) in self.lights.iter().enumerate() {
+            let c = l.color;
+            w[3 * k] = lo(l.pos[0]) | (l.pos[1] as i64) << 32;
+            w[3 * k + 1] =
+                lo(l.pos[2]) | (c[0] as i64) << 32 | (c[1] as i64) << 40 | (c[2] as i64) << 48;
+            let a = l.att.map(|v| v.clamp(0, (1 << 21) - 1) as i64);
+            w[3 * k + 2] = a[0] | a[1] << 21 | a[2] << 42;
+        }
+        w[8] = self.count as i64 | (self.bits as i64) << 8;
+        e.set_words(w);
+        e.kind = POINTS;
+    }
+
+    pub(crate) fn load(e: &ActiveExtra) -> Self {
+        let w = e.words();
+        let mut lights = [PhongPoint::default(); MAX_PHONG_POINT_LIGHTS];
+        for (k, l) in lights.iter_mut().enumerate() {
+            let (a, b, c) = (w[3 * k], w[3 * k + 1], w[3 * k + 2]);
+            l.pos = [a as i32, (a >> 32) as i32, b as i32];
+            l.color = [(b >> 32) as u8, (b >> 40) as u8, (b >> 48) as u8];
+            l.att = [0, 21, 42].map(|s| ((c >> s) & ((1 << 21) - 1)) as i32);
+        }
+        PhongPoints {
+            lights,
+            count: (w[8] as u8).min(MAX_PHONG_POINT_LIGHTS as u8),
+            bits: (w[8] >> 8) as u8,
+        }
+    }
 }
 
 /// Q1.14 one.
@@ -180,13 +238,34 @@ pub(crate) struct ShadeCtx {
     /// Ambient, diffuse, specular (Q8.14).
     k: [i32; 3],
     shininess: u8,
+    /// The point lights ([`PhongPoints`]), their count and the positions' fraction bits.
+    points: [PointCtx; MAX_PHONG_POINT_LIGHTS],
+    npoints: usize,
+    bits: u32,
+}
+
+/// A point light in the forms [`shade`] uses.
+#[derive(Copy, Clone, Debug, Default)]
+struct PointCtx {
+    pos: [i32; 3],
+    frac: [i32; 3],
+    full: [i32; 3],
+    /// Q5.16.
+    att: [i32; 3],
 }
 
 impl ShadeCtx {
     /// From the pool's lights entry `lights` (or none) and material entry `m`, without
     /// unpacking the lights' structure: the fractions were computed when they were stored.
-    pub(crate) fn from_entries(lights: Option<&ActiveExtra>, m: &PhongMaterial) -> Self {
+    pub(crate) fn from_entries(
+        lights: Option<&ActiveExtra>,
+        points: Option<&ActiveExtra>,
+        m: &PhongMaterial,
+    ) -> Self {
         let mut c = Self::new(&PhongLights::default(), m);
+        if let Some(e) = points.filter(|e| e.kind == POINTS) {
+            c.set_points(&PhongPoints::load(e));
+        }
         if let Some(e) = lights {
             let w = e.words();
             c.count = (w[8] as usize).min(MAX_PHONG_LIGHTS);
@@ -221,13 +300,52 @@ impl ShadeCtx {
         }
         c
     }
+
+    /// Sets the point lights.
+    pub(crate) fn set_points(&mut self, p: &PhongPoints) {
+        self.npoints = p.count as usize;
+        self.bits = (p.bits as u32).min(14);
+        for (x, l) in self.points.iter_mut().zip(&p.lights) {
+            *x = PointCtx {
+                pos: l.pos,
+                frac: l.color.map(|v| fraction(v) as i32),
+                full: l.color.map(|v| v as i32),
+                att: l.att,
+            };
+        }
+    }
+}
+
+/// The unit direction (Q1.14) toward point light `p` from position `x` (units of
+/// 2^-`bits`) and the light's attenuation there (Q0.16, 0..=65536), `None` at the light.
+/// No division: the direction by a normalized reciprocal of `⌊√(l·l)⌋` after scaling `l`
+/// below 2¹⁴ a component, the attenuation by one of `c + l·d + q·d²` (Q16.16, at least 1).
+fn point_dir(p: &PointCtx, x: [i32; 3], bits: u32) -> Option<([i32; 3], i32)> {
+    let l = [0, 1, 2].map(|k| p.pos[k].wrapping_sub(x[k]));
+    let m = l.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+    if m == 0 {
+        return None;
+    }
+    let s = bitlen32(m).saturating_sub(14);
+    let ls = l.map(|v| v >> s);
+    let len = isqrt((ls[0] * ls[0] + ls[1] * ls[1] + ls[2] * ls[2]) as u32).max(1);
+    let (mm, ee) = recip_norm(len as u64);
+    let dir = ls.map(|v| (mul_wide(v, mm) >> (ee - 14)) as i32);
+    // The distance in Q16.16 world units (2^-bits units: shifted by 16 − bits).
+    let d = (((len as i64) << s) << (16 - bits)).min(i32::MAX as i64) as i32;
+    let [c0, c1, c2] = p.att;
+    let q = (mul_wide(c2, d) >> 16).min(i32::MAX as i64) as i32;
+    let den = c0 as i64 + (mul_wide(c1, d) >> 16) + (mul_wide(q, d) >> 16);
+    let (am, ae) = recip_norm(den.max(1 << 16) as u64);
+    Some((dir, (am >> (ae - 32)).min(1 << 16)))
 }
 
 /// The lit colour (Q8.14 per channel, clamped to 0..=255) of a point with the interpolated
 /// normal `n` (Q1.14, at most unit length plus the planes' rounding; zero lights ambient
-/// only). No division: `1/|n|` is a normalized reciprocal ([`recip_norm`]) of `⌊√(n·n)⌋`;
-/// 64-bit products are 32 × 32-bit ones ([`mul_wide`]).
-pub(crate) fn shade(n: [i32; 3], c: &ShadeCtx) -> [i32; 3] {
+/// only) at position `x` (read for point lights only, [`PhongPoints`]). No division: `1/|n|`
+/// is a normalized reciprocal ([`recip_norm`]) of `⌊√(n·n)⌋`; 64-bit products are 32 × 32-bit
+/// ones ([`mul_wide`]).
+pub(crate) fn shade(n: [i32; 3], x: [i32; 3], c: &ShadeCtx) -> [i32; 3] {
     // |n| ≤ 2^14 inside the triangle (a mix of unit normals, plus rounding); a fast-Phong
     // segment's end may lie a pixel outside, where a sliver's planes take any value: clamped
     // to 2^14 + 2^10 a component, so that each dot product with a unit direction, and n·n,
@@ -235,9 +353,10 @@ pub(crate) fn shade(n: [i32; 3], c: &ShadeCtx) -> [i32; 3] {
     let n = n.map(|v| v.clamp(-(ONE + 1024), ONE + 1024));
     let dot = |x: [i32; 3]| n[0] * x[0] + n[1] * x[1] + n[2] * x[2];
     let len = isqrt(dot(n).max(0) as u32) as i32; // Q1.14
-    let [ambient, diffuse, specular] = c.k;
-    let mut light = [ambient; 3]; // Q8.14 coefficient sums
-    let mut spec = [0i32; 3]; // Q8.14 channel sums
+    let mut sums = Sums {
+        light: [c.k[0]; 3],
+        spec: [0; 3],
+    };
     if len > 0 {
         // N̂·X = (n·X)/|n| in Q1.14: (n·X)·m·2^-e with 1/|n| = m·2^-e.
         let (m, e) = recip_norm(len as u64);
@@ -245,33 +364,72 @@ pub(crate) fn shade(n: [i32; 3], c: &ShadeCtx) -> [i32; 3] {
         let nv = unit(dot(c.v));
         for k in 0..c.count.min(MAX_PHONG_LIGHTS) {
             let nl = unit(dot(c.dir[k]));
-            if nl <= 0 {
-                continue;
-            }
-            // diffuse · light/255 · N·L (Q8.14; below 2^22 · 4 lights · 1).
-            let d = (mul_wide(diffuse, nl) >> 14) as i32;
-            for ch in 0..3 {
-                light[ch] += (mul_wide(d, c.frac[k][ch]) >> 16) as i32;
-            }
-            if specular > 0 {
-                let rv = ((2 * mul_wide(nl, nv)) >> 14) as i32 - c.lv[k];
-                if rv > 0 {
-                    let p = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
-                    for ch in 0..3 {
-                        // Saturating: the channel is clamped at 255 anyway.
-                        spec[ch] = (spec[ch] + p * c.full[k][ch]).min(255 << 14);
-                    }
-                }
+            sums.add::<false>(c, nl, nv, c.lv[k], &c.frac[k], &c.full[k], 1 << 16);
+        }
+        for p in c.points.iter().take(c.npoints) {
+            if let Some((dir, att)) = point_dir(p, x, c.bits) {
+                let nl = unit(dot(dir));
+                let lv = (dir[0] * c.v[0] + dir[1] * c.v[1] + dir[2] * c.v[2]) >> 14;
+                sums.add::<true>(c, nl, nv, lv, &p.frac, &p.full, att);
             }
         }
     }
     let mut out = [0i32; 3];
     for ch in 0..3 {
         // material · (Σ), Q8.14, plus the specular sum.
-        let v = mul_wide(c.color[ch], light[ch]) + spec[ch] as i64;
+        let v = mul_wide(c.color[ch], sums.light[ch]) + sums.spec[ch] as i64;
         out[ch] = v.clamp(0, 255 << 14) as i32;
     }
     out
+}
+
+/// The sums of [`shade`]: the coefficients (Q8.14) and the specular channels (Q8.14).
+struct Sums {
+    light: [i32; 3],
+    spec: [i32; 3],
+}
+
+impl Sums {
+    /// Adds one light's terms for `N̂·L = nl`, `N̂·V = nv`, `L·V = lv` (Q1.14), its colour
+    /// as fractions and in full, and (when `ATT`) its attenuation `att` (Q0.16).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn add<const ATT: bool>(
+        &mut self,
+        c: &ShadeCtx,
+        nl: i32,
+        nv: i32,
+        lv: i32,
+        frac: &[i32; 3],
+        full: &[i32; 3],
+        att: i32,
+    ) {
+        if nl <= 0 {
+            return;
+        }
+        let [_, diffuse, specular] = c.k;
+        // diffuse · light/255 · N·L (Q8.14; below 2^22 · 4 lights · 1).
+        let mut d = (mul_wide(diffuse, nl) >> 14) as i32;
+        if ATT {
+            d = (mul_wide(d, att) >> 16) as i32;
+        }
+        for ch in 0..3 {
+            self.light[ch] += (mul_wide(d, frac[ch]) >> 16) as i32;
+        }
+        if specular > 0 {
+            let rv = ((2 * mul_wide(nl, nv)) >> 14) as i32 - lv;
+            if rv > 0 {
+                let mut p = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
+                if ATT {
+                    p = (mul_wide(p, att) >> 16) as i32;
+                }
+                for ch in 0..3 {
+                    // Saturating: the channel is clamped at 255 anyway.
+                    self.spec[ch] = (self.spec[ch] + p * full[ch]).min(255 << 14);
+                }
+            }
+        }
+    }
 }
 
 /// Pixels per segment of [`crate::Shading::FastPhong`] (lit at both ends, linear between).
@@ -322,23 +480,40 @@ fn fill_t<C: TargetColor, const T: u8>(
     cs: &mut [C],
 ) -> u32 {
     let e = &pool[slot];
-    let lights = usize::try_from(e.base[0]).ok().and_then(|i| pool.get(i));
+    let entry = |i: i32| usize::try_from(i).ok().and_then(|i| pool.get(i));
     let Some(m) = pool.get(e.key as usize).map(PhongMaterial::load) else {
         return 0;
     };
-    let ctx = ShadeCtx::from_entries(lights, &m);
+    let ctx = ShadeCtx::from_entries(entry(e.base[0]), entry(e.base[1]), &m);
+    let fog = FogSpan::load(pool);
     let n = zs.len().min(cs.len()) as i32;
     let seg = if e.mode == MODE_FAST_PHONG {
         FAST_SEGMENT
     } else {
         1
     };
-    // The normal's planes at the span's first pixel (integer part: Q1.14), stepped per pixel.
-    let mut nv = [0, 1, 2].map(|k| e.plane(k, x0, row));
-    let step = [0, 1, 2].map(|k| e.step(k));
-    let at = |nv: &[i64; 3]| nv.map(|v| (v >> 16) as i32);
+    // The normal's and the position's planes at the span's first pixel (integer parts: Q1.14
+    // and 2^-bits units), stepped per pixel.
+    let mut nv = [0, 1, 2, 3, 4, 5].map(|k| e.plane32(k, x0, row));
+    let step = [0, 1, 2, 3, 4, 5].map(|k| e.step32(k));
     let factors = channel_factors::<C>();
-    let lit = |nv: &[i64; 3]| channels(shade(at(nv), &ctx), &factors);
+    let lit = |nv: &[i32; 6], z: i32| {
+        let n = [nv[0] >> 16, nv[1] >> 16, nv[2] >> 16];
+        let x = [nv[3] >> 16, nv[4] >> 16, nv[5] >> 16];
+        let c = shade(n, x, &ctx);
+        let c = match &fog {
+            // Toward the fog colour (Q8.14) by the factor at this depth.
+            Some(f) => {
+                let t = f.factor(z) as i64;
+                [0, 1, 2].map(|k| {
+                    let d = ((f.channel(k) << 14) - c[k]) as i64;
+                    c[k] + ((d * t) >> 16) as i32
+                })
+            }
+            None => c,
+        };
+        channels(c, &factors)
+    };
     let half = 1 << (COLOR_FRAC_BITS - 1);
     let out =
         |c: [i32; 3]| {
@@ -355,24 +530,24 @@ fn fill_t<C: TargetColor, const T: u8>(
             let z16 = (z >> DEPTH_FRAC_BITS) as u16;
             if passes::<T>(z16, zs[k]) {
                 zs[k] = z16;
-                cs[k] = out(lit(&nv));
+                cs[k] = out(lit(&nv, z));
                 written += 1;
             }
             z = z.wrapping_add(gz);
-            for k in 0..3 {
+            for k in 0..6 {
                 nv[k] = nv[k].wrapping_add(step[k]);
             }
             i += 1;
         }
         return written;
     }
-    let mut c0 = lit(&nv);
+    let mut c0 = lit(&nv, z);
     while i < n {
         let len = seg.min(n - i);
-        for k in 0..3 {
-            nv[k] = nv[k].wrapping_add(step[k].wrapping_mul(len as i64));
+        for k in 0..6 {
+            nv[k] = nv[k].wrapping_add(step[k].wrapping_mul(len));
         }
-        let c1 = lit(&nv);
+        let c1 = lit(&nv, z.wrapping_add(gz.wrapping_mul(len)));
         // A whole segment's step by a shift (8 px), a shorter last one by a division.
         let dc = [0, 1, 2].map(|k| {
             if len == FAST_SEGMENT {
@@ -454,7 +629,7 @@ mod tests {
             let a = i as f64 * 0.1;
             let n = unit([a.sin(), (a * 0.7).cos(), 0.5 + (a * 1.3).sin().abs()]);
             // A shorter normal (as interpolation gives) must light the same.
-            let got = shade(q(n.map(|c| c * 0.8)), &ShadeCtx::new(&lights, &m));
+            let got = shade(q(n.map(|c| c * 0.8)), [0; 3], &ShadeCtx::new(&lights, &m));
             let nl = n[0] * ld[0] + n[1] * ld[1] + n[2] * ld[2];
             let nv = n[0] * vd[0] + n[1] * vd[1] + n[2] * vd[2];
             for c in 0..3 {
@@ -489,7 +664,7 @@ mod tests {
         assert_eq!(PhongLights::load(&e), l);
         let m0 = PhongMaterial::default();
         let (a, b) = (
-            ShadeCtx::from_entries(Some(&e), &m0),
+            ShadeCtx::from_entries(Some(&e), None, &m0),
             ShadeCtx::new(&l, &m0),
         );
         assert_eq!(

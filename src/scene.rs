@@ -4,6 +4,7 @@
 //! one [`Scene`] drawn in one strip pass by [`crate::Renderer::render`].
 
 use crate::camera::Camera;
+use crate::effects::{Fog, PointLight};
 use crate::math::Mat4;
 use crate::mesh::Mesh;
 use crate::scalar::Scalar;
@@ -20,7 +21,8 @@ pub struct Object<'a, S> {
     pub material: Material<S>,
 }
 
-/// Everything one frame draws, with `L` directional lights.
+/// Everything one frame draws, with `L` directional lights, any number of point lights and
+/// optional fog.
 #[derive(Copy, Clone, Debug)]
 pub struct Scene<'a, S, const L: usize> {
     /// The objects, drawn together (depth-tested against each other).
@@ -29,6 +31,10 @@ pub struct Scene<'a, S, const L: usize> {
     pub camera: Camera<S>,
     /// The directional lights.
     pub lights: [Light<S>; L],
+    /// The point lights (borrowed; empty by default: a scene without them pays nothing).
+    pub point_lights: &'a [PointLight<S>],
+    /// Linear depth fog (`None` by default: a scene without it pays nothing).
+    pub fog: Option<Fog<S>>,
     /// Background colour, 8 bits per channel.
     pub background: [u8; 3],
 }
@@ -41,8 +47,34 @@ impl<'a, S: Scalar, const L: usize> Scene<'a, S, L> {
             objects,
             camera,
             lights,
+            point_lights: &[],
+            fog: None,
             background: [0; 3],
         }
+    }
+
+    /// This scene with `point_lights`.
+    #[must_use]
+    pub fn with_point_lights(self, point_lights: &'a [PointLight<S>]) -> Self {
+        Scene {
+            point_lights,
+            ..self
+        }
+    }
+
+    /// This scene with `fog`.
+    #[must_use]
+    pub fn with_fog(self, fog: Fog<S>) -> Self {
+        Scene {
+            fog: Some(fog),
+            ..self
+        }
+    }
+
+    /// This scene on background colour `background`.
+    #[must_use]
+    pub fn with_background(self, background: [u8; 3]) -> Self {
+        Scene { background, ..self }
     }
 }
 

@@ -276,6 +276,26 @@ impl<S: Scalar> PreparedLight<S> {
         }
     }
 
+    /// A light toward unit direction `dir` with colour `color` scaled by `att` (a point
+    /// light at one point, [`crate::PointLight`]).
+    pub(crate) fn scaled(dir: Vec3<S>, color: [u8; 3], att: S) -> Self {
+        let k = S::from_f64(1.0 / 255.0) * att;
+        let c = |i: usize| S::from_i32(color[i] as i32);
+        let [r, g, b] = color;
+        PreparedLight {
+            dir,
+            frac: [c(0) * k, c(1) * k, c(2) * k],
+            full: [c(0) * att, c(1) * att, c(2) * att],
+            grey: r == g && g == b,
+        }
+    }
+
+    /// Channel `k`'s colour fraction (`light/255`, times the attenuation of a point light).
+    #[cfg(test)]
+    pub(crate) fn frac_of(&self, k: usize) -> S {
+        self.frac[k]
+    }
+
     pub(crate) fn new(l: &Light<S>) -> Self {
         let k = S::from_f64(1.0 / 255.0);
         let c = |i: usize| S::from_i32(l.color[i] as i32);
@@ -310,24 +330,63 @@ pub(crate) fn lit_color<S: Scalar>(
     n: Vec3<S>,
     to_eye: Vec3<S>,
 ) -> [u16; 3] {
-    let mut diffuse = [m.ambient; 3];
-    let mut spec = [S::ZERO; 3];
-    let two = S::ONE + S::ONE;
+    let mut sums = ([m.ambient; 3], [S::ZERO; 3]);
     for l in lights {
-        let ndl = dot(n, l.dir);
-        add_diffuse(&mut diffuse, m, l, ndl);
-        if m.specular > S::ZERO {
-            // R·V = 2(N·L)(N·V) − L·V.
-            let r = sub(scale(n, two * ndl), l.dir);
-            let rv = dot(r, to_eye);
-            if rv > S::ZERO && ndl > S::ZERO {
-                let p = m.specular * powi(rv, m.shininess);
-                for c in 0..3 {
-                    spec[c] = spec[c] + p * l.full[c];
-                }
+        add_light(&mut sums, m, l, n, to_eye);
+    }
+    finish(m, sums)
+}
+
+/// [`lit_color`] with point lights too, at world point `p` ([`crate::PointLight::at`]).
+pub(crate) fn lit_color_points<S: Scalar>(
+    m: &Material<S>,
+    lights: &[PreparedLight<S>],
+    points: &[crate::PointLight<S>],
+    n: Vec3<S>,
+    p: Vec3<S>,
+    to_eye: Vec3<S>,
+) -> [u16; 3] {
+    let mut sums = ([m.ambient; 3], [S::ZERO; 3]);
+    for l in lights {
+        add_light(&mut sums, m, l, n, to_eye);
+    }
+    for pl in points {
+        add_light(&mut sums, m, &pl.at(p), n, to_eye);
+    }
+    finish(m, sums)
+}
+
+/// The (diffuse coefficient, specular) sums of [`lit_color`].
+type Sums<S> = ([S; 3], [S; 3]);
+
+/// Adds light `l`'s diffuse and specular terms for unit normal `n` to `sums`.
+#[inline(always)]
+fn add_light<S: Scalar>(
+    sums: &mut Sums<S>,
+    m: &Material<S>,
+    l: &PreparedLight<S>,
+    n: Vec3<S>,
+    to_eye: Vec3<S>,
+) {
+    let two = S::ONE + S::ONE;
+    let ndl = dot(n, l.dir);
+    add_diffuse(&mut sums.0, m, l, ndl);
+    if m.specular > S::ZERO {
+        // R·V = 2(N·L)(N·V) − L·V.
+        let r = sub(scale(n, two * ndl), l.dir);
+        let rv = dot(r, to_eye);
+        if rv > S::ZERO && ndl > S::ZERO {
+            let p = m.specular * powi(rv, m.shininess);
+            for c in 0..3 {
+                sums.1[c] = sums.1[c] + p * l.full[c];
             }
         }
     }
+}
+
+/// The lit colour from the sums of [`add_light`], 8.8 per channel.
+#[inline(always)]
+fn finish<S: Scalar>(m: &Material<S>, (diffuse, spec): Sums<S>) -> [u16; 3] {
     let mut out = [0u16; 3];
     for c in 0..3 {
         out[c] = channel_8_8(diffuse[c].mul_int(m.color[c] as i32) + spec[c]);

@@ -15,6 +15,7 @@
 
 use crate::attrs::*;
 use crate::color::TargetColor;
+use crate::effects::FogSpan;
 use crate::project::{vertex_frac_bits, ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS};
 use crate::raster::*;
 use crate::scalar::{mul_wide, recip_norm};
@@ -48,13 +49,18 @@ impl VertexExtra {
         mode: 0,
     };
 
-    /// The attributes of a vertex of an object textured by `map`.
-    /// The attributes of a vertex of a Phong object: its unit normal (world space, Q1.14),
-    /// the pool entry of its object's material, and the variant.
-    pub(crate) fn phong(n: [i32; 3], material: u16, fast: bool) -> Self {
+    /// The attributes of a vertex of a Phong object: its unit normal (world space, Q1.14)
+    /// and its position less the eye's (world space, 2^-bits units, `effects::position_bits`),
+    /// packed as six `i16` in `st` and `q`; the pool entry of its object's material, and the
+    /// variant.
+    pub(crate) fn phong(n: [i32; 3], pos: [i32; 3], material: u16, fast: bool) -> Self {
+        let h = |v: i32| (v.clamp(-32768, 32767) as u16) as u32;
         VertexExtra {
-            st: [n[0], n[1]],
-            q: n[2] as u32,
+            st: [
+                (h(n[0]) | h(n[1]) << 16) as i32,
+                (h(n[2]) | h(pos[0]) << 16) as i32,
+            ],
+            q: h(pos[1]) | h(pos[2]) << 16,
             texture: None,
             key: material,
             has_key: false,
@@ -62,6 +68,15 @@ impl VertexExtra {
         }
     }
 
+    /// A Phong vertex's normal and position ([`VertexExtra::phong`]).
+    pub(crate) fn phong_attributes(&self) -> ([i32; 3], [i32; 3]) {
+        let lo = |v: u32| v as u16 as i16 as i32;
+        let hi = |v: u32| (v >> 16) as u16 as i16 as i32;
+        let (a, b) = (self.st[0] as u32, self.st[1] as u32);
+        ([lo(a), hi(a), lo(b)], [hi(b), lo(self.q), hi(self.q)])
+    }
+
+    /// The attributes of a vertex of an object textured by `map`.
     pub(crate) fn new(map: &Texturing, st: [i32; 2], q: u32) -> Self {
         VertexExtra {
             st,
@@ -139,19 +154,28 @@ pub(crate) fn attach_textured<C: TargetColor>(
     let e = &mut pool[slot];
     *e = ActiveExtra::EMPTY;
     if x0.mode >= MODE_PHONG {
-        // The normals' planes; the material entry's index in `key`.
-        let n = |x: &VertexExtra| [x.st[0], x.st[1], x.q as i32];
-        let [a, b, c] = [n(&x0), n(x1), n(x2)];
-        let planes = [0, 1, 2].map(|k| [a[k] as i64, b[k] as i64, c[k] as i64]);
-        e.mode = x0.mode;
-        e.key = x0.key;
-        if !set_planes(e, p, planes) {
+        // The normals' and positions' planes, 32 bits each; the material entry's index in
+        // `key`.
+        let [a, b, c] = [&x0, x1, x2].map(|x| x.phong_attributes());
+        let planes = |j: usize| {
+            let at = |v: &([i32; 3], [i32; 3]), k: usize| [v.0, v.1][j][k] as i64;
+            [0, 1, 2].map(|k| [at(&a, k), at(&b, k), at(&c, k)])
+        };
+        let (mut normals, mut positions) = (ActiveExtra::EMPTY, ActiveExtra::EMPTY);
+        if !set_planes(&mut normals, p, planes(0)) || !set_planes(&mut positions, p, planes(1)) {
             return false;
         }
-        // The frame's lights entry.
+        e.set_planes32(&normals, &positions);
+        e.mode = x0.mode;
+        e.key = x0.key;
+        // The frame's lights entry and the point lights' right after it.
         let lights = pool.iter().position(|e| e.kind == LIGHTS);
+        let points = lights
+            .map(|i| i + 1)
+            .filter(|&i| pool.get(i).is_some_and(|e| e.kind == POINTS));
         let e = &mut pool[slot];
-        e.base = [lights.map_or(-1, |i| i as i32), 0];
+        let index = |i: Option<usize>| i.map_or(-1, |i| i as i32);
+        e.base = [index(lights), index(points)];
         rec.flags |= TEXTURED;
         rec.spare = slot as i16;
         return true;
@@ -310,22 +334,28 @@ pub(crate) fn draw_row_textured<C: TargetColor>(
                 };
                 light[k] = modulation::<C>(k, v, g);
             }
+            let fog = FogSpan::load(pool);
             let span = TexSpan {
                 e: &e,
                 x0: xs,
                 row,
                 z: [z, rec.gx[0]],
                 light,
+                fog: fog.unwrap_or_default(),
             };
             let (zs, cs) = (
                 &mut depth[xs as usize..xe as usize],
                 &mut colors[xs as usize..xe as usize],
             );
-            let written = match test {
-                DepthTest::Less => span.fill::<C, LESS>(zs, cs),
-                DepthTest::LessEqual => span.fill::<C, LESS_EQUAL>(zs, cs),
-                DepthTest::Equal => span.fill::<C, EQUAL>(zs, cs),
-                DepthTest::Always => span.fill::<C, ALWAYS>(zs, cs),
+            let written = match (test, fog.is_some()) {
+                (DepthTest::Less, false) => span.fill::<C, LESS, false>(zs, cs),
+                (DepthTest::LessEqual, false) => span.fill::<C, LESS_EQUAL, false>(zs, cs),
+                (DepthTest::Equal, false) => span.fill::<C, EQUAL, false>(zs, cs),
+                (DepthTest::Always, false) => span.fill::<C, ALWAYS, false>(zs, cs),
+                (DepthTest::Less, true) => span.fill::<C, LESS, true>(zs, cs),
+                (DepthTest::LessEqual, true) => span.fill::<C, LESS_EQUAL, true>(zs, cs),
+                (DepthTest::Equal, true) => span.fill::<C, EQUAL, true>(zs, cs),
+                (DepthTest::Always, true) => span.fill::<C, ALWAYS, true>(zs, cs),
             };
             counts = ((xe - xs) as u32, written);
         }
@@ -363,6 +393,8 @@ struct TexSpan<'e> {
     z: [i32; 2],
     /// Modulation factors ([`modulation`]).
     light: [[i32; 2]; 3],
+    /// The frame's fog (read by `fill::<_, _, true>` only).
+    fog: FogSpan,
 }
 
 impl TexSpan<'_> {
@@ -389,8 +421,14 @@ impl TexSpan<'_> {
         [e.base[0].wrapping_add(uv(0)), e.base[1].wrapping_add(uv(1))]
     }
 
-    /// Tests and writes the span's pixels; returns how many it wrote.
-    fn fill<C: TargetColor, const T: u8>(&self, zs: &mut [u16], cs: &mut [C]) -> u32 {
+    /// Tests and writes the span's pixels; returns how many it wrote. With `FOG`, each
+    /// pixel is mixed toward the fog colour by the fog factor, exact at the ends of each
+    /// segment (from the depth) and linear between.
+    fn fill<C: TargetColor, const T: u8, const FOG: bool>(
+        &self,
+        zs: &mut [u16],
+        cs: &mut [C],
+    ) -> u32 {
         let e = self.e;
         let Some(tex) = e.texture else {
             return 0;
@@ -400,6 +438,12 @@ impl TexSpan<'_> {
         let key = if e.has_key { e.key as u32 } else { 1 << 16 };
         let n = zs.len().min(cs.len()) as i32;
         let seg = mode_of(e.mode).segment().unwrap_or(n.max(1));
+        // The fog colour in the target's channel units.
+        let fogc = if FOG {
+            [0, 1, 2].map(|c| (self.fog.channel(c) * C::CHANNEL_MAX[c] as i32 * 2 + 255) / 510)
+        } else {
+            [0; 3]
+        };
         let [mut z, gz] = self.z;
         let mut l = self.light.map(|c| c[0]);
         let gl = self.light.map(|c| c[1]);
@@ -429,6 +473,21 @@ impl TexSpan<'_> {
                 [0, 0]
             };
             let [mut u, mut v] = uv;
+            // The fog factor (Q0.16) at the segment's ends, and its step.
+            let (mut f, df) = if FOG {
+                let f0 = self.fog.factor(z);
+                let f1 = self.fog.factor(z.wrapping_add(gz.wrapping_mul(len)));
+                let df = if len == seg && seg.count_ones() == 1 {
+                    (f1 - f0) >> seg.trailing_zeros()
+                } else if len > 1 {
+                    (f1 - f0) / len
+                } else {
+                    0
+                };
+                (f0, df)
+            } else {
+                (0, 0)
+            };
             for x in i..i + len {
                 let z16 = (z >> DEPTH_FRAC_BITS) as u16;
                 let k = x as usize;
@@ -442,10 +501,15 @@ impl TexSpan<'_> {
                             ((texel >> 5) & 63) as i32,
                             (texel & 31) as i32,
                         ];
-                        let ch = [0, 1, 2].map(|c| {
+                        let mut ch = [0, 1, 2].map(|c| {
                             ((t[c] * l[c] + (1 << 20)) >> 21).clamp(0, C::CHANNEL_MAX[c] as i32)
-                                as u8
                         });
+                        if FOG {
+                            for c in 0..3 {
+                                ch[c] += ((fogc[c] - ch[c]) * f + (1 << 15)) >> 16;
+                            }
+                        }
+                        let ch = ch.map(|c| c as u8);
                         zs[k] = z16;
                         cs[k] = C::from_channels(ch);
                         written += 1;
@@ -454,6 +518,9 @@ impl TexSpan<'_> {
                 z = z.wrapping_add(gz);
                 for c in 0..3 {
                     l[c] = l[c].wrapping_add(gl[c]);
+                }
+                if FOG {
+                    f += df;
                 }
                 u = u.wrapping_add(step[0]);
                 v = v.wrapping_add(step[1]);

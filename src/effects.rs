@@ -1,0 +1,313 @@
+//! Point lights and depth fog: the scene-wide effects beyond directional lights, lit per
+//! vertex (flat and Gouraud shading, in the scene's number type, so that the f64 pipeline is
+//! their reference) and per pixel for Phong shading (in integers, [`crate::phong`]).
+//!
+//! A scene without them ([`crate::Scene::point_lights`] empty, [`crate::Scene::fog`] `None`)
+//! takes none of this code: its vertices keep the object-space lighting and the lighting
+//! kernels, and its images and instruction counts do not change.
+
+use crate::attrs::{ActiveExtra, FOG};
+use crate::camera::{Camera, Projection};
+use crate::math::{dot, normalize, sub, Vec3};
+use crate::scalar::{mul_wide, recip_norm, Scalar};
+use crate::shade::PreparedLight;
+
+/// A point light: a position in world space, a colour and a distance attenuation.
+///
+/// At a point at distance `d` from the light, the light's colour is scaled by
+/// `1 / max(1, c + l·d + q·d²)` with `[c, l, q]` = [`PointLight::attenuation`], and its
+/// direction is the unit vector toward [`PointLight::position`]. The `max(1, ·)` keeps the
+/// factor at most 1: a light is never brighter than its colour, and a light close to a
+/// surface (or coefficients that sum to less than 1) cannot overflow a channel's range.
+/// Negative coefficients are used as zero.
+///
+/// Flat and Gouraud shading light per face or per vertex (any number of point lights);
+/// Phong shading per pixel, up to [`MAX_PHONG_POINT_LIGHTS`] (more are left out of Phong
+/// objects, lit as if absent). A point light is about three times the cost of a directional
+/// light per lit vertex (a normalization, a square root and a division): see `BENCHMARKS.md`.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct PointLight<S> {
+    /// World-space position.
+    pub position: Vec3<S>,
+    /// Light colour, 8 bits per channel (255 = full intensity).
+    pub color: [u8; 3],
+    /// Attenuation coefficients `[constant, linear, quadratic]` (world units; `[1, 0, 0]`:
+    /// no attenuation).
+    pub attenuation: [S; 3],
+}
+
+/// The most point lights a Phong object is lit by (the first ones of the scene's list).
+pub const MAX_PHONG_POINT_LIGHTS: usize = 2;
+
+impl<S: Scalar> PointLight<S> {
+    /// A light of colour `color` at `position`, without attenuation.
+    #[must_use]
+    pub fn new(position: Vec3<S>, color: [u8; 3]) -> Self {
+        PointLight {
+            position,
+            color,
+            attenuation: [S::ONE, S::ZERO, S::ZERO],
+        }
+    }
+
+    /// This light with attenuation `1 / max(1, constant + linear·d + quadratic·d²)`.
+    #[must_use]
+    pub fn attenuation(self, constant: S, linear: S, quadratic: S) -> Self {
+        PointLight {
+            attenuation: [constant, linear, quadratic],
+            ..self
+        }
+    }
+
+    /// Whether every number of the light is valid (not NaN, infinite or at a fixed-point
+    /// rail): a frame skips and counts every object when one is not, as for a directional
+    /// light.
+    pub(crate) fn is_valid(&self) -> bool {
+        self.position
+            .iter()
+            .chain(self.attenuation.iter())
+            .all(|v| v.is_valid())
+    }
+
+    /// The light as a directional one at world point `p`: the unit direction toward it and
+    /// its colour scaled by the attenuation at its distance.
+    pub(crate) fn at(&self, p: Vec3<S>) -> PreparedLight<S> {
+        let l = sub(self.position, p);
+        let dir = normalize(l);
+        // |l| from the unit direction (no square of |l|, which would saturate Q16.16 beyond
+        // 181 units).
+        let d = dot(l, dir).max(S::ZERO);
+        let [c, k1, k2] = self.attenuation.map(|v| v.max(S::ZERO));
+        let den = (c + k1 * d + k2 * d * d).max(S::ONE);
+        PreparedLight::scaled(dir, self.color, S::ONE / den)
+    }
+}
+
+/// Linear depth fog: a point at view depth `z` (distance along the camera's view direction)
+/// is mixed toward [`Fog::color`] by `f = clamp((z − near)/(far − near), 0, 1)`:
+/// `colour·(1 − f) + fog·f`. No fog before `near`, only fog beyond `far`.
+///
+/// Flat shading fogs each face at its centroid, Gouraud each vertex (the colours are then
+/// interpolated: no per-pixel cost); Phong and textured spans fog at the pixels they light
+/// or at the ends of their segments, from the depth buffer's value.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Fog<S> {
+    /// View depth where the fog starts (world units).
+    pub near: S,
+    /// View depth where the fog hides everything (world units; above `near`).
+    pub far: S,
+    /// Fog colour, 8 bits per channel.
+    pub color: [u8; 3],
+}
+
+impl<S: Scalar> Fog<S> {
+    /// Fog from view depth `near` to `far`, toward `color`.
+    #[must_use]
+    pub fn linear(near: S, far: S, color: [u8; 3]) -> Self {
+        Fog { near, far, color }
+    }
+
+    /// Whether the fog's numbers are valid and `near < far`.
+    pub(crate) fn is_valid(&self) -> bool {
+        self.near.is_valid() && self.far.is_valid() && self.near < self.far
+    }
+
+    /// The fog factor at view depth `z`, Q0.16 (0..=65536).
+    pub(crate) fn factor(&self, z: S) -> i32 {
+        let f = (z - self.near) / (self.far - self.near);
+        f.max(S::ZERO)
+            .min(S::ONE)
+            .to_fixed_i32(16)
+            .clamp(0, 1 << 16)
+    }
+
+    /// Colour `c` (8.8 per channel, 0..=65280) fogged at view depth `z`.
+    pub(crate) fn apply(&self, c: [u16; 3], z: S) -> [u16; 3] {
+        mix_8_8(c, self.color, self.factor(z))
+    }
+}
+
+/// `c·(1 − f) + fog·f` for a colour `c` in 8.8 per channel and `f` in Q0.16, rounded.
+pub(crate) fn mix_8_8(c: [u16; 3], fog: [u8; 3], f: i32) -> [u16; 3] {
+    let f = f.clamp(0, 1 << 16) as i64;
+    [0, 1, 2].map(|k| {
+        let (a, b) = (c[k] as i64, (fog[k] as i64) << 8);
+        (a + (((b - a) * f + (1 << 15)) >> 16)) as u16
+    })
+}
+
+/// The fraction bits of the positions Phong spans interpolate for point lights (world
+/// position less the eye's, as `i16`): the most for which a point twice the camera's far
+/// distance from the eye fits (0..=14).
+pub(crate) fn position_bits<S: Scalar>(camera: &Camera<S>) -> u32 {
+    let far = match camera.projection {
+        Projection::Perspective { far, .. } | Projection::Orthographic { far, .. } => far.to_f64(),
+    };
+    let mut e = 14;
+    while e > 0 && 2.0 * far * (1u32 << e) as f64 > 32767.0 {
+        e -= 1;
+    }
+    e
+}
+
+/// The fog as spans see it (Phong and textured spans fog per lit pixel or per segment end,
+/// from the depth value): the pool's entry 0 ([`FOG`]) while a frame with fog has Phong or
+/// textured objects.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct FogSpan {
+    /// The camera's near distance, Q16.16 world units.
+    near: i32,
+    /// Perspective: `(1 − near/far)·2⁵⁶/(65535·2⁸)` (the depth's step in `near/w`, Q0.24, per
+    /// 16.8 depth unit, with 32 more fraction bits); 0 for an orthographic camera.
+    kq: i64,
+    /// Orthographic: `(far − near)` in Q16.16 per depth unit of 16.8 with 24 fraction bits
+    /// (`(far − near)·2²⁴/(65535·2⁸)`); 0 for a perspective camera.
+    ortho: i64,
+    /// The fog's start, Q16.16 view depth.
+    start: i32,
+    /// `1/(fog far − fog near)` (Q16.16 units) as a normalized reciprocal: `m·2^-e`.
+    inv: (i32, u32),
+    color: [u8; 3],
+}
+
+impl FogSpan {
+    /// From the scene's fog and camera (Q16.16 numbers saturate).
+    pub(crate) fn new<S: Scalar>(fog: &Fog<S>, camera: &Camera<S>) -> Self {
+        let q16 = |v: f64| libm::round(v * 65536.0).clamp(i32::MIN as f64, i32::MAX as f64);
+        const D: f64 = 65535.0 * 256.0;
+        let (near, far) = match camera.projection {
+            Projection::Perspective { near, far, .. }
+            | Projection::Orthographic { near, far, .. } => (near.to_f64(), far.to_f64()),
+        };
+        let persp = matches!(camera.projection, Projection::Perspective { .. });
+        let (kq, ortho) = if persp {
+            (
+                libm::round((1.0 - near / far) * (1u64 << 56) as f64 / D) as i64,
+                0,
+            )
+        } else {
+            (
+                0,
+                libm::round((far - near) * 65536.0 * (1u64 << 24) as f64 / D) as i64,
+            )
+        };
+        let range = (q16(fog.far.to_f64()) - q16(fog.near.to_f64())).max(1.0);
+        let (m, e) = recip_norm(range as u64);
+        FogSpan {
+            near: q16(near) as i32,
+            kq,
+            ortho,
+            start: q16(fog.near.to_f64()) as i32,
+            inv: (m, e),
+            color: fog.color,
+        }
+    }
+
+    pub(crate) fn store(&self, e: &mut ActiveExtra) {
+        let c = self.color;
+        e.set_words([
+            self.near as i64,
+            self.kq,
+            self.ortho,
+            self.start as i64,
+            self.inv.0 as i64,
+            self.inv.1 as i64,
+            c[0] as i64 | (c[1] as i64) << 8 | (c[2] as i64) << 16,
+            0,
+            0,
+        ]);
+        e.kind = FOG;
+    }
+
+    /// The fog in pool entry 0, if the frame has one.
+    #[inline]
+    pub(crate) fn load(pool: &[ActiveExtra]) -> Option<Self> {
+        let e = pool.first().filter(|e| e.kind == FOG)?;
+        let w = e.words();
+        Some(FogSpan {
+            near: w[0] as i32,
+            kq: w[1],
+            ortho: w[2],
+            start: w[3] as i32,
+            inv: (w[4] as i32, w[5] as u32),
+            color: [w[6] as u8, (w[6] >> 8) as u8, (w[6] >> 16) as u8],
+        })
+    }
+
+    /// The fog colour's channel `k` (0..=255).
+    pub(crate) fn channel(&self, k: usize) -> i32 {
+        self.color[k] as i32
+    }
+
+    /// The fog factor (Q0.16, 0..=65536) at depth `z` (16.12, the spans' depth with its
+    /// rounding bias): the view depth from the depth value (perspective: `near/(near/w)`
+    /// with `near/w = 1 − d·(1 − near/far)`, one normalized reciprocal; orthographic: linear),
+    /// then linear between the fog's near and far. No division.
+    pub(crate) fn factor(&self, z: i32) -> i32 {
+        let d = (z.max(0) >> 4) as i64; // 16.8
+        let w = if self.kq != 0 {
+            // near/w in Q0.24, at least 1.
+            let q = ((1i64 << 24) - ((d * self.kq) >> 32)).max(1);
+            let (m, e) = recip_norm(q as u64);
+            // near·2^24/q in Q16.16.
+            (mul_wide(self.near, m) >> (e - 24)).min(i32::MAX as i64)
+        } else {
+            self.near as i64 + ((d * self.ortho) >> 24)
+        };
+        let x = (w - self.start as i64).clamp(0, i32::MAX as i64) as i32;
+        let (m, e) = self.inv;
+        (mul_wide(x, m) >> (e - 16)).clamp(0, 1 << 16) as i32
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::Fx;
+    use fixed::types::I16F16;
+
+    fn attenuates<S: Scalar>() {
+        let l = PointLight::new([0.0, 0.0, 4.0].map(S::from_f64), [200, 100, 50]).attenuation(
+            S::ONE,
+            S::from_f64(0.5),
+            S::from_f64(0.25),
+        );
+        // d = 4: 1 + 2 + 4 = 7.
+        let p = l.at([S::ZERO; 3]);
+        assert!((p.dir()[2].to_f64() - 1.0).abs() < 1e-3);
+        let want = 200.0 / 255.0 / 7.0;
+        assert!(
+            (p.frac_of(0).to_f64() - want).abs() < 1e-3,
+            "{}",
+            p.frac_of(0).to_f64()
+        );
+        // Where the denominator is below 1 the factor stops at 1.
+        let near = l.attenuation(S::from_f64(0.25), S::from_f64(0.1), S::ZERO);
+        let q = near.at([0.0, 0.0, 3.5].map(S::from_f64));
+        assert!((q.frac_of(0).to_f64() - 200.0 / 255.0).abs() < 1e-3);
+        // Far away (beyond Q16.16's range of d²) it fades to nothing, without overflow.
+        let far = l.at([0.0, 0.0, -3000.0].map(S::from_f64));
+        assert!(far.frac_of(0).to_f64() < 1e-4);
+    }
+
+    #[test]
+    fn attenuation_for_every_type() {
+        attenuates::<f64>();
+        attenuates::<f32>();
+        attenuates::<Fx<I16F16>>();
+    }
+
+    #[test]
+    fn fog_mixes_linearly_between_near_and_far() {
+        let f = Fog::linear(2.0f64, 6.0, [255, 0, 128]);
+        let c = [100 << 8, 200 << 8, 0];
+        assert_eq!(f.apply(c, 1.0), c);
+        assert_eq!(f.apply(c, 7.0), [255 << 8, 0, 128 << 8]);
+        // A quarter of the way: 100 + 155/4 = 138.75, 200 − 50, 32 (8.8).
+        assert_eq!(f.apply(c, 3.0), [35520, 38400, 8192]);
+        type Q = Fx<I16F16>;
+        let q = Fog::linear(Q::lit(2.0), Q::lit(6.0), [255, 0, 128]);
+        assert_eq!(q.apply(c, Q::lit(3.0)), [35520, 38400, 8192]);
+        assert!(!Fog::linear(2.0f64, 2.0, [0; 3]).is_valid());
+    }
+}
