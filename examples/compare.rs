@@ -222,6 +222,8 @@ fn main() {
     md.push_str(&table);
     md.push_str(&texture_modes(&mcu));
     md.push_str(&phong_variants(&mcu));
+    md.push_str(&point_lights(&mcu));
+    md.push_str(&fog(&mcu));
     std::fs::write(out.join("report.md"), md).unwrap_or_else(|e| fail(&e.to_string()));
 
     if let Err(e) = plot(&rows, &mcu, &out.join("speed_vs_error.png")) {
@@ -309,42 +311,107 @@ fn texture_modes(mcu: &BTreeMap<(String, String, String), u64>) -> String {
     md
 }
 
-/// Gouraud, Phong and fast Phong side by side on the `phong` scene (a coarse icosphere with a
-/// sharp highlight): each frame against the f64 frame lit at every pixel (`phong`), and the
-/// instructions per frame on the Cortex-M0 and M4F.
+/// The Phong variants side by side (see [`variant_table`]).
 fn phong_variants(mcu: &BTreeMap<(String, String, String), u64>) -> String {
+    variant_table(
+        mcu,
+        "Phong variants",
+        "Each variant's `phong*` frame against the f64 frame lit at every pixel (`phong`): the colour error a user sees from the variant and the number type together (Gouraud loses the highlight that falls inside a triangle: `tests/phong.rs` measures that against a ray-cast sphere).",
+        Bench::Phong,
+        &[
+            (Bench::Phong, "Phong (every pixel)", None),
+            (Bench::PhongFast, "fast Phong (every 8 px)", None),
+            (Bench::PhongGouraud, "Gouraud", None),
+        ],
+    )
+}
+
+/// Point lights: the `point_*` frames (the `phong*` sphere with an attenuated point light
+/// besides the directional one) against the f64 frame lit at every pixel, and what the point
+/// light adds to the instructions of the same frame without it.
+fn point_lights(mcu: &BTreeMap<(String, String, String), u64>) -> String {
+    variant_table(
+        mcu,
+        "Point lights",
+        "The `phong*` sphere with an attenuated point light besides its directional light, each variant against the f64 frame lit at every pixel (`point_phong`). `tests/effects.rs` measures the point-lit sphere against a ray-cast one. The last columns are the instructions the point light adds to the same frame without it.",
+        Bench::PointPhong,
+        &[
+            (Bench::PointPhong, "Phong", Some(Bench::Phong)),
+            (Bench::PointPhongFast, "fast Phong", Some(Bench::PhongFast)),
+            (Bench::PointGouraud, "Gouraud", Some(Bench::PhongGouraud)),
+        ],
+    )
+}
+
+/// Fog: each fogged frame against its f64 twin, and what the fog adds to the instructions.
+fn fog(mcu: &BTreeMap<(String, String, String), u64>) -> String {
+    let mut md = variant_table(
+        mcu,
+        "Fog",
+        "Gouraud fogs each vertex (`fog_gouraud`: the `phong_gouraud` sphere in fog), textured spans the ends of each 16-pixel segment (`textured_fog`), each against its f64 twin. `tests/effects.rs` measures the fog on a floor against each pixel's ray-cast view depth. The last columns are the instructions the fog adds to the same frame without it.",
+        Bench::FogGouraud,
+        &[(Bench::FogGouraud, "Gouraud, per vertex", Some(Bench::PhongGouraud))],
+    );
+    let textured = variant_table(
+        mcu,
+        "",
+        "",
+        Bench::TexturedFog,
+        &[(Bench::TexturedFog, "textured, per segment", Some(Bench::Textured))],
+    );
+    // The second table's rows only (after its header).
+    md.push_str(textured.lines().skip(4).collect::<Vec<_>>().join("\n").as_str());
+    md.push('\n');
+    md
+}
+
+/// A table of `variants` (scene, name, the scene without the feature) against the f64 frame
+/// of `reference`: error figures per number type and the instructions per frame from
+/// `scripts/mcu-bench` (empty when it has not been run), with the increase over the scene
+/// without the feature.
+fn variant_table(
+    mcu: &BTreeMap<(String, String, String), u64>,
+    title: &str,
+    intro: &str,
+    reference: Bench,
+    variants: &[(Bench, &str, Option<Bench>)],
+) -> String {
     use common::compare::compare_with;
-    let variants = [
-        (Bench::Phong, "Phong (every pixel)"),
-        (Bench::PhongFast, "fast Phong (every 8 px)"),
-        (Bench::PhongGouraud, "Gouraud"),
-    ];
     let mut md = String::new();
-    let _ = writeln!(md, "\n## Phong variants\n");
+    let _ = writeln!(md, "\n## {title}\n");
     let _ = writeln!(
         md,
-        "Each variant's `phong*` frame against the f64 frame lit at every pixel (`phong`): the colour error a user sees from the variant and the number type together (Gouraud loses the highlight that falls inside a triangle: `tests/phong.rs` measures that against a ray-cast sphere). Instructions: renderer instructions per frame from `scripts/mcu-bench` (empty when it has not been run).\n"
+        "{intro} Instructions: renderer instructions per frame from `scripts/mcu-bench` (empty when it has not been run).\n"
     );
     let _ = writeln!(
         md,
-        "| variant | number | max LSB (r,g,b) | mean abs LSB | PSNR dB | differing px | M0 instr. | M4F instr. |"
+        "| variant | number | max LSB (r,g,b) | mean abs LSB | PSNR dB | differing px | M0 instr. | M4F instr. | M0 added | M4F added |"
     );
-    let _ = writeln!(md, "|---|---|---|---:|---:|---:|---:|---:|");
-    for (b, name) in variants {
+    let _ = writeln!(md, "|---|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    for &(b, name, without) in variants {
         let rows: [(&str, Metrics); 3] = [
-            ("f64", compare_with::<f64>(b, Bench::Phong)),
-            ("f32", compare_with::<f32>(b, Bench::Phong)),
-            ("I16F16", compare_with::<Fx<I16F16>>(b, Bench::Phong)),
+            ("f64", compare_with::<f64>(b, reference)),
+            ("f32", compare_with::<f32>(b, reference)),
+            ("I16F16", compare_with::<Fx<I16F16>>(b, reference)),
         ];
         for (number, m) in rows {
-            let cell = |core: &str| {
-                mcu.get(&(b.name().to_string(), number.to_string(), core.to_string()))
-                    .map_or(String::new(), |i| i.to_string())
+            let get = |scene: Bench, core: &str| {
+                mcu.get(&(scene.name().to_string(), number.to_string(), core.to_string()))
+                    .copied()
+            };
+            let cell = |core: &str| get(b, core).map_or(String::new(), |i| i.to_string());
+            let added = |core: &str| match (get(b, core), without.and_then(|w| get(w, core))) {
+                (Some(a), Some(w)) => format!(
+                    "{:+} ({:+.1} %)",
+                    a as i64 - w as i64,
+                    100.0 * (a as f64 / w as f64 - 1.0)
+                ),
+                _ => String::new(),
             };
             let psnr = m.psnr_db();
             let _ = writeln!(
                 md,
-                "| {name} | {number} | {:?} | {:.4} | {} | {} | {} | {} |",
+                "| {name} | {number} | {:?} | {:.4} | {} | {} | {} | {} | {} | {} |",
                 m.max_lsb,
                 m.mean_abs(),
                 if psnr.is_finite() {
@@ -355,6 +422,8 @@ fn phong_variants(mcu: &BTreeMap<(String, String, String), u64>) -> String {
                 m.differing,
                 cell("m0"),
                 cell("m4f"),
+                added("m0"),
+                added("m4f"),
             );
         }
     }

@@ -454,13 +454,14 @@ where
             ];
             let cam = look([-0.8, 1.0, 2.2], [0.3, 0.2, -1.5], persp(60.0, 0.1, 12.0));
             let camera = cam.map_err(|_| BenchError::Scene)?;
+            let haze = fog(2.0, 9.0);
             let mut scene = crate::Scene::new(
                 &objects,
                 camera,
                 [Light::white([-S::ONE, S::from_f64(2.0), S::ONE])],
             );
             if bench == Bench::TexturedFog {
-                scene = scene.with_fog(fog(2.0, 9.0));
+                scene = scene.with_fog(&haze);
             }
             // Room for the clipped floor and, with triangle ids (every triangle flat), one more
             // vertex record per triangle.
@@ -500,6 +501,7 @@ where
                     S::from_f64(0.2),
                 ),
             ];
+            let haze = fog(2.2, 3.6);
             let mut scene = crate::Scene::new(&objects, camera, light);
             if matches!(
                 bench,
@@ -507,7 +509,7 @@ where
             ) {
                 scene = scene.with_point_lights(&lamp);
             } else if bench == Bench::FogGouraud {
-                scene = scene.with_fog(fog(2.2, 3.6));
+                scene = scene.with_fog(&haze);
             }
             // Room for triangle ids (one more vertex record per triangle).
             render_with::<S, C, D, P, 240, 240, 512, 192, 32, 1, 1, 512, 40>(

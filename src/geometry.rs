@@ -49,7 +49,6 @@ pub(crate) struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
     /// The transform mirrors (negative determinant): the triangle loop swaps each triangle's
     /// winding, so the outside stays the front.
     mirrored: bool,
-    eye: Vec3<S>,
     base: usize,
     /// For the attribute stores, in one word (the deepest stack of a frame, on a 16 KB part,
     /// has no room for two): bits 0..=24, `1 − near/far` in Q0.24 for a perspective camera,
@@ -79,14 +78,14 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
     /// attribute, for point lights).
     pub(crate) fn phong_position(&self, p: Vec3<S>, bits: u32) -> [i32; 3] {
         let w = self.obj.transform.transform_point(p);
-        let d = sub([w[0], w[1], w[2]], self.eye);
+        let d = sub([w[0], w[1], w[2]], self.scene.camera.eye);
         d.map(|c| c.to_fixed_i32(bits))
     }
 
     pub(crate) fn to_eye(&self, p: Vec3<S>) -> Vec3<S> {
         if self.obj.material.specular > S::ZERO {
             let w = self.obj.transform.transform_point(p);
-            normalize(sub(self.eye, [w[0], w[1], w[2]]))
+            normalize(sub(self.scene.camera.eye, [w[0], w[1], w[2]]))
         } else {
             [S::ZERO; 3]
         }
@@ -131,7 +130,7 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         let w = [w[0], w[1], w[2]];
         let m = &self.obj.material;
         let to_eye = if m.specular > S::ZERO {
-            normalize(sub(self.eye, w))
+            normalize(sub(self.scene.camera.eye, w))
         } else {
             [S::ZERO; 3]
         };
@@ -311,7 +310,6 @@ impl<
                 lights: &lights,
                 in_object,
                 mirrored,
-                eye: scene.camera.eye,
                 base: self.verts.len(),
                 // The material's pool entry (after the lights' entries).
                 extra: k24

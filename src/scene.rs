@@ -33,8 +33,8 @@ pub struct Scene<'a, S, const L: usize> {
     pub lights: [Light<S>; L],
     /// The point lights (borrowed; empty by default: a scene without them pays nothing).
     pub point_lights: &'a [PointLight<S>],
-    /// Linear depth fog (`None` by default: a scene without it pays nothing).
-    pub fog: Option<Fog<S>>,
+    /// Linear depth fog (borrowed; `None` by default: a scene without it pays nothing).
+    pub fog: Option<&'a Fog<S>>,
     /// Background colour, 8 bits per channel.
     pub background: [u8; 3],
 }
@@ -64,7 +64,7 @@ impl<'a, S: Scalar, const L: usize> Scene<'a, S, L> {
 
     /// This scene with `fog`.
     #[must_use]
-    pub fn with_fog(self, fog: Fog<S>) -> Self {
+    pub fn with_fog(self, fog: &'a Fog<S>) -> Self {
         Scene {
             fog: Some(fog),
             ..self
