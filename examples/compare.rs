@@ -357,10 +357,21 @@ fn fog(mcu: &BTreeMap<(String, String, String), u64>) -> String {
         "",
         "",
         Bench::TexturedFog,
-        &[(Bench::TexturedFog, "textured, per segment", Some(Bench::Textured))],
+        &[(
+            Bench::TexturedFog,
+            "textured, per segment",
+            Some(Bench::Textured),
+        )],
     );
     // The second table's rows only (after its header).
-    md.push_str(textured.lines().skip(4).collect::<Vec<_>>().join("\n").as_str());
+    md.push_str(
+        textured
+            .lines()
+            .skip(4)
+            .collect::<Vec<_>>()
+            .join("\n")
+            .as_str(),
+    );
     md.push('\n');
     md
 }
@@ -396,8 +407,12 @@ fn variant_table(
         ];
         for (number, m) in rows {
             let get = |scene: Bench, core: &str| {
-                mcu.get(&(scene.name().to_string(), number.to_string(), core.to_string()))
-                    .copied()
+                mcu.get(&(
+                    scene.name().to_string(),
+                    number.to_string(),
+                    core.to_string(),
+                ))
+                .copied()
             };
             let cell = |core: &str| get(b, core).map_or(String::new(), |i| i.to_string());
             let added = |core: &str| match (get(b, core), without.and_then(|w| get(w, core))) {

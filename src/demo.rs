@@ -306,7 +306,14 @@ where
         }};
     }
     let spin = Mat4::rotate_y(deg(spin_deg));
-    let fog = |near, far| crate::Fog::linear(S::from_f64(near), S::from_f64(far), [150, 170, 200]);
+    let fog = |near, far| crate::Effects {
+        point_lights: &[],
+        fog: Some(crate::Fog::linear(
+            S::from_f64(near),
+            S::from_f64(far),
+            [150, 170, 200],
+        )),
+    };
     match bench {
         Bench::Cube => {
             let shape = Shape::<S, 24, 12>::cube(1.0).map_err(|_| BenchError::Scene)?;
@@ -461,7 +468,7 @@ where
                 [Light::white([-S::ONE, S::from_f64(2.0), S::ONE])],
             );
             if bench == Bench::TexturedFog {
-                scene = scene.with_fog(&haze);
+                scene = scene.with_effects(&haze);
             }
             // Room for the clipped floor and, with triangle ids (every triangle flat), one more
             // vertex record per triangle.
@@ -501,15 +508,19 @@ where
                     S::from_f64(0.2),
                 ),
             ];
+            let lamps = crate::Effects {
+                point_lights: &lamp,
+                fog: None,
+            };
             let haze = fog(2.2, 3.6);
             let mut scene = crate::Scene::new(&objects, camera, light);
             if matches!(
                 bench,
                 Bench::PointPhong | Bench::PointPhongFast | Bench::PointGouraud
             ) {
-                scene = scene.with_point_lights(&lamp);
+                scene = scene.with_effects(&lamps);
             } else if bench == Bench::FogGouraud {
-                scene = scene.with_fog(&haze);
+                scene = scene.with_effects(&haze);
             }
             // Room for triangle ids (one more vertex record per triangle).
             render_with::<S, C, D, P, 240, 240, 512, 192, 32, 1, 1, 512, 40>(

@@ -2,8 +2,7 @@
 //! vertex (flat and Gouraud shading, in the scene's number type, so that the f64 pipeline is
 //! their reference) and per pixel for Phong shading (in integers, [`crate::phong`]).
 //!
-//! A scene without them ([`crate::Scene::point_lights`] empty, [`crate::Scene::fog`] `None`)
-//! takes none of this code: its vertices keep the object-space lighting and the lighting
+//! A scene without them ([`crate::Scene::effects`] `None`, or empty) takes none of this code: its vertices keep the object-space lighting and the lighting
 //! kernels, and its images and instruction counts do not change.
 
 use crate::attrs::{ActiveExtra, FOG};
@@ -11,6 +10,33 @@ use crate::camera::{Camera, Projection};
 use crate::math::{dot, normalize, sub, Vec3};
 use crate::scalar::{mul_wide, recip_norm, Scalar};
 use crate::shade::PreparedLight;
+
+/// What a scene adds to its directional lights: point lights and fog, borrowed by
+/// [`crate::Scene::effects`] (one pointer in the scene: a scene without them pays nothing
+/// else, and its frames keep the object-space lighting and the lighting kernels).
+///
+/// ```
+/// # use scanline3d::prelude::*;
+/// # use scanline3d::Effects;
+/// let lamps = [PointLight::new([1.0f32, 2.0, 1.0], [255, 220, 180]).attenuation(1.0, 0.2, 0.1)];
+/// let effects = Effects {
+///     point_lights: &lamps,
+///     fog: Some(Fog::linear(4.0, 9.0, [150, 170, 200])),
+/// };
+/// # let objects: [Object<'_, f32>; 0] = [];
+/// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0],
+/// #     Projection::Perspective { fov_y: 0.8, near: 0.1, far: 10.0 }).unwrap();
+/// let scene = Scene::new(&objects, camera, [Light::white([-1.0, 1.0, 1.0])]).with_effects(&effects);
+/// assert_eq!(scene.point_lights().len(), 1);
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq, Default)]
+pub struct Effects<'a, S> {
+    /// The point lights (any number for flat and Gouraud shading; Phong takes the first
+    /// [`MAX_PHONG_POINT_LIGHTS`]).
+    pub point_lights: &'a [PointLight<S>],
+    /// Linear depth fog.
+    pub fog: Option<Fog<S>>,
+}
 
 /// A point light: a position in world space, a colour and a distance attenuation.
 ///

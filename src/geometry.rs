@@ -118,7 +118,7 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
     /// Whether the scene has point lights or fog (lit by [`Self::lit_fx`]).
     #[inline(always)]
     fn has_fx(&self) -> bool {
-        !self.scene.point_lights.is_empty() || self.scene.fog.is_some()
+        self.scene.effects.is_some()
     }
 
     /// The lit and fogged colour (8.8 per channel) at object point `p` with unit world normal
@@ -135,8 +135,8 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
             [S::ZERO; 3]
         };
         let lit =
-            crate::shade::lit_color_points(m, self.lights, self.scene.point_lights, n, w, to_eye);
-        match &self.scene.fog {
+            crate::shade::lit_color_points(m, self.lights, self.scene.point_lights(), n, w, to_eye);
+        match &self.scene.fog() {
             // A textured material's spans fog its pixels (texel × light, then fog).
             Some(f) if m.texture.is_none() => {
                 let r = self.scene.camera.view.m[2];
@@ -270,11 +270,8 @@ impl<
         // NaN, infinite or (fixed point) saturated inputs are skipped and counted per object,
         // the same for every number type (a float NaN would poison every vertex).
         let ok = |v: &S| v.is_valid();
-        if scene.fog.is_some_and(|f| !f.is_valid()) {
-            return Err(Error::Fog);
-        }
-        let lights_ok = scene.lights.iter().all(|l| l.direction.iter().all(ok))
-            && scene.point_lights.iter().all(|l| l.is_valid());
+        let lights_ok = lights_valid(scene)?;
+        let plain = scene.effects.is_none();
         for (index, obj) in scene.objects.iter().enumerate() {
             let m = &obj.material;
             if !(lights_ok
@@ -289,8 +286,7 @@ impl<
             }
             let (normal_matrix, similar, mirrored) = obj.transform.normal_matrix_mirrored();
             let in_object = similar
-                && scene.point_lights.is_empty()
-                && scene.fog.is_none()
+                && plain
                 && obj.material.shading == Shading::Gouraud
                 && obj.material.specular <= S::ZERO;
             // Prepared per object, in place (one array of lights on the stack: a 16 KB part
@@ -806,6 +802,21 @@ impl<
         stats.add_culling(&counts);
         stored
     }
+}
+
+/// Whether the scene's lights are all valid (its objects are skipped and counted when one
+/// is not); [`Error::Fog`] for a fog without valid numbers and `near < far`. Out of line: the
+/// deepest stack of a frame (on a 16 KB part) does not hold its locals.
+#[inline(never)]
+fn lights_valid<S: Scalar, E, const L: usize>(scene: &Scene<'_, S, L>) -> Result<bool, Error<E>> {
+    if scene.fog().is_some_and(|f| !f.is_valid()) {
+        return Err(Error::Fog);
+    }
+    Ok(scene
+        .lights
+        .iter()
+        .all(|l| l.direction.iter().all(|v| v.is_valid()))
+        && scene.point_lights().iter().all(|l| l.is_valid()))
 }
 
 /// The vertex store's record of position `p` transformed by `mvp`: its outcode (guard band

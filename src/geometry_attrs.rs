@@ -140,8 +140,8 @@ impl<
             .objects
             .iter()
             .position(|o| o.material.needs_attribute_stores());
-        let fog = scene.fog.filter(|_| stores.is_some());
-        let points = !scene.point_lights.is_empty() && phong > 0;
+        let fog = scene.fog().filter(|_| stores.is_some());
+        let points = !scene.point_lights().is_empty() && phong > 0;
         let need = fog.is_some() as usize
             + if phong > 0 {
                 phong + 1 + points as usize
@@ -189,7 +189,7 @@ impl<
             let eye = scene.camera.eye;
             let far = (1i64 << 30) as f64;
             for (k, l) in scene
-                .point_lights
+                .point_lights()
                 .iter()
                 .take(MAX_PHONG_POINT_LIGHTS)
                 .enumerate()

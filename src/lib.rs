@@ -226,7 +226,7 @@ pub use color::{luma, quantize, scale_channels, TargetColor, TriangleId, BAYER};
 pub use config::__macro as __renderer_type;
 pub use config::Capacities;
 pub use cull::{facing, signed_area2, Facing};
-pub use effects::{Fog, PointLight, MAX_PHONG_POINT_LIGHTS};
+pub use effects::{Effects, Fog, PointLight, MAX_PHONG_POINT_LIGHTS};
 pub use math::{add, cross, dot, length, normalize, scale, sub, Mat4, Vec3};
 pub use mesh::{face_normal, vertex_normals, Mesh, MeshError, UV_LIMIT};
 pub use phong::MAX_PHONG_LIGHTS;
@@ -261,9 +261,9 @@ pub mod internals {
 pub mod prelude {
     pub use crate::vertex_normals;
     pub use crate::{
-        renderer_type, Camera, Capacities, DepthTest, Fog, Fx, Light, Mat4, Material, Mesh, Needs,
-        Object, OverflowPolicy, PointLight, Projection, Renderer, Scalar, Scene, Shading, Shape,
-        TargetColor,
+        renderer_type, Camera, Capacities, DepthTest, Effects, Fog, Fx, Light, Mat4, Material,
+        Mesh, Needs, Object, OverflowPolicy, PointLight, Projection, Renderer, Scalar, Scene,
+        Shading, Shape, TargetColor,
     };
 }
 

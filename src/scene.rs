@@ -4,7 +4,7 @@
 //! one [`Scene`] drawn in one strip pass by [`crate::Renderer::render`].
 
 use crate::camera::Camera;
-use crate::effects::{Fog, PointLight};
+use crate::effects::{Effects, Fog, PointLight};
 use crate::math::Mat4;
 use crate::mesh::Mesh;
 use crate::scalar::Scalar;
@@ -31,10 +31,9 @@ pub struct Scene<'a, S, const L: usize> {
     pub camera: Camera<S>,
     /// The directional lights.
     pub lights: [Light<S>; L],
-    /// The point lights (borrowed; empty by default: a scene without them pays nothing).
-    pub point_lights: &'a [PointLight<S>],
-    /// Linear depth fog (borrowed; `None` by default: a scene without it pays nothing).
-    pub fog: Option<&'a Fog<S>>,
+    /// Point lights and fog ([`Effects`], borrowed; `None` by default: a scene without them
+    /// pays one pointer).
+    pub effects: Option<&'a Effects<'a, S>>,
     /// Background colour, 8 bits per channel.
     pub background: [u8; 3],
 }
@@ -47,28 +46,30 @@ impl<'a, S: Scalar, const L: usize> Scene<'a, S, L> {
             objects,
             camera,
             lights,
-            point_lights: &[],
-            fog: None,
+            effects: None,
             background: [0; 3],
         }
     }
 
-    /// This scene with `point_lights`.
+    /// This scene with point lights and fog.
     #[must_use]
-    pub fn with_point_lights(self, point_lights: &'a [PointLight<S>]) -> Self {
+    pub fn with_effects(self, effects: &'a Effects<'a, S>) -> Self {
         Scene {
-            point_lights,
+            effects: Some(effects),
             ..self
         }
     }
 
-    /// This scene with `fog`.
+    /// The point lights (none without [`Scene::effects`]).
     #[must_use]
-    pub fn with_fog(self, fog: &'a Fog<S>) -> Self {
-        Scene {
-            fog: Some(fog),
-            ..self
-        }
+    pub fn point_lights(&self) -> &'a [PointLight<S>] {
+        self.effects.map_or(&[], |e| e.point_lights)
+    }
+
+    /// The fog (none without [`Scene::effects`]).
+    #[must_use]
+    pub fn fog(&self) -> Option<&'a Fog<S>> {
+        self.effects.and_then(|e| e.fog.as_ref())
     }
 
     /// This scene on background colour `background`.
