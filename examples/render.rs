@@ -678,17 +678,16 @@ fn piece<S: Copy>(
 
 /// What a frame's scenes share: the camera, lights and background, the model's transform and
 /// material.
-struct FrameSetup<S: Scalar> {
+struct FrameSetup<'p, S: Scalar> {
     camera: Camera<S>,
     lights: [Light<S>; LIGHTS],
-    points: Vec<PointLight<S>>,
-    fog: Option<Fog<S>>,
+    effects: Effects<'p, S>,
     background: [u8; 3],
     transform: Mat4<S>,
     material: Material<S>,
 }
 
-impl<S: Scalar> FrameSetup<S> {
+impl<S: Scalar> FrameSetup<'_, S> {
     fn object<'a>(&self, mesh: Mesh<'a, S>) -> [Object<'a, S>; 1] {
         [Object {
             mesh,
@@ -697,11 +696,15 @@ impl<S: Scalar> FrameSetup<S> {
         }]
     }
 
-    fn scene<'a>(&'a self, objects: &'a [Object<'a, S>]) -> Scene<'a, S, LIGHTS> {
-        let mut scene = Scene::new(objects, self.camera, self.lights)
-            .with_point_lights(&self.points)
-            .with_background(self.background);
-        scene.fog = self.fog;
+    fn scene<'a>(&'a self, objects: &'a [Object<'a, S>]) -> Scene<'a, S, LIGHTS>
+    where
+        Self: 'a,
+    {
+        let mut scene =
+            Scene::new(objects, self.camera, self.lights).with_background(self.background);
+        if !self.effects.point_lights.is_empty() || self.effects.fog.is_some() {
+            scene = scene.with_effects(&self.effects);
+        }
         scene
     }
 }
@@ -720,7 +723,7 @@ fn plan<S: Scalar, C: TargetColor>(
     m: &Model,
     pos: &[[S; 3]],
     nor: &[[S; 3]],
-    fs: &FrameSetup<S>,
+    fs: &FrameSetup<'_, S>,
     first_pieces: usize,
 ) -> Result<Vec<(Piece<S>, Needs)>, String> {
     let mut map = vec![u32::MAX; pos.len()];
@@ -829,21 +832,24 @@ fn run<S: Scalar, C: TargetColor>(
         ns_per_frame: 0.0,
     };
     let mut times = Vec::new();
+    let points: Vec<PointLight<S>> = args
+        .point_light
+        .iter()
+        .map(|p| {
+            let [c, l, q] = p.attenuation.map(S::from_f64);
+            PointLight::new(p.position.map(S::from_f64), p.color).attenuation(c, l, q)
+        })
+        .collect();
     for k in 0..args.frames {
         let fs = FrameSetup {
             camera,
             lights: lights::<S>(args),
-            points: args
-                .point_light
-                .iter()
-                .map(|p| {
-                    let [c, l, q] = p.attenuation.map(S::from_f64);
-                    PointLight::new(p.position.map(S::from_f64), p.color).attenuation(c, l, q)
-                })
-                .collect(),
-            fog: args
-                .fog
-                .map(|f| Fog::linear(S::from_f64(f.near), S::from_f64(f.far), f.color)),
+            effects: Effects {
+                point_lights: &points,
+                fog: args
+                    .fog
+                    .map(|f| Fog::linear(S::from_f64(f.near), S::from_f64(f.far), f.color)),
+            },
             background: args.background,
             transform: transform::<S>(args, s, k),
             material,

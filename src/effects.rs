@@ -248,16 +248,20 @@ impl FogSpan {
     /// The fog in pool entry 0, if the frame has one.
     #[inline]
     pub(crate) fn load(pool: &[ActiveExtra]) -> Option<Self> {
-        let e = pool.first().filter(|e| e.kind == FOG)?;
+        pool.first().filter(|e| e.kind == FOG).map(Self::from_entry)
+    }
+
+    /// The fog stored in entry `e` (a [`FOG`] entry).
+    pub(crate) fn from_entry(e: &ActiveExtra) -> Self {
         let w = e.words();
-        Some(FogSpan {
+        FogSpan {
             near: w[0] as i32,
             kq: w[1],
             ortho: w[2],
             start: w[3] as i32,
             inv: (w[4] as i32, w[5] as u32),
             color: [w[6] as u8, (w[6] >> 8) as u8, (w[6] >> 16) as u8],
-        })
+        }
     }
 
     /// The fog colour's channel `k` (0..=255).

@@ -238,9 +238,14 @@ pub(crate) struct ShadeCtx {
     /// Ambient, diffuse, specular (Q8.14).
     k: [i32; 3],
     shininess: u8,
-    /// The point lights ([`PhongPoints`]), their count and the positions' fraction bits.
+}
+
+/// The point lights of a span in the forms [`shade`] uses ([`PhongPoints`]), their count
+/// and the positions' fraction bits.
+#[derive(Copy, Clone, Debug, Default)]
+pub(crate) struct PointsCtx {
     points: [PointCtx; MAX_PHONG_POINT_LIGHTS],
-    npoints: usize,
+    count: usize,
     bits: u32,
 }
 
@@ -257,15 +262,8 @@ struct PointCtx {
 impl ShadeCtx {
     /// From the pool's lights entry `lights` (or none) and material entry `m`, without
     /// unpacking the lights' structure: the fractions were computed when they were stored.
-    pub(crate) fn from_entries(
-        lights: Option<&ActiveExtra>,
-        points: Option<&ActiveExtra>,
-        m: &PhongMaterial,
-    ) -> Self {
+    pub(crate) fn from_entries(lights: Option<&ActiveExtra>, m: &PhongMaterial) -> Self {
         let mut c = Self::new(&PhongLights::default(), m);
-        if let Some(e) = points.filter(|e| e.kind == POINTS) {
-            c.set_points(&PhongPoints::load(e));
-        }
         if let Some(e) = lights {
             let w = e.words();
             c.count = (w[8] as usize).min(MAX_PHONG_LIGHTS);
@@ -300,19 +298,38 @@ impl ShadeCtx {
         }
         c
     }
+}
 
-    /// Sets the point lights.
-    pub(crate) fn set_points(&mut self, p: &PhongPoints) {
-        self.npoints = p.count as usize;
-        self.bits = (p.bits as u32).min(14);
-        for (x, l) in self.points.iter_mut().zip(&p.lights) {
-            *x = PointCtx {
-                pos: l.pos,
-                frac: l.color.map(|v| fraction(v) as i32),
-                full: l.color.map(|v| v as i32),
-                att: l.att,
-            };
+impl PointsCtx {
+    /// No point lights (a constant: a span without them builds nothing).
+    pub(crate) const NONE: PointsCtx = PointsCtx {
+        points: [PointCtx {
+            pos: [0; 3],
+            frac: [0; 3],
+            full: [0; 3],
+            att: [0; 3],
+        }; MAX_PHONG_POINT_LIGHTS],
+        count: 0,
+        bits: 0,
+    };
+
+    /// The point lights of pool entry `e` (none when it holds none).
+    pub(crate) fn load(e: Option<&ActiveExtra>) -> Self {
+        let mut c = PointsCtx::default();
+        if let Some(e) = e.filter(|e| e.kind == POINTS) {
+            let p = PhongPoints::load(e);
+            c.count = p.count as usize;
+            c.bits = (p.bits as u32).min(14);
+            for (x, l) in c.points.iter_mut().zip(&p.lights) {
+                *x = PointCtx {
+                    pos: l.pos,
+                    frac: l.color.map(|v| fraction(v) as i32),
+                    full: l.color.map(|v| v as i32),
+                    att: l.att,
+                };
+            }
         }
+        c
     }
 }
 
@@ -342,10 +359,15 @@ fn point_dir(p: &PointCtx, x: [i32; 3], bits: u32) -> Option<([i32; 3], i32)> {
 
 /// The lit colour (Q8.14 per channel, clamped to 0..=255) of a point with the interpolated
 /// normal `n` (Q1.14, at most unit length plus the planes' rounding; zero lights ambient
-/// only) at position `x` (read for point lights only, [`PhongPoints`]). No division: `1/|n|`
+/// only) at position `x` (read for point lights only: `POINTS`, [`PointsCtx`]). No division: `1/|n|`
 /// is a normalized reciprocal ([`recip_norm`]) of `⌊√(n·n)⌋`; 64-bit products are 32 × 32-bit
 /// ones ([`mul_wide`]).
-pub(crate) fn shade(n: [i32; 3], x: [i32; 3], c: &ShadeCtx) -> [i32; 3] {
+pub(crate) fn shade<const POINTS: bool>(
+    n: [i32; 3],
+    x: [i32; 3],
+    c: &ShadeCtx,
+    pts: &PointsCtx,
+) -> [i32; 3] {
     // |n| ≤ 2^14 inside the triangle (a mix of unit normals, plus rounding); a fast-Phong
     // segment's end may lie a pixel outside, where a sliver's planes take any value: clamped
     // to 2^14 + 2^10 a component, so that each dot product with a unit direction, and n·n,
@@ -353,10 +375,9 @@ pub(crate) fn shade(n: [i32; 3], x: [i32; 3], c: &ShadeCtx) -> [i32; 3] {
     let n = n.map(|v| v.clamp(-(ONE + 1024), ONE + 1024));
     let dot = |x: [i32; 3]| n[0] * x[0] + n[1] * x[1] + n[2] * x[2];
     let len = isqrt(dot(n).max(0) as u32) as i32; // Q1.14
-    let mut sums = Sums {
-        light: [c.k[0]; 3],
-        spec: [0; 3],
-    };
+    let [ambient, diffuse, specular] = c.k;
+    let mut light = [ambient; 3]; // Q8.14 coefficient sums
+    let mut spec = [0i32; 3]; // Q8.14 channel sums
     if len > 0 {
         // N̂·X = (n·X)/|n| in Q1.14: (n·X)·m·2^-e with 1/|n| = m·2^-e.
         let (m, e) = recip_norm(len as u64);
@@ -364,68 +385,75 @@ pub(crate) fn shade(n: [i32; 3], x: [i32; 3], c: &ShadeCtx) -> [i32; 3] {
         let nv = unit(dot(c.v));
         for k in 0..c.count.min(MAX_PHONG_LIGHTS) {
             let nl = unit(dot(c.dir[k]));
-            sums.add::<false>(c, nl, nv, c.lv[k], &c.frac[k], &c.full[k], 1 << 16);
-        }
-        for p in c.points.iter().take(c.npoints) {
-            if let Some((dir, att)) = point_dir(p, x, c.bits) {
-                let nl = unit(dot(dir));
-                let lv = (dir[0] * c.v[0] + dir[1] * c.v[1] + dir[2] * c.v[2]) >> 14;
-                sums.add::<true>(c, nl, nv, lv, &p.frac, &p.full, att);
+            if nl <= 0 {
+                continue;
             }
+            // diffuse · light/255 · N·L (Q8.14; below 2^22 · 4 lights · 1).
+            let d = (mul_wide(diffuse, nl) >> 14) as i32;
+            for ch in 0..3 {
+                light[ch] += (mul_wide(d, c.frac[k][ch]) >> 16) as i32;
+            }
+            if specular > 0 {
+                let rv = ((2 * mul_wide(nl, nv)) >> 14) as i32 - c.lv[k];
+                if rv > 0 {
+                    let p = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
+                    for ch in 0..3 {
+                        // Saturating: the channel is clamped at 255 anyway.
+                        spec[ch] = (spec[ch] + p * c.full[k][ch]).min(255 << 14);
+                    }
+                }
+            }
+        }
+        if POINTS {
+            add_points(&mut light, &mut spec, c, pts, x, n, (m, e), nv);
         }
     }
     let mut out = [0i32; 3];
     for ch in 0..3 {
         // material · (Σ), Q8.14, plus the specular sum.
-        let v = mul_wide(c.color[ch], sums.light[ch]) + sums.spec[ch] as i64;
+        let v = mul_wide(c.color[ch], light[ch]) + spec[ch] as i64;
         out[ch] = v.clamp(0, 255 << 14) as i32;
     }
     out
 }
 
-/// The sums of [`shade`]: the coefficients (Q8.14) and the specular channels (Q8.14).
-struct Sums {
-    light: [i32; 3],
-    spec: [i32; 3],
-}
-
-impl Sums {
-    /// Adds one light's terms for `N̂·L = nl`, `N̂·V = nv`, `L·V = lv` (Q1.14), its colour
-    /// as fractions and in full, and (when `ATT`) its attenuation `att` (Q0.16).
-    #[allow(clippy::too_many_arguments)]
-    #[inline(always)]
-    fn add<const ATT: bool>(
-        &mut self,
-        c: &ShadeCtx,
-        nl: i32,
-        nv: i32,
-        lv: i32,
-        frac: &[i32; 3],
-        full: &[i32; 3],
-        att: i32,
-    ) {
+/// Adds the point lights' terms to [`shade`]'s sums (`light`: coefficients, `spec`:
+/// channels, Q8.14) for the normal `n` (clamped) with `1/|n| = m·2^-e`, `N̂·V = nv`, at
+/// position `x`: as a directional light's, toward each light and scaled by its attenuation.
+#[allow(clippy::too_many_arguments)]
+fn add_points(
+    light: &mut [i32; 3],
+    spec: &mut [i32; 3],
+    c: &ShadeCtx,
+    pts: &PointsCtx,
+    x: [i32; 3],
+    n: [i32; 3],
+    (m, e): (i32, u32),
+    nv: i32,
+) {
+    let dot = |a: [i32; 3], b: [i32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let [_, diffuse, specular] = c.k;
+    for p in pts.points.iter().take(pts.count) {
+        let Some((dir, att)) = point_dir(p, x, pts.bits) else {
+            continue;
+        };
+        let nl = (mul_wide(dot(n, dir), m) >> e) as i32;
         if nl <= 0 {
-            return;
+            continue;
         }
-        let [_, diffuse, specular] = c.k;
-        // diffuse · light/255 · N·L (Q8.14; below 2^22 · 4 lights · 1).
-        let mut d = (mul_wide(diffuse, nl) >> 14) as i32;
-        if ATT {
-            d = (mul_wide(d, att) >> 16) as i32;
-        }
+        let d = (mul_wide(diffuse, nl) >> 14) as i32;
+        let d = (mul_wide(d, att) >> 16) as i32;
         for ch in 0..3 {
-            self.light[ch] += (mul_wide(d, frac[ch]) >> 16) as i32;
+            light[ch] += (mul_wide(d, p.frac[ch]) >> 16) as i32;
         }
         if specular > 0 {
+            let lv = dot(dir, c.v) >> 14;
             let rv = ((2 * mul_wide(nl, nv)) >> 14) as i32 - lv;
             if rv > 0 {
-                let mut p = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
-                if ATT {
-                    p = (mul_wide(p, att) >> 16) as i32;
-                }
+                let q = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
+                let q = (mul_wide(q, att) >> 16) as i32;
                 for ch in 0..3 {
-                    // Saturating: the channel is clamped at 255 anyway.
-                    self.spec[ch] = (self.spec[ch] + p * full[ch]).min(255 << 14);
+                    spec[ch] = (spec[ch] + q * p.full[ch]).min(255 << 14);
                 }
             }
         }
@@ -484,96 +512,142 @@ fn fill_t<C: TargetColor, const T: u8>(
     let Some(m) = pool.get(e.key as usize).map(PhongMaterial::load) else {
         return 0;
     };
-    let ctx = ShadeCtx::from_entries(entry(e.base[0]), entry(e.base[1]), &m);
+    let ctx = ShadeCtx::from_entries(entry(e.base[0]), &m);
+    let span = Span {
+        e,
+        x0,
+        row,
+        z,
+        ctx: &ctx,
+    };
+    // A frame with point lights or fog takes the loop that reads the positions' planes and
+    // the fog; the others keep the loop without them.
     let fog = FogSpan::load(pool);
-    let n = zs.len().min(cs.len()) as i32;
-    let seg = if e.mode == MODE_FAST_PHONG {
-        FAST_SEGMENT
+    if fog.is_some() || e.base[1] >= 0 {
+        let pts = PointsCtx::load(entry(e.base[1]));
+        span.fill::<C, T, true>(&pts, fog.as_ref(), zs, cs)
     } else {
-        1
-    };
-    // The normal's and the position's planes at the span's first pixel (integer parts: Q1.14
-    // and 2^-bits units), stepped per pixel.
-    let mut nv = [0, 1, 2, 3, 4, 5].map(|k| e.plane32(k, x0, row));
-    let step = [0, 1, 2, 3, 4, 5].map(|k| e.step32(k));
-    let factors = channel_factors::<C>();
-    let lit = |nv: &[i32; 6], z: i32| {
-        let n = [nv[0] >> 16, nv[1] >> 16, nv[2] >> 16];
-        let x = [nv[3] >> 16, nv[4] >> 16, nv[5] >> 16];
-        let c = shade(n, x, &ctx);
-        let c = match &fog {
-            // Toward the fog colour (Q8.14) by the factor at this depth.
-            Some(f) => {
-                let t = f.factor(z) as i64;
-                [0, 1, 2].map(|k| {
-                    let d = ((f.channel(k) << 14) - c[k]) as i64;
-                    c[k] + ((d * t) >> 16) as i32
-                })
-            }
-            None => c,
+        span.fill::<C, T, false>(&PointsCtx::NONE, None, zs, cs)
+    }
+}
+
+/// A Phong span's triangle entry, first pixel, row, depth (16.12 with its bias, and its step)
+/// and lighting.
+struct Span<'a> {
+    e: &'a ActiveExtra,
+    x0: i32,
+    row: i32,
+    z: [i32; 2],
+    ctx: &'a ShadeCtx,
+}
+
+impl Span<'_> {
+    /// Tests and writes the span's pixels; returns how many it wrote. With `FX`, lit with the
+    /// point lights `pts` at the interpolated position, and fogged by `fog`.
+    fn fill<C: TargetColor, const T: u8, const FX: bool>(
+        &self,
+        pts: &PointsCtx,
+        fog: Option<&FogSpan>,
+        zs: &mut [u16],
+        cs: &mut [C],
+    ) -> u32 {
+        let e = self.e;
+        let n = zs.len().min(cs.len()) as i32;
+        let seg = if e.mode == MODE_FAST_PHONG {
+            FAST_SEGMENT
+        } else {
+            1
         };
-        channels(c, &factors)
-    };
-    let half = 1 << (COLOR_FRAC_BITS - 1);
-    let out =
-        |c: [i32; 3]| {
+        // The planes stepped: the normal's, and with `FX` the position's (integer parts: Q1.14
+        // and 2^-bits units), from the span's first pixel.
+        let planes = if FX { 6 } else { 3 };
+        let mut nv = [0i32; 6];
+        let mut step = [0i32; 6];
+        for k in 0..planes {
+            nv[k] = e.plane32(k, self.x0, self.row);
+            step[k] = e.step32(k);
+        }
+        let factors = channel_factors::<C>();
+        let lit = |nv: &[i32; 6], z: i32| {
+            let n = [nv[0] >> 16, nv[1] >> 16, nv[2] >> 16];
+            if !FX {
+                return channels(shade::<false>(n, [0; 3], self.ctx, pts), &factors);
+            }
+            let x = [nv[3] >> 16, nv[4] >> 16, nv[5] >> 16];
+            let c = shade::<true>(n, x, self.ctx, pts);
+            let c = match fog {
+                // Toward the fog colour (Q8.14) by the factor at this depth.
+                Some(f) => {
+                    let t = f.factor(z) as i64;
+                    [0, 1, 2].map(|k| {
+                        let d = ((f.channel(k) << 14) - c[k]) as i64;
+                        c[k] + ((d * t) >> 16) as i32
+                    })
+                }
+                None => c,
+            };
+            channels(c, &factors)
+        };
+        let half = 1 << (COLOR_FRAC_BITS - 1);
+        let out = |c: [i32; 3]| {
             C::from_channels([0, 1, 2].map(|k| {
                 ((c[k] + half) >> COLOR_FRAC_BITS).clamp(0, C::CHANNEL_MAX[k] as i32) as u8
             }))
         };
-    let [mut z, gz] = z;
-    let mut written = 0;
-    let mut i = 0;
-    if seg == 1 {
+        let [mut z, gz] = self.z;
+        let mut written = 0;
+        let mut i = 0;
+        if seg == 1 {
+            while i < n {
+                let k = i as usize;
+                let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+                if passes::<T>(z16, zs[k]) {
+                    zs[k] = z16;
+                    cs[k] = out(lit(&nv, z));
+                    written += 1;
+                }
+                z = z.wrapping_add(gz);
+                for k in 0..planes {
+                    nv[k] = nv[k].wrapping_add(step[k]);
+                }
+                i += 1;
+            }
+            return written;
+        }
+        let mut c0 = lit(&nv, z);
         while i < n {
-            let k = i as usize;
-            let z16 = (z >> DEPTH_FRAC_BITS) as u16;
-            if passes::<T>(z16, zs[k]) {
-                zs[k] = z16;
-                cs[k] = out(lit(&nv, z));
-                written += 1;
+            let len = seg.min(n - i);
+            for k in 0..planes {
+                nv[k] = nv[k].wrapping_add(step[k].wrapping_mul(len));
             }
-            z = z.wrapping_add(gz);
-            for k in 0..6 {
-                nv[k] = nv[k].wrapping_add(step[k]);
+            let c1 = lit(&nv, z.wrapping_add(gz.wrapping_mul(len)));
+            // A whole segment's step by a shift (8 px), a shorter last one by a division.
+            let dc = [0, 1, 2].map(|k| {
+                if len == FAST_SEGMENT {
+                    (c1[k] - c0[k]) >> 3
+                } else {
+                    (c1[k] - c0[k]) / len
+                }
+            });
+            let mut c = c0;
+            for x in i..i + len {
+                let k = x as usize;
+                let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+                if passes::<T>(z16, zs[k]) {
+                    zs[k] = z16;
+                    cs[k] = out(c);
+                    written += 1;
+                }
+                z = z.wrapping_add(gz);
+                for k in 0..3 {
+                    c[k] += dc[k];
+                }
             }
-            i += 1;
+            c0 = c1;
+            i += len;
         }
-        return written;
+        written
     }
-    let mut c0 = lit(&nv, z);
-    while i < n {
-        let len = seg.min(n - i);
-        for k in 0..6 {
-            nv[k] = nv[k].wrapping_add(step[k].wrapping_mul(len));
-        }
-        let c1 = lit(&nv, z.wrapping_add(gz.wrapping_mul(len)));
-        // A whole segment's step by a shift (8 px), a shorter last one by a division.
-        let dc = [0, 1, 2].map(|k| {
-            if len == FAST_SEGMENT {
-                (c1[k] - c0[k]) >> 3
-            } else {
-                (c1[k] - c0[k]) / len
-            }
-        });
-        let mut c = c0;
-        for x in i..i + len {
-            let k = x as usize;
-            let z16 = (z >> DEPTH_FRAC_BITS) as u16;
-            if passes::<T>(z16, zs[k]) {
-                zs[k] = z16;
-                cs[k] = out(c);
-                written += 1;
-            }
-            z = z.wrapping_add(gz);
-            for k in 0..3 {
-                c[k] += dc[k];
-            }
-        }
-        c0 = c1;
-        i += len;
-    }
-    written
 }
 
 #[cfg(test)]
@@ -629,7 +703,12 @@ mod tests {
             let a = i as f64 * 0.1;
             let n = unit([a.sin(), (a * 0.7).cos(), 0.5 + (a * 1.3).sin().abs()]);
             // A shorter normal (as interpolation gives) must light the same.
-            let got = shade(q(n.map(|c| c * 0.8)), [0; 3], &ShadeCtx::new(&lights, &m));
+            let got = shade::<false>(
+                q(n.map(|c| c * 0.8)),
+                [0; 3],
+                &ShadeCtx::new(&lights, &m),
+                &PointsCtx::default(),
+            );
             let nl = n[0] * ld[0] + n[1] * ld[1] + n[2] * ld[2];
             let nv = n[0] * vd[0] + n[1] * vd[1] + n[2] * vd[2];
             for c in 0..3 {
@@ -664,7 +743,7 @@ mod tests {
         assert_eq!(PhongLights::load(&e), l);
         let m0 = PhongMaterial::default();
         let (a, b) = (
-            ShadeCtx::from_entries(Some(&e), None, &m0),
+            ShadeCtx::from_entries(Some(&e), &m0),
             ShadeCtx::new(&l, &m0),
         );
         assert_eq!(

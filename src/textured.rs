@@ -334,14 +334,14 @@ pub(crate) fn draw_row_textured<C: TargetColor>(
                 };
                 light[k] = modulation::<C>(k, v, g);
             }
-            let fog = FogSpan::load(pool);
+            let fog = pool.first().filter(|e| e.kind == FOG);
             let span = TexSpan {
                 e: &e,
                 x0: xs,
                 row,
                 z: [z, rec.gx[0]],
                 light,
-                fog: fog.unwrap_or_default(),
+                fog,
             };
             let (zs, cs) = (
                 &mut depth[xs as usize..xe as usize],
@@ -393,8 +393,8 @@ struct TexSpan<'e> {
     z: [i32; 2],
     /// Modulation factors ([`modulation`]).
     light: [[i32; 2]; 3],
-    /// The frame's fog (read by `fill::<_, _, true>` only).
-    fog: FogSpan,
+    /// The frame's fog entry (read by `fill::<_, _, true>` only).
+    fog: Option<&'e ActiveExtra>,
 }
 
 impl TexSpan<'_> {
@@ -438,9 +438,14 @@ impl TexSpan<'_> {
         let key = if e.has_key { e.key as u32 } else { 1 << 16 };
         let n = zs.len().min(cs.len()) as i32;
         let seg = mode_of(e.mode).segment().unwrap_or(n.max(1));
+        let fog = if FOG {
+            self.fog.map(FogSpan::from_entry).unwrap_or_default()
+        } else {
+            FogSpan::default()
+        };
         // The fog colour in the target's channel units.
         let fogc = if FOG {
-            [0, 1, 2].map(|c| (self.fog.channel(c) * C::CHANNEL_MAX[c] as i32 * 2 + 255) / 510)
+            [0, 1, 2].map(|c| (fog.channel(c) * C::CHANNEL_MAX[c] as i32 * 2 + 255) / 510)
         } else {
             [0; 3]
         };
@@ -475,8 +480,8 @@ impl TexSpan<'_> {
             let [mut u, mut v] = uv;
             // The fog factor (Q0.16) at the segment's ends, and its step.
             let (mut f, df) = if FOG {
-                let f0 = self.fog.factor(z);
-                let f1 = self.fog.factor(z.wrapping_add(gz.wrapping_mul(len)));
+                let f0 = fog.factor(z);
+                let f1 = fog.factor(z.wrapping_add(gz.wrapping_mul(len)));
                 let df = if len == seg && seg.count_ones() == 1 {
                     (f1 - f0) >> seg.trailing_zeros()
                 } else if len > 1 {

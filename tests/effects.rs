@@ -66,7 +66,11 @@ fn sphere<S: Scalar, const L: usize>(
             .specular(S::from_f64(SPECULAR), SHININESS)
             .shading(shading),
     }];
-    let scene = Scene::new(&objects, sphere_camera(), lights).with_point_lights(points);
+    let effects = Effects {
+        point_lights: points,
+        fog: None,
+    };
+    let scene = Scene::new(&objects, sphere_camera(), lights).with_effects(&effects);
     let mut r: Box<SphereRenderer<S>> = Box::default();
     let mut f = Frame::new(SIZE, SIZE, Rgb565::BLACK);
     r.render(&scene, &mut f).unwrap();
@@ -277,17 +281,21 @@ fn fog_floor<S: Scalar>(
         transform: Mat4::identity(),
         material,
     }];
+    let effects = Effects {
+        point_lights: &[],
+        fog: Some(Fog::linear(
+            S::from_f64(FOG_NEAR),
+            S::from_f64(FOG_FAR),
+            FOG,
+        )),
+    };
     let mut scene = Scene::new(
         &objects,
         floor_camera(),
         [Light::white([S::ZERO, S::ONE, S::ZERO])],
     );
     if fog {
-        scene = scene.with_fog(Fog::linear(
-            S::from_f64(FOG_NEAR),
-            S::from_f64(FOG_FAR),
-            FOG,
-        ));
+        scene = scene.with_effects(&effects);
     }
     let mut r: Box<FloorRenderer<S>> = Box::default();
     let (w, h) = FLOOR_VIEW;
@@ -409,16 +417,24 @@ fn bad_fog_and_bad_point_lights_are_reported() {
         Fog::linear(3.0, 1.0, [0; 3]),
         Fog::linear(f32::NAN, 1.0, [0; 3]),
     ] {
-        let e = r.render(&scene.with_fog(fog), &mut frame).unwrap_err();
+        let effects = Effects {
+            point_lights: &[],
+            fog: Some(fog),
+        };
+        let e = r
+            .render(&scene.with_effects(&effects), &mut frame)
+            .unwrap_err();
         assert_eq!(e, Error::Fog);
         assert!(e.to_string().contains("near < far"), "{e}");
     }
     // A point light with a NaN: every object is skipped and counted, as for a directional
     // light.
     let bad = [PointLight::new([f32::NAN, 1.0, 0.0], [255; 3])];
-    let stats = r
-        .render(&scene.with_point_lights(&bad), &mut frame)
-        .unwrap();
+    let effects = Effects {
+        point_lights: &bad,
+        fog: None,
+    };
+    let stats = r.render(&scene.with_effects(&effects), &mut frame).unwrap();
     assert_eq!(stats.invalid, 2);
     assert_eq!(stats.drawn, 0);
 }
