@@ -87,18 +87,7 @@ fn lamp<S: Scalar>() -> PointLight<S> {
 /// 8-bit channels, or `None` off the sphere. The view direction is the object origin's (as
 /// Phong's).
 fn reference(x: u32, y: u32) -> Option<[f64; 3]> {
-    let th = (FOV / 2.0).tan();
-    let nx = ((x as f64 + 0.5) / SIZE as f64 * 2.0 - 1.0) * th;
-    let ny = (1.0 - (y as f64 + 0.5) / SIZE as f64 * 2.0) * th;
-    let d = unit([nx, ny, -1.0]);
-    let o = [0.0, 0.0, EYE];
-    let b = dot(o, d);
-    let disc = b * b - (dot(o, o) - 1.0);
-    if disc < 0.0 {
-        return None;
-    }
-    let t = -b - disc.sqrt();
-    let p = [0, 1, 2].map(|k| o[k] + t * d[k]);
+    let p = common::ray_sphere(x, y, SIZE, FOV, EYE)?;
     let n = unit(p);
     let to = [0, 1, 2].map(|k| LAMP[k] - p[k]);
     let dist = dot(to, to).sqrt();
@@ -437,4 +426,28 @@ fn bad_fog_and_bad_point_lights_are_reported() {
     let stats = r.render(&scene.with_effects(&effects), &mut frame).unwrap();
     assert_eq!(stats.invalid, 2);
     assert_eq!(stats.drawn, 0);
+}
+
+/// The point-light and fog benchmark frames in each number type, against golden images
+/// (looked at).
+#[test]
+fn effects_frames_match_their_golden_images() {
+    use scanline3d::demo::{render_bench, Bench};
+    fn one<S: Scalar>(b: Bench, ty: &str) {
+        let mut f = Frame::new(240, 240, Rgb565::BLACK);
+        render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::NoProbe).unwrap();
+        f.assert_each_written_once();
+        common::check_golden(&format!("{}_{ty}", b.name()), &f);
+    }
+    for b in [
+        Bench::PointPhong,
+        Bench::PointPhongFast,
+        Bench::PointGouraud,
+        Bench::FogGouraud,
+        Bench::TexturedFog,
+    ] {
+        one::<Q>(b, "I16F16");
+        one::<f32>(b, "f32");
+        one::<f64>(b, "f64");
+    }
 }

@@ -373,21 +373,12 @@ mod random {
 /// coordinates at the centre falls in, except within 2⁻⁶ texel of a texel's edge.
 mod reference {
     use super::*;
+    use crate::common::Snap;
     use proptest::prelude::*;
     use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
-    use scanline3d::{Probe, Stage};
 
     const SIZE: u32 = 64;
     const SEED: [u8; 32] = *b"scanline3d issue 23 texel refs 1";
-
-    struct Snap<'a>(&'a [[i32; 2]]);
-
-    impl Probe for Snap<'_> {
-        fn enter(&mut self, _: Stage) {}
-        fn snap(&mut self, index: u32, x: i32, y: i32) -> (i32, i32) {
-            self.0.get(index as usize).map_or((x, y), |q| (q[0], q[1]))
-        }
-    }
 
     /// Mismatching texels over the drawn pixels inside the triangle, and those pixels.
     fn check(p: [[i32; 2]; 3], uv: [[f64; 2]; 3], mode: TextureMode) -> (u32, u32) {

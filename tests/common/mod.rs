@@ -209,3 +209,38 @@ pub fn unlit<S: Scalar>(color: [u8; 3], shading: Shading) -> Material<S> {
         texture: None,
     }
 }
+
+/// A probe that imposes the vertices' snapped positions (subpixels), by vertex index: the
+/// reference-rasterizer tests draw triangles exactly on the grid they choose.
+pub struct Snap<'a>(pub &'a [[i32; 2]]);
+
+impl scanline3d::Probe for Snap<'_> {
+    fn enter(&mut self, _: scanline3d::Stage) {}
+    fn snap(&mut self, index: u32, x: i32, y: i32) -> (i32, i32) {
+        self.0.get(index as usize).map_or((x, y), |q| (q[0], q[1]))
+    }
+}
+
+/// The point of the unit sphere at the origin seen at the centre of pixel (x, y) of a
+/// `size` × `size` view from (0, 0, `eye`) looking down −Z with vertical field of view `fov`
+/// (radians), or `None` off the sphere.
+pub fn ray_sphere(x: u32, y: u32, size: u32, fov: f64, eye: f64) -> Option<[f64; 3]> {
+    let unit = |v: [f64; 3]| {
+        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        v.map(|c| c / l)
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let th = (fov / 2.0).tan();
+    let nx = ((x as f64 + 0.5) / size as f64 * 2.0 - 1.0) * th;
+    let ny = (1.0 - (y as f64 + 0.5) / size as f64 * 2.0) * th;
+    let d = unit([nx, ny, -1.0]);
+    let o = [0.0, 0.0, eye];
+    // |o + t·d| = 1.
+    let b = dot(o, d);
+    let disc = b * b - (dot(o, o) - 1.0);
+    if disc < 0.0 {
+        return None;
+    }
+    let t = -b - disc.sqrt();
+    Some([0, 1, 2].map(|k| o[k] + t * d[k]))
+}
