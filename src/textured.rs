@@ -478,21 +478,32 @@ impl TexSpan<'_> {
                 [0, 0]
             };
             let [mut u, mut v] = uv;
-            // The fog factor (Q0.16) at the segment's ends, and its step.
-            let (mut f, df) = if FOG {
-                let f0 = fog.factor(z);
-                let f1 = fog.factor(z.wrapping_add(gz.wrapping_mul(len)));
-                let df = if len == seg && seg.count_ones() == 1 {
-                    (f1 - f0) >> seg.trailing_zeros()
+            // With fog, the modulation times `1 − f` and the fog colour times `f` (`f` the fog
+            // factor, Q0.16, exact at the segment's ends from the depth), each linear across
+            // the segment: additions per pixel.
+            let by = |a: i32, b: i32| {
+                if len == seg && seg.count_ones() == 1 {
+                    b.wrapping_sub(a) >> seg.trailing_zeros()
                 } else if len > 1 {
-                    (f1 - f0) / len
+                    b.wrapping_sub(a) / len
                 } else {
                     0
-                };
-                (f0, df)
-            } else {
-                (0, 0)
+                }
             };
+            let (mut lf, mut fa, mut dlf, mut dfa) = ([0i32; 3], [0i32; 3], [0i32; 3], [0i32; 3]);
+            let l_end = [0, 1, 2].map(|c| l[c].wrapping_add(gl[c].wrapping_mul(len)));
+            if FOG {
+                let f0 = fog.factor(z);
+                let f1 = fog.factor(z.wrapping_add(gz.wrapping_mul(len)));
+                let keep = |lv: i32, f: i32| (mul_wide(lv, (1 << 16) - f) >> 16) as i32;
+                for c in 0..3 {
+                    lf[c] = keep(l[c], f0);
+                    dlf[c] = by(lf[c], keep(l_end[c], f1));
+                    // fogc·f/2¹⁶ in the output's 2²¹ units (below 2²⁷).
+                    fa[c] = (fogc[c] * f0) << 5;
+                    dfa[c] = by(fa[c], (fogc[c] * f1) << 5);
+                }
+            }
             for x in i..i + len {
                 let z16 = (z >> DEPTH_FRAC_BITS) as u16;
                 let k = x as usize;
@@ -506,15 +517,12 @@ impl TexSpan<'_> {
                             ((texel >> 5) & 63) as i32,
                             (texel & 31) as i32,
                         ];
-                        let mut ch = [0, 1, 2].map(|c| {
-                            ((t[c] * l[c] + (1 << 20)) >> 21).clamp(0, C::CHANNEL_MAX[c] as i32)
+                        let (m, a) = if FOG { (lf, fa) } else { (l, [0; 3]) };
+                        let ch = [0, 1, 2].map(|c| {
+                            ((t[c] * m[c] + a[c] + (1 << 20)) >> 21)
+                                .clamp(0, C::CHANNEL_MAX[c] as i32)
+                                as u8
                         });
-                        if FOG {
-                            for c in 0..3 {
-                                ch[c] += ((fogc[c] - ch[c]) * f + (1 << 15)) >> 16;
-                            }
-                        }
-                        let ch = ch.map(|c| c as u8);
                         zs[k] = z16;
                         cs[k] = C::from_channels(ch);
                         written += 1;
@@ -522,13 +530,18 @@ impl TexSpan<'_> {
                 }
                 z = z.wrapping_add(gz);
                 for c in 0..3 {
-                    l[c] = l[c].wrapping_add(gl[c]);
-                }
-                if FOG {
-                    f += df;
+                    if FOG {
+                        lf[c] = lf[c].wrapping_add(dlf[c]);
+                        fa[c] += dfa[c];
+                    } else {
+                        l[c] = l[c].wrapping_add(gl[c]);
+                    }
                 }
                 u = u.wrapping_add(step[0]);
                 v = v.wrapping_add(step[1]);
+            }
+            if FOG {
+                l = l_end;
             }
             i += len;
             uv = if seg == 1 && i < n {
