@@ -36,7 +36,7 @@ fn check<S: Scalar>() {
         );
         if matches!(
             b,
-            Bench::Textured | Bench::TexturedAffine | Bench::TexturedExact
+            Bench::Textured | Bench::TexturedAffine | Bench::TexturedExact | Bench::TexturedFog
         ) {
             // A texel is a step of any size: where the exact texture coordinate lies within a
             // rounding of a texel's edge, two number types may pick neighbouring texels (the
