@@ -248,7 +248,13 @@ impl FogSpan {
     /// The fog in pool entry 0, if the frame has one.
     #[inline]
     pub(crate) fn load(pool: &[ActiveExtra]) -> Option<Self> {
-        pool.first().filter(|e| e.kind == FOG).map(Self::from_entry)
+        Self::entry(pool).map(Self::from_entry)
+    }
+
+    /// The pool's fog entry (entry 0), if the frame has fog.
+    #[inline]
+    pub(crate) fn entry(pool: &[ActiveExtra]) -> Option<&ActiveExtra> {
+        pool.first().filter(|e| e.kind == FOG)
     }
 
     /// The fog stored in entry `e` (a [`FOG`] entry).

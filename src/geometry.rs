@@ -74,6 +74,13 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         self.world_normal(n, true).map(|c| c.to_fixed_i32(14))
     }
 
+    /// The fraction bits of Phong vertices' positions when the scene has point lights (which
+    /// alone read them), else `None` (computed once per object: f64 arithmetic).
+    pub(crate) fn phong_position_bits(&self) -> Option<u32> {
+        (!self.scene.point_lights().is_empty())
+            .then(|| crate::effects::position_bits(&self.scene.camera))
+    }
+
     /// Object point `p` in world space less the eye, in 2^-`bits` units (a Phong vertex's
     /// attribute, for point lights).
     pub(crate) fn phong_position(&self, p: Vec3<S>, bits: u32) -> [i32; 3] {

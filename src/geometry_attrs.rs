@@ -44,22 +44,17 @@ impl<
         let end = (base + n).min(XV).min(self.verts.len());
         let phong = o.obj.material.shading;
         // Positions only for point lights (Phong reads them for nothing else).
-        let points = !o.scene.point_lights().is_empty();
-        let bits = if points && phong.is_phong() {
-            position_bits(&o.scene.camera)
+        let bits = if phong.is_phong() {
+            o.phong_position_bits()
         } else {
-            0
+            None
         };
         for i in base..end {
             self.xverts[i] = match (&o.obj.material.texture, mesh.uvs(), mesh.normals()) {
                 _ if C::triangle_id(0).is_some() => VertexExtra::NONE,
                 (_, _, Some(ns)) if phong.is_phong() => VertexExtra::phong(
                     o.phong_normal(ns[i - base]),
-                    if points {
-                        o.phong_position(mesh.positions()[i - base], bits)
-                    } else {
-                        [0; 3]
-                    },
+                    bits.map_or([0; 3], |b| o.phong_position(mesh.positions()[i - base], b)),
                     o.phong_material(),
                     phong == Shading::FastPhong,
                 ),
@@ -106,21 +101,11 @@ impl<
             let Some(ns) = o.obj.mesh.normals() else {
                 return;
             };
-            let points = !o.scene.point_lights().is_empty();
-            let bits = if points {
-                position_bits(&o.scene.camera)
-            } else {
-                0
-            };
+            let bits = o.phong_position_bits();
             let ps = o.obj.mesh.positions();
             let n = [0, 1, 2].map(|k| o.phong_normal(ns[tri[k] as usize]).map(|v| v as i64));
-            let x = [0, 1, 2].map(|k| {
-                if points {
-                    o.phong_position(ps[tri[k] as usize], bits)
-                } else {
-                    [0; 3]
-                }
-            });
+            let x = [0, 1, 2]
+                .map(|k| bits.map_or([0; 3], |b| o.phong_position(ps[tri[k] as usize], b)));
             let x = x.map(|v| v.map(|c| c.clamp(-32768, 32767) as i64));
             let n = [0, 1, 2].map(|j| mix(n[0][j], n[1][j], n[2][j]));
             let x = [0, 1, 2].map(|j| mix(x[0][j], x[1][j], x[2][j]));

@@ -296,16 +296,10 @@ impl<S: Scalar> PreparedLight<S> {
         self.frac[k]
     }
 
+    /// Directional light `l`: its unit direction and full colour (a product by one is exact
+    /// in every number type).
     pub(crate) fn new(l: &Light<S>) -> Self {
-        let k = S::from_f64(1.0 / 255.0);
-        let c = |i: usize| S::from_i32(l.color[i] as i32);
-        let [r, g, b] = l.color;
-        PreparedLight {
-            dir: normalize(l.direction),
-            frac: [c(0) * k, c(1) * k, c(2) * k],
-            full: [c(0), c(1), c(2)],
-            grey: r == g && g == b,
-        }
+        Self::scaled(normalize(l.direction), l.color, S::ONE)
     }
 }
 

@@ -334,7 +334,7 @@ pub(crate) fn draw_row_textured<C: TargetColor>(
                 };
                 light[k] = modulation::<C>(k, v, g);
             }
-            let fog = pool.first().filter(|e| e.kind == FOG);
+            let fog = FogSpan::entry(pool);
             let span = TexSpan {
                 e: &e,
                 x0: xs,
