@@ -818,6 +818,7 @@ fn run<S: Scalar, C: TargetColor>(
             ShadingArg::FastPhong => Shading::FastPhong,
         },
         texture: s.texture,
+        alpha: 255,
     };
     let mut r: Box<Big<S, C>> = Box::default();
     r.set_viewport(w, h);

@@ -9,8 +9,8 @@
 use core::any::TypeId;
 
 use embedded_graphics_core::pixelcolor::{
-    Bgr555, Bgr565, Bgr666, Bgr888, BinaryColor, Gray2, Gray4, Gray8, IntoStorage, PixelColor,
-    Rgb555, Rgb565, Rgb666, Rgb888, RgbColor,
+    Bgr555, Bgr565, Bgr666, Bgr888, BinaryColor, Gray2, Gray4, Gray8, GrayColor, IntoStorage,
+    PixelColor, Rgb555, Rgb565, Rgb666, Rgb888, RgbColor,
 };
 
 /// A pixel colour the renderer can write.
@@ -40,6 +40,15 @@ pub trait TargetColor: PixelColor + From<Rgb888> + 'static {
     #[must_use]
     fn triangle_id(id: u16) -> Option<[u16; 3]> {
         let _ = id;
+        None
+    }
+
+    /// This pixel's channels in this colour's own units (≤ [`Self::CHANNEL_MAX`]), for
+    /// blending over it (shadows and translucent materials,
+    /// [`crate::Renderer::render_layered`]); `None` for a type that cannot say (the default,
+    /// and [`TriangleId`]): such a target is drawn without blending.
+    #[must_use]
+    fn channels(self) -> Option<[u8; 3]> {
         None
     }
 
@@ -136,6 +145,10 @@ macro_rules! rgb_target {
             fn from_channels(c: [u8; 3]) -> Self {
                 $t::new(c[0], c[1], c[2])
             }
+            #[inline(always)]
+            fn channels(self) -> Option<[u8; 3]> {
+                Some([self.r(), self.g(), self.b()])
+            }
         }
     )*};
 }
@@ -147,6 +160,10 @@ impl TargetColor for Rgb565 {
     fn from_channels(c: [u8; 3]) -> Self {
         Rgb565::new(c[0], c[1], c[2])
     }
+    #[inline(always)]
+    fn channels(self) -> Option<[u8; 3]> {
+        Some([self.r(), self.g(), self.b()])
+    }
 }
 
 macro_rules! gray_target {
@@ -156,6 +173,10 @@ macro_rules! gray_target {
             #[inline(always)]
             fn from_channels(c: [u8; 3]) -> Self {
                 $t::new(c[0])
+            }
+            #[inline(always)]
+            fn channels(self) -> Option<[u8; 3]> {
+                Some([self.luma(), 0, 0])
             }
             fn vertex_channels(rgb: [u16; 3]) -> [u16; 3] {
                 scale_channels([luma(rgb), 0, 0], Self::CHANNEL_MAX)
@@ -177,6 +198,9 @@ impl TargetColor for BinaryColor {
     }
     fn vertex_channels(rgb: [u16; 3]) -> [u16; 3] {
         scale_channels([luma(rgb), 0, 0], Self::CHANNEL_MAX)
+    }
+    fn channels(self) -> Option<[u8; 3]> {
+        Some([self.is_on() as u8, 0, 0])
     }
 }
 

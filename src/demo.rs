@@ -120,7 +120,7 @@ impl<E: core::fmt::Display> core::fmt::Display for BenchError<E> {
 
 impl<E: core::fmt::Debug + core::fmt::Display> core::error::Error for BenchError<E> {}
 
-fn look<S: Scalar>(
+pub(crate) fn look<S: Scalar>(
     eye: [f64; 3],
     target: [f64; 3],
     projection: Projection<S>,
@@ -133,7 +133,7 @@ fn look<S: Scalar>(
     )
 }
 
-fn persp<S: Scalar>(fov_deg: f64, near: f64, far: f64) -> Projection<S> {
+pub(crate) fn persp<S: Scalar>(fov_deg: f64, near: f64, far: f64) -> Projection<S> {
     Projection::Perspective {
         fov_y: deg(fov_deg),
         near: S::from_f64(near),
@@ -337,6 +337,11 @@ where
             )
         }
         Bench::Torus => render_torus_strip::<S, C, D, P, 1>(spin_deg, dither, target, probe),
+        Bench::ShadowNone | Bench::Shadow | Bench::Translucent => {
+            crate::demo_shadow::render_shadow_bench::<S, C, D, P>(
+                bench, spin_deg, dither, target, probe,
+            )
+        }
         Bench::Icosphere => {
             let shape = Shape::<S, 642, 1280>::icosphere(1.0, 3).map_err(|_| BenchError::Scene)?;
             let mut m = Material::matte([200, 60, 60], S::from_f64(0.1), S::from_f64(0.8));

@@ -95,11 +95,20 @@ pub enum Bench {
     FogGouraud,
     /// [`Bench::Textured`] in fog (per 16-pixel segment).
     TexturedFog,
+    /// A torus and a cube above a ground square, without shadows (the figures the shadow
+    /// methods are measured against).
+    ShadowNone,
+    /// [`Bench::ShadowNone`] with the projected planar shadow of both models on the ground
+    /// ([`crate::Renderer::render_layered`]; the two shadows overlap and darken once).
+    Shadow,
+    /// [`Bench::ShadowNone`] with the torus translucent (drawn after the opaque triangles of
+    /// each row, blended).
+    Translucent,
 }
 
 impl Bench {
     /// Every benchmark scene.
-    pub const ALL: [Bench; 17] = [
+    pub const ALL: [Bench; 20] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -117,6 +126,9 @@ impl Bench {
         Bench::PointGouraud,
         Bench::FogGouraud,
         Bench::TexturedFog,
+        Bench::ShadowNone,
+        Bench::Shadow,
+        Bench::Translucent,
     ];
 
     /// Its name in reports.
@@ -140,6 +152,9 @@ impl Bench {
             Bench::PointGouraud => "point_gouraud",
             Bench::FogGouraud => "fog_gouraud",
             Bench::TexturedFog => "textured_fog",
+            Bench::ShadowNone => "shadow_none",
+            Bench::Shadow => "shadow",
+            Bench::Translucent => "translucent",
         }
     }
 }

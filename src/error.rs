@@ -66,6 +66,16 @@ pub enum Error<E> {
         /// The renderer's `XA`.
         active_capacity: usize,
     },
+    /// Object `object` has a translucent material ([`crate::Material::alpha`] below 255),
+    /// which only [`Renderer::render_layered`](crate::Renderer::render_layered) draws (after
+    /// the opaque triangles of each row, back to front). Nothing was drawn.
+    NeedsLayers {
+        /// Index of the object in the scene.
+        object: usize,
+    },
+    /// A layered frame ([`Renderer::render_layered`](crate::Renderer::render_layered)) that
+    /// cannot be drawn: the [`crate::LayerError`] says why. Nothing was drawn.
+    Layers(crate::LayerError),
     /// The scene's fog ([`crate::Scene::fog`]) has `near ≥ far`, or a number that is NaN,
     /// infinite or at a fixed-point rail. Nothing was drawn.
     Fog,
@@ -142,6 +152,11 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
                  {active_needed} textured triangles active on a row (the renderer has XV = \
                  {vertex_capacity}, XA = {active_capacity}); nothing was drawn"
             ),
+            Error::NeedsLayers { object } => write!(
+                f,
+                "object {object} is translucent: draw the scene with render_layered; nothing was drawn"
+            ),
+            Error::Layers(e) => write!(f, "{e}; nothing was drawn"),
             Error::Fog => write!(
                 f,
                 "the scene's fog needs finite numbers with near < far; nothing was drawn"

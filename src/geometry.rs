@@ -9,15 +9,14 @@ use crate::camera::Projection;
 use crate::clip::{clip_triangle, outcode, ClipVertex, NEEDS_CLIP};
 use crate::color::TargetColor;
 use crate::cull::{facing, Facing};
-use crate::math::{normalize, sub, Mat4, Vec3};
-use crate::mesh::face_normal;
+use crate::math::{Mat4, Vec3};
 use crate::project::{
     pack_channels, pack_flat_channels, unpack_channels, ScreenVertex, Viewport, COORD_LIMIT,
 };
 use crate::raster::{TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
-use crate::shade::{lit_color, lit_diffuse, PreparedLight, Shading};
+use crate::shade::{PreparedLight, Shading};
 use crate::textured::VertexExtra;
 
 use crate::error::*;
@@ -27,176 +26,26 @@ pub(crate) use crate::kernel::records::{INVALID, LIT, NEEDS_LIGHT, PROJECTED};
 use crate::renderer::*;
 use crate::stats::*;
 
-/// What the lighting routine ([`kernel::light_run`]) needs of an object: its mesh's
-/// normals, its one light's direction (in the object's space) and colour fraction.
-pub(crate) type QuickLight<'n, S> = (&'n [Vec3<S>], Vec3<S>, S);
+pub(crate) use crate::object_setup::{ObjectSetup, QuickLight};
 
-/// Per-object state of the geometry stage.
-pub(crate) struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
-    pub(crate) obj: &'o Object<'a, S>,
-    /// The scene (its point lights, fog and camera; the object-space path and the lighting
-    /// kernels are for scenes without point lights and fog).
-    pub(crate) scene: &'o Scene<'a, S, L>,
-    mvp: Mat4<S>,
-    normal_matrix: Mat4<S>,
-    similar: bool,
-    /// The lights: in world space, or in the object's space when `in_object` holds
-    /// ([`PreparedLight::in_object_space`]; then vertex normals are used as they are).
-    lights: &'o [PreparedLight<S>; L],
-    /// Gouraud shading (so no face normals, which are in world space), a normal matrix that
-    /// is a rotation (`similar`) and no specular term (which would need the eye direction).
-    in_object: bool,
-    /// The transform mirrors (negative determinant): the triangle loop swaps each triangle's
-    /// winding, so the outside stays the front.
-    mirrored: bool,
-    base: usize,
-    /// For the attribute stores, in one word (the deepest stack of a frame, on a 16 KB part,
-    /// has no room for two): bits 0..=24, `1 − near/far` in Q0.24 for a perspective camera,
-    /// 0 for an orthographic one (the textured vertices' `near/w` from their depth,
-    /// [`q_from_depth`]); bits 25..=31, a Phong object's material entry in the pool (0: not
-    /// Phong; at most 127 Phong objects).
-    extra: u32,
-}
-
-impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
-    /// `1 − near/far` in Q0.24 (see [`Self::extra`]).
-    pub(crate) fn k24(&self) -> u32 {
-        self.extra & ((1 << 25) - 1)
-    }
-
-    /// A Phong object's material entry in the pool (see [`Self::extra`]).
-    pub(crate) fn phong_material(&self) -> u16 {
-        (self.extra >> 25) as u16
-    }
-
-    /// Mesh normal `n` in world space, unit, Q1.14 (a Phong vertex's attribute).
-    pub(crate) fn phong_normal(&self, n: Vec3<S>) -> [i32; 3] {
-        self.world_normal(n, true).map(|c| c.to_fixed_i32(14))
-    }
-
-    /// The fraction bits of Phong vertices' positions when the scene has point lights (which
-    /// alone read them), else `None` (computed once per object: f64 arithmetic).
-    pub(crate) fn phong_position_bits(&self) -> Option<u32> {
-        (!self.scene.point_lights().is_empty())
-            .then(|| crate::effects::position_bits(&self.scene.camera))
-    }
-
-    /// Object point `p` in world space less the eye, in 2^-`bits` units (a Phong vertex's
-    /// attribute, for point lights).
-    pub(crate) fn phong_position(&self, p: Vec3<S>, bits: u32) -> [i32; 3] {
-        let w = self.obj.transform.transform_point(p);
-        let d = sub([w[0], w[1], w[2]], self.scene.camera.eye);
-        d.map(|c| c.to_fixed_i32(bits))
-    }
-
-    pub(crate) fn to_eye(&self, p: Vec3<S>) -> Vec3<S> {
-        if self.obj.material.specular > S::ZERO {
-            let w = self.obj.transform.transform_point(p);
-            normalize(sub(self.scene.camera.eye, [w[0], w[1], w[2]]))
-        } else {
-            [S::ZERO; 3]
-        }
-    }
-
-    pub(crate) fn world_normal(&self, n: Vec3<S>, force: bool) -> Vec3<S> {
-        let n = self.normal_matrix.transform_dir(n);
-        if self.similar && !force {
-            n
-        } else {
-            normalize(n)
-        }
-    }
-
-    /// What [`kernel::light_run`] needs when it can light this object's vertices: the
-    /// number type has the routine, the target is RGB565, the lights are in the object's space
-    /// (no specular term), there is one light and it is grey, and the mesh has normals. Then
-    /// the normals, the light's direction and its colour fraction.
-    pub(crate) fn quick_light<C: TargetColor>(&self) -> Option<QuickLight<'_, S>> {
-        if !(kernel::LIGHT_RUN && self.in_object && C::CHANNEL_MAX == [31, 63, 31]) {
-            return None;
-        }
-        let [l] = self.lights.as_slice() else {
-            return None;
-        };
-        let (dir, frac) = l.grey()?;
-        Some((self.obj.mesh.normals()?, dir, frac))
-    }
-
-    /// Whether the scene has point lights or fog (lit by [`Self::lit_fx`]).
-    #[inline(always)]
-    fn has_fx(&self) -> bool {
-        self.scene.effects.is_some()
-    }
-
-    /// The lit and fogged colour (8.8 per channel) at object point `p` with unit world normal
-    /// `n`, with the scene's point lights and fog: the world point's direction to the eye and
-    /// view depth. Out of line: the deepest stack of a frame without them does not grow.
-    #[inline(never)]
-    fn lit_fx(&self, p: Vec3<S>, n: Vec3<S>) -> [u16; 3] {
-        let w = self.obj.transform.transform_point(p);
-        let w = [w[0], w[1], w[2]];
-        let m = &self.obj.material;
-        let to_eye = if m.specular > S::ZERO {
-            normalize(sub(self.scene.camera.eye, w))
-        } else {
-            [S::ZERO; 3]
-        };
-        let lit =
-            crate::shade::lit_color_points(m, self.lights, self.scene.point_lights(), n, w, to_eye);
-        match &self.scene.fog() {
-            // A textured material's spans fog its pixels (texel × light, then fog).
-            Some(f) if m.texture.is_none() => {
-                let r = self.scene.camera.view.m[2];
-                f.apply(lit, -S::dot3_add([r[0], r[1], r[2]], w, r[3]))
-            }
-            _ => lit,
-        }
-    }
-
-    /// Lights record `v` as mesh vertex `i` ([`Self::vertex_color`]) and marks it [`LIT`].
-    #[inline(always)]
-    pub(crate) fn light<C: TargetColor>(&self, v: &mut ScreenVertex, i: usize) {
-        v.set_color(self.vertex_color::<C>(i));
-        v.flags |= LIT;
-    }
-
-    /// Lit colour of mesh vertex `i`, in the vertex format ([`ScreenVertex::color`]).
-    pub(crate) fn vertex_color<C: TargetColor>(&self, i: usize) -> [u16; 3] {
-        let mesh = &self.obj.mesh;
-        let p = mesh.positions()[i];
-        let n = mesh.normals().map_or([S::ZERO; 3], |ns| ns[i]);
-        let lit = if self.has_fx() {
-            self.lit_fx(p, self.world_normal(n, false))
-        } else if self.in_object {
-            // The same dot products without a normal transform per vertex (and no specular
-            // term: `in_object` requires none).
-            lit_diffuse(&self.obj.material, self.lights, n)
-        } else {
-            lit_color(
-                &self.obj.material,
-                self.lights,
-                self.world_normal(n, false),
-                self.to_eye(p),
-            )
-        };
-        pack_channels(C::vertex_channels(lit), C::CHANNEL_MAX)
-    }
-
-    /// Lit colour of a face, in the target's channel units (8.8).
-    /// `tri` in screen winding (swapped for a mirrored object, whose mesh order is restored
-    /// here for the face normal).
-    pub(crate) fn face_color<C: TargetColor>(&self, tri: [u16; 3]) -> [u16; 3] {
-        let [a, b, c] = tri.map(|i| self.obj.mesh.positions()[i as usize]);
-        let (b, c) = if self.mirrored { (c, b) } else { (b, c) };
-        let n = self.world_normal(face_normal(a, b, c), true);
-        let k = S::from_f64(1.0 / 3.0);
-        let centroid = [0, 1, 2].map(|j| (a[j] + b[j] + c[j]) * k);
-        if self.has_fx() {
-            return C::vertex_channels(self.lit_fx(centroid, n));
-        }
-        let lit = lit_color(&self.obj.material, self.lights, n, self.to_eye(centroid));
-        C::vertex_channels(lit)
-    }
+/// The geometry stage's state over a frame's objects.
+pub(crate) struct Frame<S> {
+    vp: Viewport,
+    /// The guard band, in the number type.
+    g: S,
+    /// Projection × view.
+    pv: Mat4<S>,
+    /// Vertices and triangles the frame needs so far.
+    need: (usize, usize),
+    /// The pool entries the Phong lights, point lights and fog reserve.
+    reserved: usize,
+    /// The first Phong material's pool entry.
+    first_material: usize,
+    /// `1 − near/far` in Q0.24 ([`ObjectSetup::k24`]).
+    k24: u32,
+    /// Whether every light is valid (objects are skipped and counted when one is not).
+    lights_ok: bool,
+    pub(crate) stats: Stats,
 }
 
 impl<
@@ -217,16 +66,35 @@ impl<
         scene: &Scene<'_, S, L>,
         probe: &mut P,
     ) -> Result<Stats, Error<E>> {
+        let mut f = self.frame_begin(scene, false)?;
+        for (index, obj) in scene.objects.iter().enumerate() {
+            self.frame_object(&mut f, scene, obj, index, probe)?;
+        }
+        self.frame_end(scene, f)
+    }
+
+    /// The geometry stage's start: the stores emptied, every object checked for what its
+    /// material needs (normals, texture coordinates, attribute stores; with `layered` false, an
+    /// opaque material: a translucent one needs [`Renderer::render_layered`]), the camera
+    /// validated and the frame's constants computed.
+    #[inline(always)]
+    pub(crate) fn frame_begin<E, const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        layered: bool,
+    ) -> Result<Frame<S>, Error<E>> {
         self.verts.clear();
         self.tris.clear();
         self.clear_active();
         self.heads = [0; H];
         self.starts = [0; H];
         self.next_row = self.vh;
-        let mut stats = Stats::default();
         for (i, o) in scene.objects.iter().enumerate() {
             if o.material.shading != Shading::Flat && o.mesh.normals().is_none() {
                 return Err(Error::MissingNormals { object: i });
+            }
+            if !layered && o.material.alpha < 255 {
+                return Err(Error::NeedsLayers { object: i });
             }
             if o.material.needs_attribute_stores() {
                 if o.material.texture.is_some()
@@ -258,14 +126,12 @@ impl<
             .projection
             .matrix(vp.aspect())
             .mul(&scene.camera.view);
-        let mut need = (0usize, 0usize);
         // The pool's Phong entries (the frame's lights, each Phong object's material).
         let (reserved, first_material) = if XV > 0 {
             self.phong_entries(scene)?
         } else {
             (0, 0)
         };
-        let mut phong_objects = 0usize;
         let k24 = match scene.camera.projection {
             _ if XV == 0 => 0,
             Projection::Perspective { near, far, .. } => {
@@ -274,74 +140,110 @@ impl<
             }
             Projection::Orthographic { .. } => 0,
         };
+        Ok(Frame {
+            vp,
+            g,
+            pv,
+            need: (0, 0),
+            reserved,
+            first_material,
+            k24,
+            lights_ok: lights_valid(scene)?,
+            stats: Stats::default(),
+        })
+    }
+
+    /// The geometry stage for object `obj` (scene object `index`, or drawn for it: a shadow
+    /// polygon set is its caster's mesh under another transform and material).
+    #[inline(always)]
+    pub(crate) fn frame_object<E, P: Probe, const L: usize>(
+        &mut self,
+        f: &mut Frame<S>,
+        scene: &Scene<'_, S, L>,
+        obj: &Object<'_, S>,
+        index: usize,
+        probe: &mut P,
+    ) -> Result<(), Error<E>> {
         // NaN, infinite or (fixed point) saturated inputs are skipped and counted per object,
         // the same for every number type (a float NaN would poison every vertex).
         let ok = |v: &S| v.is_valid();
-        let lights_ok = lights_valid(scene)?;
-        let plain = scene.effects.is_none();
-        for (index, obj) in scene.objects.iter().enumerate() {
-            let m = &obj.material;
-            if !(lights_ok
-                && obj.transform.m.iter().all(|r| r.iter().all(ok))
-                && [m.ambient, m.diffuse, m.specular].iter().all(ok))
-            {
-                let n = obj.mesh.indices().len() as u32;
-                need.0 += obj.mesh.positions().len();
-                stats.triangles_in = stats.triangles_in.wrapping_add(n);
-                stats.invalid += n;
-                continue;
+        let m = &obj.material;
+        if !(f.lights_ok
+            && obj.transform.m.iter().all(|r| r.iter().all(ok))
+            && [m.ambient, m.diffuse, m.specular].iter().all(ok))
+        {
+            let n = obj.mesh.indices().len() as u32;
+            f.need.0 += obj.mesh.positions().len();
+            f.stats.triangles_in = f.stats.triangles_in.wrapping_add(n);
+            f.stats.invalid += n;
+            return Ok(());
+        }
+        let (normal_matrix, similar, mirrored) = obj.transform.normal_matrix_mirrored();
+        let in_object = similar
+            && scene.effects.is_none()
+            && obj.material.shading == Shading::Gouraud
+            && obj.material.specular <= S::ZERO;
+        // Prepared per object, in place (one array of lights on the stack: a 16 KB part has
+        // no room for a second).
+        let mut lights = scene.lights.map(|l| PreparedLight::new(&l));
+        if in_object {
+            for l in &mut lights {
+                *l = l.in_object_space(&normal_matrix);
             }
-            let (normal_matrix, similar, mirrored) = obj.transform.normal_matrix_mirrored();
-            let in_object = similar
-                && plain
-                && obj.material.shading == Shading::Gouraud
-                && obj.material.specular <= S::ZERO;
-            // Prepared per object, in place (one array of lights on the stack: a 16 KB part
-            // has no room for a second).
-            let mut lights = scene.lights.map(|l| PreparedLight::new(&l));
-            if in_object {
-                for l in &mut lights {
-                    *l = l.in_object_space(&normal_matrix);
-                }
+        }
+        let setup = ObjectSetup {
+            obj,
+            scene,
+            mvp: f.pv.mul(&obj.transform),
+            normal_matrix,
+            similar,
+            lights: &lights,
+            in_object,
+            mirrored,
+            base: self.verts.len(),
+            // The material's pool entry (after the lights' entries): the Phong objects are
+            // numbered in the scene's order.
+            extra: f.k24
+                | if XV > 0 && obj.material.shading.is_phong() {
+                    let rank = scene.objects[..index.min(scene.objects.len())]
+                        .iter()
+                        .filter(|o| o.material.shading.is_phong())
+                        .count();
+                    ((f.first_material + rank) as u32) << 25
+                } else {
+                    0
+                },
+        };
+        self.object(&setup, &f.vp, f.g, &mut f.stats, &mut f.need, probe);
+        if XV > 0 {
+            let end = self.verts.len();
+            if obj.material.needs_attribute_stores() && end > XV {
+                return Err(Error::AttributeStore {
+                    object: index,
+                    vertices_needed: end,
+                    vertex_capacity: XV,
+                    active_needed: 0,
+                    active_capacity: XA,
+                });
             }
-            let setup = ObjectSetup {
-                obj,
-                scene,
-                mvp: pv.mul(&obj.transform),
-                normal_matrix,
-                similar,
-                lights: &lights,
-                in_object,
-                mirrored,
-                base: self.verts.len(),
-                // The material's pool entry (after the lights' entries).
-                extra: k24
-                    | if XV > 0 && obj.material.shading.is_phong() {
-                        phong_objects += 1;
-                        ((first_material + phong_objects - 1) as u32) << 25
-                    } else {
-                        0
-                    },
-            };
-            self.object(&setup, &vp, g, &mut stats, &mut need, probe);
-            if XV > 0 {
-                let end = self.verts.len();
-                if obj.material.needs_attribute_stores() && end > XV {
-                    return Err(Error::AttributeStore {
-                        object: index,
-                        vertices_needed: end,
-                        vertex_capacity: XV,
-                        active_needed: 0,
-                        active_capacity: XA,
-                    });
-                }
-                if !obj.material.needs_attribute_stores() {
-                    for x in self.xverts.iter_mut().take(end).skip(setup.base) {
-                        *x = VertexExtra::NONE;
-                    }
+            if !obj.material.needs_attribute_stores() {
+                for x in self.xverts.iter_mut().take(end).skip(setup.base) {
+                    *x = VertexExtra::NONE;
                 }
             }
         }
+        Ok(())
+    }
+
+    /// The geometry stage's end: the capacities checked, the buckets sorted and the frame
+    /// prepared for the strip pass.
+    #[inline(always)]
+    pub(crate) fn frame_end<E, const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        f: Frame<S>,
+    ) -> Result<Stats, Error<E>> {
+        let (mut stats, need, reserved) = (f.stats, f.need, f.reserved);
         stats.vertices = need.0 as u32;
         let mut cur = 0i32;
         let mut max = 0i32;

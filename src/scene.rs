@@ -112,6 +112,7 @@ mod tests {
             shininess: 1,
             shading: Shading::Flat,
             texture: None,
+            alpha: 255,
         };
         let near_s: &[[f64; 3]] = &near;
         let far_s: &[[f64; 3]] = &far;

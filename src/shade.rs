@@ -111,6 +111,11 @@ pub struct Material<S> {
     /// colour. Drawing a textured material needs a renderer with attribute stores (its `XV`
     /// and `XA` capacities; see [`crate::Renderer`]).
     pub texture: Option<Texturing>,
+    /// Opacity, 0..=255 (255, the default: opaque). A translucent material (below 255) is
+    /// blended over what is behind it, `C = Csrc·α + Cdst·(1 − α)` with `α = alpha/255`, by
+    /// [`crate::Renderer::render_layered`]; [`crate::Renderer::render`] refuses it
+    /// ([`crate::Error::NeedsLayers`]).
+    pub alpha: u8,
 }
 
 /// Building a material: start from [`Material::matte`] and chain the builder methods, e.g.
@@ -144,6 +149,7 @@ impl<S: Scalar> Material<S> {
             shininess: 1,
             shading: Shading::Gouraud,
             texture: None,
+            alpha: 255,
         }
     }
 
@@ -198,6 +204,12 @@ impl<S: Scalar> Material<S> {
             },
             None => self,
         }
+    }
+
+    /// This material with opacity `alpha` (0..=255; see [`Material::alpha`]).
+    #[must_use]
+    pub const fn translucent(self, alpha: u8) -> Self {
+        Material { alpha, ..self }
     }
 
     /// This material with [`Shading::Phong`].
@@ -532,6 +544,7 @@ mod tests {
                 shininess: 12,
                 shading: Shading::Flat,
                 texture: None,
+                alpha: 255,
             }
         );
         assert_eq!(m.gouraud().shading, Shading::Gouraud);

@@ -281,49 +281,63 @@ impl<
                 }
             }
             probe.enter(Stage::Raster);
-            if XA > 0 {
-                draw_row_with_textures(
-                    active,
-                    xactive,
-                    row,
-                    &mut color[l][..vw],
-                    &mut depth[l][..vw],
-                    *depth_test,
-                    *dither,
-                    stats,
-                );
-                continue;
-            }
-            let mut i = 0;
-            loop {
-                if let Some(words) = rgb565_words_mut(&mut color[l][..vw]) {
-                    if let Some((next, frag, written)) =
-                        kernel::rows565(active, i, words, &mut depth[l][..vw], row, *dither)
-                    {
-                        stats.add_row(frag, written);
-                        i = next;
-                    }
-                }
-                if i >= active.len() {
-                    break;
-                }
-                let (frag, written, done) = active.get_mut(i).draw_row(
-                    row as i32,
-                    &mut color[l][..vw],
-                    &mut depth[l][..vw],
-                    *depth_test,
-                    *dither,
-                );
-                stats.add_row(frag, written);
-                if done {
-                    active.swap_remove(i);
-                } else {
-                    i += 1;
-                }
-            }
+            draw_list_row::<C, ACTIVE, XA>(
+                active,
+                xactive,
+                row,
+                &mut color[l][..vw],
+                &mut depth[l][..vw],
+                *depth_test,
+                *dither,
+                stats,
+            );
         }
         self.next_row = y0 + lines;
         Some((y0, lines))
+    }
+}
+
+/// Draws one row of every triangle of `active` into a strip line: the RGB565 row kernel where
+/// it runs, then each remaining triangle's row ([`draw_row_with_textures`] when the renderer
+/// has a textured triangles' pool, `XA > 0`). Removes the triangles whose last row this was.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn draw_list_row<C: TargetColor, const N: usize, const XA: usize>(
+    active: &mut crate::raster::ActiveList<N>,
+    pool: &mut [crate::attrs::ActiveExtra],
+    row: usize,
+    colors: &mut [C],
+    depth: &mut [u16],
+    test: crate::raster::DepthTest,
+    dither: bool,
+    stats: &mut Stats,
+) {
+    if XA > 0 {
+        draw_row_with_textures(active, pool, row, colors, depth, test, dither, stats);
+        return;
+    }
+    let mut i = 0;
+    loop {
+        if let Some(words) = rgb565_words_mut(colors) {
+            if let Some((next, frag, written)) =
+                kernel::rows565(active, i, words, depth, row, dither)
+            {
+                stats.add_row(frag, written);
+                i = next;
+            }
+        }
+        if i >= active.len() {
+            break;
+        }
+        let (frag, written, done) = active
+            .get_mut(i)
+            .draw_row(row as i32, colors, depth, test, dither);
+        stats.add_row(frag, written);
+        if done {
+            active.swap_remove(i);
+        } else {
+            i += 1;
+        }
     }
 }
 

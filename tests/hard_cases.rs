@@ -575,6 +575,7 @@ fn lit_red<S: Scalar>() -> Material<S> {
         shininess: 1,
         shading: Shading::Gouraud,
         texture: None,
+        alpha: 255,
     }
 }
 

@@ -131,6 +131,7 @@ fn render<C: TargetColor, const N: usize>(tris: &[RefTri]) -> Frame<C> {
             shininess: 1,
             shading: Shading::Gouraud,
             texture: None,
+            alpha: 255,
         },
     }];
     let light = |d: [f64; 3], c: [u8; 3]| Light {

@@ -194,6 +194,7 @@ pub fn colour_range_violation<S: Scalar>(
             shininess: 1,
             shading: Shading::Gouraud,
             texture: None,
+            alpha: 255,
         },
     }];
     let axis = |k: usize| {

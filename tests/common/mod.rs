@@ -207,6 +207,7 @@ pub fn unlit<S: Scalar>(color: [u8; 3], shading: Shading) -> Material<S> {
         shininess: 1,
         shading,
         texture: None,
+        alpha: 255,
     }
 }
 

@@ -1,0 +1,267 @@
+//! What a layered frame ([`crate::Renderer::render_layered`]) does beyond the opaque pass:
+//! which objects receive and cast a projected planar shadow, the plane, the light and the
+//! shadow's colour. The projection is the seeds' shadow matrix, generalised to any plane and to
+//! point lights.
+
+use crate::math::{Mat4, Vec3};
+use crate::scalar::Scalar;
+
+/// The light a planar shadow is cast along.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum ShadowLight<S> {
+    /// A directional light: the direction toward the light (as [`crate::Light::direction`];
+    /// any length but zero).
+    Directional(Vec3<S>),
+    /// A point light at this world position.
+    Point(Vec3<S>),
+}
+
+/// A projected planar shadow: every caster's triangles projected from the light onto the
+/// plane `a·x + b·y + c·z + d = 0` (world space) darken the receivers' pixels they cover,
+/// once whatever the overlap (a per-line stencil), blended toward `color` by `alpha`:
+/// `C = color·α + C·(1 − α)`, `α = alpha/255`.
+///
+/// The receivers are the objects that lie in the plane (a ground, a wall): the shadow falls on
+/// their visible pixels and nowhere else (not outside their polygons, not on objects in front
+/// of them), and is not depth-tested against them, so it cannot z-fight with them. A caster
+/// part on the far side of the plane from the light is projected too (the matrix's
+/// behaviour); keep casters on the light's side.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct PlanarShadow<S> {
+    /// The plane `[a, b, c, d]`, `a·x + b·y + c·z + d = 0`, in world units; `(a, b, c)` not
+    /// zero. Its scale does not matter.
+    pub plane: [S; 4],
+    /// The light.
+    pub light: ShadowLight<S>,
+    /// The shadow's colour, 8 bits per channel (black for a plain darkening).
+    pub color: [u8; 3],
+    /// The shadow's opacity, 0..=255.
+    pub alpha: u8,
+}
+
+impl<S: Scalar> PlanarShadow<S> {
+    /// A black shadow of opacity `alpha` on `plane` from `light`.
+    #[must_use]
+    pub const fn new(plane: [S; 4], light: ShadowLight<S>, alpha: u8) -> Self {
+        PlanarShadow {
+            plane,
+            light,
+            color: [0; 3],
+            alpha,
+        }
+    }
+
+    /// The world → world projection onto the plane from the light, scaled so that its
+    /// largest entry is 1 (a homogeneous matrix's scale does not change the point it maps to;
+    /// for a directional light the bottom row is then `[0, 0, 0, s]`, an affine map). `None`
+    /// when the plane or the light has an invalid number, the plane's normal is zero, or the
+    /// light lies in the plane (a point light) or parallel to it (a directional light), where
+    /// no projection exists.
+    ///
+    /// With `p = (a, b, c, d)` and the light `l = (x, y, z, w)` (`w = 0` for a direction), the
+    /// matrix is `(p·l)·I − l·pᵀ`: a point `q` on the plane (`p·q = 0`) maps to itself, and
+    /// any point maps to where the line from the light through it meets the plane. Computed in
+    /// f64 once per frame.
+    #[must_use]
+    pub fn matrix(&self) -> Option<Mat4<S>> {
+        let p = self.plane.map(|v| v.to_f64());
+        let (l, w) = match self.light {
+            ShadowLight::Directional(d) => (d, 0.0),
+            ShadowLight::Point(q) => (q, 1.0),
+        };
+        let l = [l[0].to_f64(), l[1].to_f64(), l[2].to_f64(), w];
+        let valid = self.plane.iter().all(|v| v.is_valid())
+            && match self.light {
+                ShadowLight::Directional(d) | ShadowLight::Point(d) => {
+                    d.iter().all(|v| v.is_valid())
+                }
+            };
+        let n2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+        if !valid || n2 <= 0.0 {
+            return None;
+        }
+        let dot = p[0] * l[0] + p[1] * l[1] + p[2] * l[2] + p[3] * l[3];
+        // Parallel (directional) or in the plane (point): within a relative 2⁻²⁰.
+        let l2 = l[0] * l[0] + l[1] * l[1] + l[2] * l[2];
+        if dot.abs() <= 1e-6 * libm::sqrt(n2 * l2.max(1e-300)) {
+            return None;
+        }
+        let mut m = [[0.0f64; 4]; 4];
+        let mut big = 0.0f64;
+        for (i, row) in m.iter_mut().enumerate() {
+            for (j, e) in row.iter_mut().enumerate() {
+                *e = if i == j { dot } else { 0.0 } - l[i] * p[j];
+                big = big.max(e.abs());
+            }
+        }
+        let s = 1.0 / big;
+        Some(Mat4 {
+            m: m.map(|r| r.map(|e| S::from_f64(e * s))),
+        })
+    }
+}
+
+/// What a layered frame draws beyond the opaque pass: the objects (indices into
+/// [`crate::Scene::objects`]) that receive and cast a projected shadow, and the shadow.
+/// Translucent materials ([`crate::Material::alpha`]) need nothing here.
+#[derive(Copy, Clone, Debug)]
+pub struct Layering<'a, S> {
+    /// The objects the shadow falls on (drawn first on each row; opaque ones only).
+    pub receivers: &'a [usize],
+    /// The objects that cast it.
+    pub casters: &'a [usize],
+    /// The shadow (`None`: receivers and casters are drawn as ordinary objects).
+    pub shadow: Option<PlanarShadow<S>>,
+}
+
+impl<'a, S> Layering<'a, S> {
+    /// No shadow: a layered frame only for its translucent materials.
+    #[must_use]
+    pub const fn none() -> Self {
+        Layering {
+            receivers: &[],
+            casters: &[],
+            shadow: None,
+        }
+    }
+
+    /// A projected shadow of `casters` on `receivers`.
+    #[must_use]
+    pub const fn projected(
+        receivers: &'a [usize],
+        casters: &'a [usize],
+        shadow: PlanarShadow<S>,
+    ) -> Self {
+        Layering {
+            receivers,
+            casters,
+            shadow: Some(shadow),
+        }
+    }
+}
+
+/// Why a layered frame was refused (inside [`crate::Error::Layers`]). Nothing was drawn.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum LayerError {
+    /// A receiver or caster index is not an object of the scene.
+    NoSuchObject {
+        /// The index given.
+        index: usize,
+    },
+    /// The shadow's plane or light has an invalid number, the plane's normal is zero, or the
+    /// light is in the plane (point) or parallel to it (directional).
+    Shadow,
+    /// Object `object` is translucent and textured or Phong-shaded: translucent triangles are
+    /// drawn with flat or Gouraud colours only.
+    Translucent {
+        /// Index of the object in the scene.
+        object: usize,
+    },
+    /// More translucent objects than [`crate::MAX_TRANSLUCENT`].
+    TooManyTranslucent,
+    /// The target colour cannot report its channels ([`crate::TargetColor::channels`]), so
+    /// nothing can be blended onto it.
+    Blending,
+    /// More receiver triangles (`list` 0) or shadow and translucent triangles (`list` 1)
+    /// cross one row than the [`crate::Layers`] lists hold (`RA`, `PA`).
+    Capacity {
+        /// 0: receivers (`RA`), 1: shadow and translucent triangles (`PA`).
+        list: u8,
+        /// The most triangles of the list on one row.
+        needed: usize,
+        /// Its capacity.
+        capacity: usize,
+    },
+}
+
+impl core::fmt::Display for LayerError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            LayerError::NoSuchObject { index } => {
+                write!(f, "receiver or caster {index} is not an object of the scene")
+            }
+            LayerError::Translucent { object } => write!(
+                f,
+                "object {object} is translucent and textured or Phong: translucency is flat or Gouraud only"
+            ),
+            LayerError::Shadow => write!(
+                f,
+                "the shadow's plane or light is invalid (a NaN, a zero normal, or a light in or parallel to the plane)"
+            ),
+            LayerError::TooManyTranslucent => write!(
+                f,
+                "more than {} translucent objects",
+                crate::MAX_TRANSLUCENT
+            ),
+            LayerError::Blending => {
+                write!(f, "the target colour cannot report its channels for blending")
+            }
+            LayerError::Capacity {
+                list,
+                needed,
+                capacity,
+            } => write!(
+                f,
+                "{needed} {} triangles cross one row, the layers hold {capacity}",
+                if *list == 0 {
+                    "receiver"
+                } else {
+                    "shadow and translucent"
+                }
+            ),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn apply(m: &Mat4<f64>, q: [f64; 3]) -> [f64; 3] {
+        let h = m.transform_point(q);
+        [h[0] / h[3], h[1] / h[3], h[2] / h[3]]
+    }
+
+    #[test]
+    fn points_land_on_the_plane_along_the_light() {
+        let plane = [0.3, 1.0, -0.2, 0.5];
+        for light in [
+            ShadowLight::Directional([0.4, 1.0, 0.3]),
+            ShadowLight::Point([1.0, 6.0, -2.0]),
+        ] {
+            let m = PlanarShadow::new(plane, light, 128).matrix().unwrap();
+            for q in [[0.0, 2.0, 0.0], [1.5, 1.0, -0.7], [-2.0, 3.0, 1.0]] {
+                let s = apply(&m, q);
+                let on = plane[0] * s[0] + plane[1] * s[1] + plane[2] * s[2] + plane[3];
+                assert!(on.abs() < 1e-9, "{on}");
+                // On the line from the light through q.
+                let dir = match light {
+                    ShadowLight::Directional(d) => d,
+                    ShadowLight::Point(p) => [p[0] - q[0], p[1] - q[1], p[2] - q[2]],
+                };
+                let d = [s[0] - q[0], s[1] - q[1], s[2] - q[2]];
+                let cross = [
+                    d[1] * dir[2] - d[2] * dir[1],
+                    d[2] * dir[0] - d[0] * dir[2],
+                    d[0] * dir[1] - d[1] * dir[0],
+                ];
+                assert!(cross.iter().all(|c| c.abs() < 1e-9), "{cross:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn no_projection_for_a_light_parallel_to_or_in_the_plane() {
+        let ground = [0.0, 1.0, 0.0, 0.0];
+        let flat = ShadowLight::Directional([1.0, 0.0, 0.0]);
+        assert!(PlanarShadow::new(ground, flat, 1).matrix().is_none());
+        let inside = ShadowLight::Point([3.0, 0.0, 1.0]);
+        assert!(PlanarShadow::new(ground, inside, 1).matrix().is_none());
+        let zero = [0.0, 0.0, 0.0, 1.0];
+        let up = ShadowLight::Directional([0.0, 1.0, 0.0]);
+        assert!(PlanarShadow::new(zero, up, 1).matrix().is_none());
+        let nan = [f64::NAN, 1.0, 0.0, 0.0];
+        assert!(PlanarShadow::new(nan, up, 1).matrix().is_none());
+    }
+}
