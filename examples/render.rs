@@ -6,6 +6,8 @@
 
 #[path = "../tests/common/mod.rs"]
 mod common;
+#[path = "render_parts/shadow.rs"]
+mod shadow;
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -62,6 +64,19 @@ enum SceneArg {
     Cube,
     Icosphere,
     Terrain,
+    /// A torus and a cube above a ground square (the `shadow` benchmark scene): --shadow,
+    /// --shadow-plane and --alpha apply to it
+    Shadow,
+}
+
+/// How `--scene shadow` draws its shadow.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+enum ShadowArg {
+    /// No shadow
+    None,
+    /// The models' triangles projected onto the shadow plane along the light, stencilled (each
+    /// ground pixel darkened once)
+    Projected,
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -348,6 +363,17 @@ struct Args {
     /// every strip height)
     #[arg(long, value_name = "LINES", default_value_t = 1)]
     strip: usize,
+    /// The shadow of `--scene shadow` (default: projected)
+    #[arg(long, value_enum)]
+    shadow: Option<ShadowArg>,
+    /// The plane `--scene shadow`'s shadow falls on, a·x + b·y + c·z + d = 0 (default 0,1,0,0:
+    /// the ground; the ground receives it only where it lies in that plane)
+    #[arg(long = "shadow-plane", value_name = "A,B,C,D", allow_hyphen_values = true, value_parser = shadow::plane)]
+    shadow_plane: Option<[f64; 4]>,
+    /// Opacity of `--scene shadow`'s torus, 0-255 (default 255: opaque): below 255 it is
+    /// blended over what is behind it
+    #[arg(long, value_name = "A")]
+    alpha: Option<u8>,
     /// Output image (.png; with --frames > 1 an animated .png or .gif)
     #[arg(long, value_name = "FILE", default_value = "scanline3d.png")]
     out: PathBuf,
@@ -485,6 +511,7 @@ fn model(args: &Args) -> Result<Model, String> {
                 TexturedShape::<f64, 289, 512>::terrain(4.0, 16, 0.4).map_err(e)?,
                 args,
             ),
+            SceneArg::Shadow => return Err("--scene shadow takes no --texture".into()),
         });
     }
     Ok(match args.scene.unwrap_or(SceneArg::Torus) {
@@ -500,6 +527,8 @@ fn model(args: &Args) -> Result<Model, String> {
             Shape::<f64, 289, 512>::terrain(4.0, 16, 0.4).map_err(e)?,
             args,
         ),
+        // Drawn by `shadow::run` before a model is made.
+        SceneArg::Shadow => return Err("--scene shadow is not a single model".into()),
     })
 }
 
@@ -1070,6 +1099,16 @@ fn main() {
 
 fn main2(args: Args) -> Result<(), (String, i32)> {
     check_flags(&args).map_err(|e| (e, 2))?;
+    let shadow_flags = args.shadow.is_some() || args.shadow_plane.is_some() || args.alpha.is_some();
+    if args.scene == Some(SceneArg::Shadow) {
+        return shadow::run(&args);
+    }
+    if shadow_flags {
+        return Err((
+            "--shadow, --shadow-plane and --alpha apply to --scene shadow only".into(),
+            2,
+        ));
+    }
     let m = model(&args).map_err(|e| (e, 2))?;
     let s = setup(&args, &m).map_err(|e| (e, 2))?;
     match args.format {

@@ -9,6 +9,7 @@
 use crate::camera::{Camera, CameraError, Projection};
 use crate::demo_assets::Floor;
 pub use crate::demo_assets::{Bench, CHECKER, CHECKER_TEXELS};
+pub use crate::demo_shadow::{render_shadow_scene, ShadowScene};
 use crate::math::Mat4;
 use crate::scalar::Scalar;
 use crate::scene::Object;

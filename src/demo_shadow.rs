@@ -25,6 +25,43 @@ pub const SHADOW_ALPHA: u8 = 140;
 /// The translucent torus's opacity.
 pub const TRANSLUCENT_ALPHA: u8 = 150;
 
+/// The shadow scene's options ([`render_shadow_scene`]); the benchmark scenes are
+/// [`ShadowScene::bench`].
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ShadowScene {
+    /// Draw the projected shadow of the torus and the cube (else no shadow).
+    pub projected: bool,
+    /// The plane the shadow falls on, `a·x + b·y + c·z + d = 0`: the ground square is placed
+    /// in it (centred at the plane's point nearest the origin; `0, 1, 0, 0` is the level
+    /// ground).
+    pub plane: [f64; 4],
+    /// The torus's opacity (255: opaque).
+    pub alpha: u8,
+    /// The models' turn about the vertical axis, degrees.
+    pub spin_deg: f64,
+    /// 4 × 4 ordered dithering.
+    pub dither: bool,
+}
+
+impl ShadowScene {
+    /// Benchmark scene `bench` ([`Bench::ShadowNone`], [`Bench::Shadow`] or
+    /// [`Bench::Translucent`]) turned by `spin_deg`.
+    #[must_use]
+    pub fn bench(bench: Bench, spin_deg: f64, dither: bool) -> Self {
+        ShadowScene {
+            projected: bench == Bench::Shadow,
+            plane: [0.0, 1.0, 0.0, 0.0],
+            alpha: if bench == Bench::Translucent {
+                TRANSLUCENT_ALPHA
+            } else {
+                255
+            },
+            spin_deg,
+            dither,
+        }
+    }
+}
+
 /// Renders shadow benchmark scene `bench` (one of [`Bench::ShadowNone`], [`Bench::Shadow`],
 /// [`Bench::Translucent`]) at 240 × 240, the models turned by `spin_deg`.
 pub(crate) fn render_shadow_bench<S, C, D, P>(
@@ -40,22 +77,35 @@ where
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
     P: crate::Probe,
 {
+    render_shadow_scene::<S, C, D, P>(&ShadowScene::bench(bench, spin_deg, dither), target, probe)
+}
+
+/// Renders the shadow scene — a torus and a cube above a ground square, one directional light —
+/// at 240 × 240 with options `o`: drawn by [`crate::Renderer::render`] when it needs no layers
+/// (no shadow, an opaque torus), else by [`crate::Renderer::render_layered`].
+/// [`BenchFrame::renderer_ram_bytes`] counts the [`Layers`] too.
+pub fn render_shadow_scene<S, C, D, P>(
+    o: &ShadowScene,
+    target: &mut D,
+    probe: &mut P,
+) -> Result<BenchFrame, BenchError<D::Error>>
+where
+    S: Scalar,
+    C: crate::TargetColor,
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+    P: crate::Probe,
+{
     const V: usize = SHADOW_CAPACITY.0;
     const T: usize = SHADOW_CAPACITY.1;
     let ground = Shape::<S, 4, 2>::plane(5.0, 5.0, 1, 1).map_err(|_| BenchError::Scene)?;
     let torus = Shape::<S, 288, 576>::torus(0.7, 0.25, 24, 12).map_err(|_| BenchError::Scene)?;
     let cube = Shape::<S, 24, 12>::cube(0.35).map_err(|_| BenchError::Scene)?;
-    let spin = Mat4::rotate_y(deg(spin_deg));
+    let spin = Mat4::rotate_y(deg(o.spin_deg));
     let m = |c: [u8; 3]| Material::matte(c, S::from_f64(0.25), S::from_f64(0.75));
-    let alpha = if bench == Bench::Translucent {
-        TRANSLUCENT_ALPHA
-    } else {
-        255
-    };
     let objects = [
         Object {
             mesh: ground.mesh(),
-            transform: Mat4::identity(),
+            transform: onto_plane(o.plane),
             material: m([200, 190, 160]).flat(),
         },
         Object {
@@ -67,7 +117,7 @@ where
                     S::from_f64(1.2),
                     S::from_f64(-0.2),
                 ])),
-            material: m([90, 160, 255]).translucent(alpha),
+            material: m([90, 160, 255]).translucent(o.alpha),
         },
         Object {
             mesh: cube.mesh(),
@@ -83,12 +133,12 @@ where
         .map_err(|_| BenchError::Scene)?;
     let l = SHADOW_LIGHT.map(S::from_f64);
     let scene = Scene::new(&objects, camera, [Light::white(l)]).with_background([24, 28, 40]);
-    let layering = if bench == Bench::Shadow {
+    let layering = if o.projected {
         Layering::projected(
             &[0],
             &[1, 2],
             PlanarShadow::new(
-                [S::ZERO, S::ONE, S::ZERO, S::ZERO],
+                o.plane.map(S::from_f64),
                 ShadowLight::Directional(l),
                 SHADOW_ALPHA,
             ),
@@ -96,18 +146,19 @@ where
     } else {
         Layering::none()
     };
+    let plain = !o.projected && o.alpha == 255;
     // Rendering triangle ids makes every triangle flat (one more vertex record per drawn
     // triangle): those renders get a larger vertex store.
     if C::triangle_id(0).is_some() {
-        draw::<S, C, D, P, { V + T }>(bench, &scene, &layering, dither, target, probe)
+        draw::<S, C, D, P, { V + T }>(plain, &scene, &layering, o.dither, target, probe)
     } else {
-        draw::<S, C, D, P, V>(bench, &scene, &layering, dither, target, probe)
+        draw::<S, C, D, P, V>(plain, &scene, &layering, o.dither, target, probe)
     }
 }
 
-/// Draws `scene` plainly ([`Bench::ShadowNone`]) or in layers, with a vertex store of `V`.
+/// Draws `scene` plainly (`plain`) or in layers, with a vertex store of `V`.
 fn draw<S, C, D, P, const V: usize>(
-    bench: Bench,
+    plain: bool,
     scene: &Scene<'_, S, 1>,
     layering: &Layering<'_, S>,
     dither: bool,
@@ -126,7 +177,7 @@ where
     const PA: usize = SHADOW_CAPACITY.4;
     let mut r = Renderer::<S, C, 240, 240, V, T, A>::new();
     r.set_dither(dither);
-    if bench == Bench::ShadowNone {
+    if plain {
         let stats = r
             .render_probed(scene, target, probe)
             .map_err(BenchError::Render)?;
@@ -143,4 +194,36 @@ where
         stats,
         renderer_ram_bytes: core::mem::size_of_val(&r) + core::mem::size_of_val(&layers),
     })
+}
+
+/// The transform that places the level ground square (y = 0, facing +y) in plane
+/// `a·x + b·y + c·z + d = 0`: +y to the plane's unit normal, the origin to the plane's point
+/// nearest it. (The identity for the level ground.)
+fn onto_plane<S: Scalar>(p: [f64; 4]) -> Mat4<S> {
+    let len = libm::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).max(1e-300);
+    let n = [p[0] / len, p[1] / len, p[2] / len];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let unit = |v: [f64; 3]| {
+        let l = libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        v.map(|c| c / l)
+    };
+    // u ⟂ n, then w = u × n: (u, n, w) is right-handed, and (x, y, z) for the level ground.
+    let u = if n[2].abs() < 0.9 {
+        unit(cross(n, [0.0, 0.0, 1.0]))
+    } else {
+        unit(cross([1.0, 0.0, 0.0], n)).map(|c| -c)
+    };
+    let w = cross(u, n);
+    let o = n.map(|c| -c * p[3] / len);
+    let mut m = Mat4::identity();
+    for i in 0..3 {
+        m.m[i] = [u[i], n[i], w[i], o[i]].map(S::from_f64);
+    }
+    m
 }

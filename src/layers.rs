@@ -258,6 +258,13 @@ impl<
         {
             return Err(Error::Layers(LayerError::TooManyTranslucent));
         }
+        if let Some((_, s)) = &shadow {
+            for &i in layering.receivers {
+                if scene.objects[i].material.alpha == 255 && !s.holds(&scene.objects[i]) {
+                    return Err(Error::Layers(LayerError::OffPlane { object: i }));
+                }
+            }
+        }
         let receiver = |i: usize| {
             shadow.is_some()
                 && scene.objects[i].material.alpha == 255

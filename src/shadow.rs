@@ -51,6 +51,23 @@ impl<S: Scalar> PlanarShadow<S> {
         }
     }
 
+    /// Whether every vertex of `object` lies in the plane, within 2⁻¹⁰ of its distance from
+    /// the origin or of one unit (the shadow polygons are drawn on the receivers' pixels without
+    /// a depth test, so a receiver must be in the plane). Computed in f64, one transform per
+    /// vertex: meant for a ground or a wall, a few vertices.
+    #[must_use]
+    pub fn holds(&self, object: &crate::Object<'_, S>) -> bool {
+        let p = self.plane.map(|v| v.to_f64());
+        let n = libm::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        object.mesh.positions().iter().all(|&q| {
+            let w = object.transform.transform_point(q).map(|v| v.to_f64());
+            let x = [w[0] / w[3], w[1] / w[3], w[2] / w[3]];
+            let dist = (p[0] * x[0] + p[1] * x[1] + p[2] * x[2] + p[3]).abs() / n;
+            let size = x.iter().fold(1.0f64, |m, c| m.max(c.abs()));
+            dist <= size / 1024.0
+        })
+    }
+
     /// The world → world projection onto the plane from the light, scaled so that its
     /// largest entry is 1 (a homogeneous matrix's scale does not change the point it maps to;
     /// for a directional light the bottom row is then `[0, 0, 0, s]`, an affine map). `None`
@@ -158,6 +175,12 @@ pub enum LayerError {
         /// Index of the object in the scene.
         object: usize,
     },
+    /// Receiver `object` does not lie in the shadow's plane (a vertex is farther from it than
+    /// 2⁻¹⁰ of its distance from the origin, or of one unit): the shadow would float off it.
+    OffPlane {
+        /// Index of the object in the scene.
+        object: usize,
+    },
     /// More translucent objects than [`crate::MAX_TRANSLUCENT`].
     TooManyTranslucent,
     /// The target colour cannot report its channels ([`crate::TargetColor::channels`]), so
@@ -185,6 +208,9 @@ impl core::fmt::Display for LayerError {
                 f,
                 "object {object} is translucent and textured or Phong: translucency is flat or Gouraud only"
             ),
+            LayerError::OffPlane { object } => {
+                write!(f, "receiver {object} does not lie in the shadow's plane")
+            }
             LayerError::Shadow => write!(
                 f,
                 "the shadow's plane or light is invalid (a NaN, a zero normal, or a light in or parallel to the plane)"

@@ -1,0 +1,92 @@
+//! `render --scene shadow`: the shadow benchmark scene (`demo::render_shadow_scene`) with the
+//! shadow method, the shadow's plane and the torus's opacity from the command line.
+
+use std::path::Path;
+
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use scanline3d::demo::{render_shadow_scene, ShadowScene};
+use scanline3d::fixed::types::I16F16;
+use scanline3d::{Fx, NoProbe, Scalar, TargetColor};
+
+use super::common::Frame;
+use super::{write_image, Args, FormatArg, NumberArg, OnOff, ShadowArg};
+
+/// `--shadow-plane`: four finite numbers, the normal not zero.
+pub fn plane(s: &str) -> Result<[f64; 4], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("{s:?}: {e}"))?;
+    match v[..] {
+        [a, b, c, d] if v.iter().all(|x| x.is_finite()) && (a, b, c) != (0.0, 0.0, 0.0) => {
+            Ok([a, b, c, d])
+        }
+        _ => Err(format!(
+            "{s:?}: expected four finite numbers a,b,c,d (the plane a·x + b·y + c·z + d = 0, (a, b, c) not zero)"
+        )),
+    }
+}
+
+/// Renders the shadow scene with the command line's options to `args.out` (atomically).
+pub fn run(args: &Args) -> Result<(), (String, i32)> {
+    if args.size != (240, 240) {
+        return Err((
+            "--scene shadow is drawn at 240x240 (the benchmark scene's renderer): drop --size"
+                .into(),
+            2,
+        ));
+    }
+    let o = ShadowScene {
+        projected: args.shadow.unwrap_or(ShadowArg::Projected) == ShadowArg::Projected,
+        plane: args.shadow_plane.unwrap_or([0.0, 1.0, 0.0, 0.0]),
+        alpha: args.alpha.unwrap_or(255),
+        spin_deg: 0.0,
+        dither: args.dither == OnOff::On,
+    };
+    match args.format {
+        FormatArg::Rgb565 => go::<Rgb565>(args, &o),
+        FormatArg::Rgb888 => go::<Rgb888>(args, &o),
+    }
+}
+
+fn go<C: TargetColor + Into<Rgb888>>(args: &Args, o: &ShadowScene) -> Result<(), (String, i32)> {
+    match args.number {
+        NumberArg::Fixed => frames::<Fx<I16F16>, C>(args, o),
+        NumberArg::F32 => frames::<f32, C>(args, o),
+        NumberArg::F64 => frames::<f64, C>(args, o),
+    }
+}
+
+fn frames<S: Scalar, C: TargetColor + Into<Rgb888>>(
+    args: &Args,
+    o: &ShadowScene,
+) -> Result<(), (String, i32)> {
+    let mut out = Vec::new();
+    for k in 0..args.frames {
+        let mut f = Frame::new(240, 240, C::from_channels([0; 3]));
+        let scene = ShadowScene {
+            spin_deg: args.spin * k as f64,
+            ..*o
+        };
+        let frame = render_shadow_scene::<S, C, _, _>(&scene, &mut f, &mut NoProbe)
+            .map_err(|e| (format!("shadow scene in {}: {e}", S::NAME), 1))?;
+        if k == 0 {
+            let s = frame.stats;
+            println!(
+                "shadow scene ({}, {}): {} triangles drawn of {}, {} fragments, {} pixels written, renderer and layers RAM {} bytes",
+                S::NAME,
+                if o.projected { "projected shadow" } else { "no shadow" },
+                s.drawn,
+                s.triangles_in,
+                s.fragments,
+                s.pixels_written,
+                frame.renderer_ram_bytes
+            );
+        }
+        out.push(f);
+    }
+    write_image(Path::new(&args.out), &out, 100).map_err(|e| (e, 1))?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}
