@@ -224,6 +224,7 @@ fn main() {
     md.push_str(&phong_variants(&mcu));
     md.push_str(&point_lights(&mcu));
     md.push_str(&fog(&mcu));
+    md.push_str(&shadows(&mcu));
     std::fs::write(out.join("report.md"), md).unwrap_or_else(|e| fail(&e.to_string()));
 
     if let Err(e) = plot(&rows, &mcu, &out.join("speed_vs_error.png")) {
@@ -317,11 +318,10 @@ fn phong_variants(mcu: &BTreeMap<(String, String, String), u64>) -> String {
         mcu,
         "Phong variants",
         "Each variant's `phong*` frame against the f64 frame lit at every pixel (`phong`): the colour error a user sees from the variant and the number type together (Gouraud loses the highlight that falls inside a triangle: `tests/phong.rs` measures that against a ray-cast sphere).",
-        Bench::Phong,
         &[
-            (Bench::Phong, "Phong (every pixel)", None),
-            (Bench::PhongFast, "fast Phong (every 8 px)", None),
-            (Bench::PhongGouraud, "Gouraud", None),
+            (Bench::Phong, "Phong (every pixel)", None, Bench::Phong),
+            (Bench::PhongFast, "fast Phong (every 8 px)", None, Bench::Phong),
+            (Bench::PhongGouraud, "Gouraud", None, Bench::Phong),
         ],
     )
 }
@@ -334,58 +334,112 @@ fn point_lights(mcu: &BTreeMap<(String, String, String), u64>) -> String {
         mcu,
         "Point lights",
         "The `phong*` sphere with an attenuated point light besides its directional light, each variant against the f64 frame lit at every pixel (`point_phong`). `tests/effects.rs` measures the point-lit sphere against a ray-cast one. The last columns are the instructions the point light adds to the same frame without it.",
-        Bench::PointPhong,
         &[
-            (Bench::PointPhong, "Phong", Some(Bench::Phong)),
-            (Bench::PointPhongFast, "fast Phong", Some(Bench::PhongFast)),
-            (Bench::PointGouraud, "Gouraud", Some(Bench::PhongGouraud)),
+            (Bench::PointPhong, "Phong", Some(Bench::Phong), Bench::PointPhong),
+            (
+                Bench::PointPhongFast,
+                "fast Phong",
+                Some(Bench::PhongFast),
+                Bench::PointPhong,
+            ),
+            (
+                Bench::PointGouraud,
+                "Gouraud",
+                Some(Bench::PhongGouraud),
+                Bench::PointPhong,
+            ),
         ],
     )
 }
 
 /// Fog: each fogged frame against its f64 twin, and what the fog adds to the instructions.
 fn fog(mcu: &BTreeMap<(String, String, String), u64>) -> String {
-    let mut md = variant_table(
+    variant_table(
         mcu,
         "Fog",
         "Gouraud fogs each vertex (`fog_gouraud`: the `phong_gouraud` sphere in fog), textured spans the ends of each 16-pixel segment (`textured_fog`), each against its f64 twin. `tests/effects.rs` measures the fog on a floor against each pixel's ray-cast view depth. The last columns are the instructions the fog adds to the same frame without it.",
-        Bench::FogGouraud,
-        &[(Bench::FogGouraud, "Gouraud, per vertex", Some(Bench::PhongGouraud))],
-    );
-    let textured = variant_table(
+        &[
+            (
+                Bench::FogGouraud,
+                "Gouraud, per vertex",
+                Some(Bench::PhongGouraud),
+                Bench::FogGouraud,
+            ),
+            (
+                Bench::TexturedFog,
+                "textured, per segment",
+                Some(Bench::Textured),
+                Bench::TexturedFog,
+            ),
+        ],
+    )
+}
+
+/// Shadows and translucency: each layered frame against its f64 twin, and what the layers add
+/// to the instructions of the same frame without them (`shadow_none`).
+fn shadows(mcu: &BTreeMap<(String, String, String), u64>) -> String {
+    let mut md = variant_table(
         mcu,
-        "",
-        "",
-        Bench::TexturedFog,
-        &[(
-            Bench::TexturedFog,
-            "textured, per segment",
-            Some(Bench::Textured),
-        )],
+        "Shadows and translucency",
+        "The torus and cube above a ground square (`shadow_none`), with their projected shadow on the ground (`shadow`: stencilled, the two shadows overlap and darken once), with a soft blob under each (`shadow_blob`) and with the torus translucent (`translucent`: blended back to front after the opaque triangles of each row), each against its f64 twin. `tests/shadows.rs` checks the stencil, the receiver bound and the order independence. The last columns are the instructions each adds to `shadow_none`; the RAM of the renderer and the layers is in `BENCHMARKS.md`.",
+        &[
+            (
+                Bench::Shadow,
+                "projected shadow",
+                Some(Bench::ShadowNone),
+                Bench::Shadow,
+            ),
+            (
+                Bench::ShadowBlob,
+                "blob shadow",
+                Some(Bench::ShadowNone),
+                Bench::ShadowBlob,
+            ),
+            (
+                Bench::Translucent,
+                "translucent torus",
+                Some(Bench::ShadowNone),
+                Bench::Translucent,
+            ),
+        ],
     );
-    // The second table's rows only (after its header).
-    md.push_str(
-        textured
-            .lines()
-            .skip(4)
-            .collect::<Vec<_>>()
-            .join("\n")
-            .as_str(),
+    // Shadow maps, evaluated: the light-view depth map's RAM against the renderer's budget.
+    let layers = scanline3d::Layers::<240, 1, 4, 64>::RAM_BYTES;
+    let budget = 16 * 1024;
+    let _ = writeln!(
+        md,
+        "\n### Shadow maps (evaluated, not built)\n\nA shadow map is a depth image rendered from the light, looked up at every drawn pixel: the whole map must exist before the first strip is drawn (it is a full frame of depth, which a strip renderer exists to avoid), and each lookup needs the pixel's position in the light's view (a projective transform per pixel, or per segment as textures do, plus a compare). Its RAM at 16 bits a texel, against this renderer's 16 KB budget (the torus frame's renderer) and the `Layers` the projected shadow of the `shadow` scene uses ({layers} bytes):\n"
     );
-    md.push('\n');
+    let _ = writeln!(
+        md,
+        "| map | depth map bytes | × 16 KB budget | × the projected shadow's layers |"
+    );
+    let _ = writeln!(md, "|---|---:|---:|---:|");
+    for n in [32usize, 64, 128, 256] {
+        let bytes = 2 * n * n;
+        let _ = writeln!(
+            md,
+            "| {n} × {n} | {bytes} | {:.2} | {:.1} |",
+            bytes as f64 / budget as f64,
+            bytes as f64 / layers as f64
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\nA 64 × 64 map already takes half the budget and covers the 240 × 240 view with one texel per 3.75 × 3.75 pixels (blocky, aliased shadow edges); a map fine enough for the view is larger than the whole renderer. Projected shadows on planes and (to come) shadow volumes count in the strip's own lines instead, so shadow maps are not built."
+    );
     md
 }
 
-/// A table of `variants` (scene, name, the scene without the feature) against the f64 frame
-/// of `reference`: error figures per number type and the instructions per frame from
+/// A table of `variants` (scene, name, the scene without the feature, the scene whose f64
+/// frame is the reference): error figures per number type and the instructions per frame from
 /// `scripts/mcu-bench` (empty when it has not been run), with the increase over the scene
 /// without the feature.
 fn variant_table(
     mcu: &BTreeMap<(String, String, String), u64>,
     title: &str,
     intro: &str,
-    reference: Bench,
-    variants: &[(Bench, &str, Option<Bench>)],
+    variants: &[(Bench, &str, Option<Bench>, Bench)],
 ) -> String {
     use common::compare::compare_with;
     let mut md = String::new();
@@ -399,7 +453,7 @@ fn variant_table(
         "| variant | number | max LSB (r,g,b) | mean abs LSB | PSNR dB | differing px | M0 instr. | M4F instr. | M0 added | M4F added |"
     );
     let _ = writeln!(md, "|---|---|---|---:|---:|---:|---:|---:|---:|---:|");
-    for &(b, name, without) in variants {
+    for &(b, name, without, reference) in variants {
         let rows: [(&str, Metrics); 3] = [
             ("f64", compare_with::<f64>(b, reference)),
             ("f32", compare_with::<f32>(b, reference)),

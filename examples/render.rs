@@ -77,6 +77,8 @@ enum ShadowArg {
     /// The models' triangles projected onto the shadow plane along the light, stencilled (each
     /// ground pixel darkened once)
     Projected,
+    /// A soft round blob under each model (nested discs; the seeds' cheapest method)
+    Blob,
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]

@@ -101,6 +101,9 @@ pub enum Bench {
     /// [`Bench::ShadowNone`] with the projected planar shadow of both models on the ground
     /// ([`crate::Renderer::render_layered`]; the two shadows overlap and darken once).
     Shadow,
+    /// [`Bench::ShadowNone`] with a soft blob shadow under each model
+    /// ([`crate::ShadowMethod::Blob`]).
+    ShadowBlob,
     /// [`Bench::ShadowNone`] with the torus translucent (drawn after the opaque triangles of
     /// each row, blended).
     Translucent,
@@ -108,7 +111,7 @@ pub enum Bench {
 
 impl Bench {
     /// Every benchmark scene.
-    pub const ALL: [Bench; 20] = [
+    pub const ALL: [Bench; 21] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -128,6 +131,7 @@ impl Bench {
         Bench::TexturedFog,
         Bench::ShadowNone,
         Bench::Shadow,
+        Bench::ShadowBlob,
         Bench::Translucent,
     ];
 
@@ -154,6 +158,7 @@ impl Bench {
             Bench::TexturedFog => "textured_fog",
             Bench::ShadowNone => "shadow_none",
             Bench::Shadow => "shadow",
+            Bench::ShadowBlob => "shadow_blob",
             Bench::Translucent => "translucent",
         }
     }

@@ -8,7 +8,7 @@ use crate::math::Mat4;
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::{Light, Material};
-use crate::shadow::{Layering, PlanarShadow, ShadowLight};
+use crate::shadow::{Layering, PlanarShadow, ShadowLight, ShadowMethod};
 use crate::shapes::Shape;
 use crate::{Layers, Renderer};
 
@@ -29,8 +29,8 @@ pub const TRANSLUCENT_ALPHA: u8 = 150;
 /// [`ShadowScene::bench`].
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct ShadowScene {
-    /// Draw the projected shadow of the torus and the cube (else no shadow).
-    pub projected: bool,
+    /// The shadow of the torus and the cube (`None`: no shadow).
+    pub shadow: Option<ShadowMethod>,
     /// The plane the shadow falls on, `a·x + b·y + c·z + d = 0`: the ground square is placed
     /// in it (centred at the plane's point nearest the origin; `0, 1, 0, 0` is the level
     /// ground).
@@ -49,7 +49,11 @@ impl ShadowScene {
     #[must_use]
     pub fn bench(bench: Bench, spin_deg: f64, dither: bool) -> Self {
         ShadowScene {
-            projected: bench == Bench::Shadow,
+            shadow: match bench {
+                Bench::Shadow => Some(ShadowMethod::Projected),
+                Bench::ShadowBlob => Some(ShadowMethod::Blob),
+                _ => None,
+            },
             plane: [0.0, 1.0, 0.0, 0.0],
             alpha: if bench == Bench::Translucent {
                 TRANSLUCENT_ALPHA
@@ -63,7 +67,7 @@ impl ShadowScene {
 }
 
 /// Renders shadow benchmark scene `bench` (one of [`Bench::ShadowNone`], [`Bench::Shadow`],
-/// [`Bench::Translucent`]) at 240 × 240, the models turned by `spin_deg`.
+/// [`Bench::ShadowBlob`], [`Bench::Translucent`]) at 240 × 240, the models turned by `spin_deg`.
 pub(crate) fn render_shadow_bench<S, C, D, P>(
     bench: Bench,
     spin_deg: f64,
@@ -133,20 +137,22 @@ where
         .map_err(|_| BenchError::Scene)?;
     let l = SHADOW_LIGHT.map(S::from_f64);
     let scene = Scene::new(&objects, camera, [Light::white(l)]).with_background([24, 28, 40]);
-    let layering = if o.projected {
-        Layering::projected(
+    let layering = match o.shadow {
+        Some(method) => Layering::projected(
             &[0],
             &[1, 2],
-            PlanarShadow::new(
-                o.plane.map(S::from_f64),
-                ShadowLight::Directional(l),
-                SHADOW_ALPHA,
-            ),
-        )
-    } else {
-        Layering::none()
+            PlanarShadow {
+                method,
+                ..PlanarShadow::new(
+                    o.plane.map(S::from_f64),
+                    ShadowLight::Directional(l),
+                    SHADOW_ALPHA,
+                )
+            },
+        ),
+        None => Layering::none(),
     };
-    let plain = !o.projected && o.alpha == 255;
+    let plain = o.shadow.is_none() && o.alpha == 255;
     // Rendering triangle ids makes every triangle flat (one more vertex record per drawn
     // triangle): those renders get a larger vertex store.
     if C::triangle_id(0).is_some() {
@@ -200,26 +206,8 @@ where
 /// `a·x + b·y + c·z + d = 0`: +y to the plane's unit normal, the origin to the plane's point
 /// nearest it. (The identity for the level ground.)
 fn onto_plane<S: Scalar>(p: [f64; 4]) -> Mat4<S> {
+    let (u, n, w) = crate::shadow::plane_basis(p);
     let len = libm::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).max(1e-300);
-    let n = [p[0] / len, p[1] / len, p[2] / len];
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let unit = |v: [f64; 3]| {
-        let l = libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        v.map(|c| c / l)
-    };
-    // u ⟂ n, then w = u × n: (u, n, w) is right-handed, and (x, y, z) for the level ground.
-    let u = if n[2].abs() < 0.9 {
-        unit(cross(n, [0.0, 0.0, 1.0]))
-    } else {
-        unit(cross([1.0, 0.0, 0.0], n)).map(|c| -c)
-    };
-    let w = cross(u, n);
     let o = n.map(|c| -c * p[3] / len);
     let mut m = Mat4::identity();
     for i in 0..3 {

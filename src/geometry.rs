@@ -28,15 +28,14 @@ use crate::stats::*;
 
 pub(crate) use crate::object_setup::{ObjectSetup, QuickLight};
 
-/// The geometry stage's state over a frame's objects.
-pub(crate) struct Frame<S> {
+/// The geometry stage's constants over a frame's objects ([`Renderer::frame_begin`]).
+#[derive(Copy, Clone)]
+pub(crate) struct FrameConst<S> {
     vp: Viewport,
     /// The guard band, in the number type.
     g: S,
     /// Projection × view.
     pv: Mat4<S>,
-    /// Vertices and triangles the frame needs so far.
-    need: (usize, usize),
     /// The pool entries the Phong lights, point lights and fog reserve.
     reserved: usize,
     /// The first Phong material's pool entry.
@@ -45,6 +44,13 @@ pub(crate) struct Frame<S> {
     k24: u32,
     /// Whether every light is valid (objects are skipped and counted when one is not).
     lights_ok: bool,
+}
+
+/// The geometry stage's counts over a frame's objects.
+#[derive(Default)]
+pub(crate) struct Frame {
+    /// Vertices and triangles the frame needs so far.
+    need: (usize, usize),
     pub(crate) stats: Stats,
 }
 
@@ -66,11 +72,12 @@ impl<
         scene: &Scene<'_, S, L>,
         probe: &mut P,
     ) -> Result<Stats, Error<E>> {
-        let mut f = self.frame_begin(scene, false)?;
+        let c = self.frame_begin(scene, false)?;
+        let mut f = Frame::default();
         for (index, obj) in scene.objects.iter().enumerate() {
-            self.frame_object(&mut f, scene, obj, index, probe)?;
+            self.frame_object(&c, &mut f, scene, obj, index, probe)?;
         }
-        self.frame_end(scene, f)
+        self.frame_end(scene, &c, &mut f)
     }
 
     /// The geometry stage's start: the stores emptied, every object checked for what its
@@ -82,7 +89,7 @@ impl<
         &mut self,
         scene: &Scene<'_, S, L>,
         layered: bool,
-    ) -> Result<Frame<S>, Error<E>> {
+    ) -> Result<FrameConst<S>, Error<E>> {
         self.verts.clear();
         self.tris.clear();
         self.clear_active();
@@ -140,16 +147,14 @@ impl<
             }
             Projection::Orthographic { .. } => 0,
         };
-        Ok(Frame {
+        Ok(FrameConst {
             vp,
             g,
             pv,
-            need: (0, 0),
             reserved,
             first_material,
             k24,
             lights_ok: lights_valid(scene)?,
-            stats: Stats::default(),
         })
     }
 
@@ -158,7 +163,8 @@ impl<
     #[inline(always)]
     pub(crate) fn frame_object<E, P: Probe, const L: usize>(
         &mut self,
-        f: &mut Frame<S>,
+        c: &FrameConst<S>,
+        f: &mut Frame,
         scene: &Scene<'_, S, L>,
         obj: &Object<'_, S>,
         index: usize,
@@ -168,7 +174,7 @@ impl<
         // the same for every number type (a float NaN would poison every vertex).
         let ok = |v: &S| v.is_valid();
         let m = &obj.material;
-        if !(f.lights_ok
+        if !(c.lights_ok
             && obj.transform.m.iter().all(|r| r.iter().all(ok))
             && [m.ambient, m.diffuse, m.specular].iter().all(ok))
         {
@@ -194,7 +200,7 @@ impl<
         let setup = ObjectSetup {
             obj,
             scene,
-            mvp: f.pv.mul(&obj.transform),
+            mvp: c.pv.mul(&obj.transform),
             normal_matrix,
             similar,
             lights: &lights,
@@ -203,18 +209,18 @@ impl<
             base: self.verts.len(),
             // The material's pool entry (after the lights' entries): the Phong objects are
             // numbered in the scene's order.
-            extra: f.k24
+            extra: c.k24
                 | if XV > 0 && obj.material.shading.is_phong() {
                     let rank = scene.objects[..index.min(scene.objects.len())]
                         .iter()
                         .filter(|o| o.material.shading.is_phong())
                         .count();
-                    ((f.first_material + rank) as u32) << 25
+                    ((c.first_material + rank) as u32) << 25
                 } else {
                     0
                 },
         };
-        self.object(&setup, &f.vp, f.g, &mut f.stats, &mut f.need, probe);
+        self.object(&setup, &c.vp, c.g, &mut f.stats, &mut f.need, probe);
         if XV > 0 {
             let end = self.verts.len();
             if obj.material.needs_attribute_stores() && end > XV {
@@ -241,9 +247,11 @@ impl<
     pub(crate) fn frame_end<E, const L: usize>(
         &mut self,
         scene: &Scene<'_, S, L>,
-        f: Frame<S>,
+        c: &FrameConst<S>,
+        f: &mut Frame,
     ) -> Result<Stats, Error<E>> {
-        let (mut stats, need, reserved) = (f.stats, f.need, f.reserved);
+        // In place (no copy of the statistics on the deepest stack).
+        let (stats, need, reserved) = (&mut f.stats, f.need, c.reserved);
         stats.vertices = need.0 as u32;
         let mut cur = 0i32;
         let mut max = 0i32;
@@ -288,8 +296,8 @@ impl<
         self.sort_buckets();
         self.background = crate::color::quantize::<C>(scene.background);
         self.next_row = 0;
-        self.stats = stats;
-        Ok(stats)
+        self.stats = *stats;
+        Ok(*stats)
     }
 
     /// Transforms, lights, clips, projects, culls and buckets one object.

@@ -19,7 +19,7 @@ use crate::renderer::*;
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::Material;
-use crate::shadow::{LayerError, Layering};
+use crate::shadow::{blob_disc, LayerError, Layering, ShadowMethod, BLOB_FAN};
 use crate::strip::draw_list_row;
 use crate::textured::{attach_pushed, is_textured};
 
@@ -62,6 +62,8 @@ pub struct Layers<const W: usize, const LINES: usize, const RA: usize, const PA:
     lut: [[u8; 64]; 3],
     /// The shadow's colour in the target's channel units, and its opacity (0: no shadow).
     shadow: ([u8; 3], u8),
+    /// The shadow is blobs: nested discs that each darken (no stencil).
+    blob: bool,
     skipped: u32,
 }
 
@@ -84,6 +86,7 @@ impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize>
             translucent: Vec::new(),
             lut: [[0; 64]; 3],
             shadow: ([0; 3], 0),
+            blob: false,
             skipped: 0,
         }
     }
@@ -270,41 +273,62 @@ impl<
                 && scene.objects[i].material.alpha == 255
                 && layering.receivers.contains(&i)
         };
-        let mut f = self.frame_begin(scene, true)?;
+        let c = self.frame_begin(scene, true)?;
+        let mut f = crate::geometry::Frame::default();
         for (i, o) in scene.objects.iter().enumerate() {
             if receiver(i) {
-                self.frame_object(&mut f, scene, o, i, probe)?;
+                self.frame_object(&c, &mut f, scene, o, i, probe)?;
             }
         }
         let end = |r: &Self| r.verts.len().min(u16::MAX as usize) as u16;
         layers.bounds[0] = end(self);
         for (i, o) in scene.objects.iter().enumerate() {
             if !receiver(i) && o.material.alpha == 255 {
-                self.frame_object(&mut f, scene, o, i, probe)?;
+                self.frame_object(&c, &mut f, scene, o, i, probe)?;
             }
         }
         layers.bounds[1] = end(self);
         layers.shadow = ([0; 3], 0);
+        layers.blob = false;
         if let Some((m, s)) = shadow {
+            // Flat and unlit: only the coverage of these triangles is used.
+            let material = Material::matte(s.color, S::ONE, S::ZERO).flat();
+            let disc = blob_disc::<S>();
+            let blob = s.method == ShadowMethod::Blob;
             for (i, o) in scene.objects.iter().enumerate() {
-                if layering.casters.contains(&i) {
-                    // The caster's triangles flattened onto the plane: flat, unlit (only
-                    // their coverage is used).
+                if !layering.casters.contains(&i) {
+                    continue;
+                }
+                if !blob {
+                    // The caster's triangles flattened onto the plane.
                     let flat = Object {
                         mesh: o.mesh,
                         transform: m.mul(&o.transform),
-                        material: Material::matte(s.color, S::ONE, S::ZERO).flat(),
+                        material,
                     };
-                    self.frame_object(&mut f, scene, &flat, i, probe)?;
+                    self.frame_object(&c, &mut f, scene, &flat, i, probe)?;
+                } else if let Some(rings) = s.blob_rings(&m, o) {
+                    let mesh = crate::Mesh::new(&disc, &BLOB_FAN)
+                        .map_err(|_| Error::Layers(LayerError::Shadow))?;
+                    for transform in rings {
+                        let ring = Object {
+                            mesh,
+                            transform,
+                            material,
+                        };
+                        self.frame_object(&c, &mut f, scene, &ring, i, probe)?;
+                    }
                 }
             }
             let max = C::CHANNEL_MAX;
             let sc: [u8; 3] =
                 core::array::from_fn(|k| div255(s.color[k] as u32 * max[k] as u32) as u8);
-            layers.shadow = (sc, s.alpha);
+            let alpha = if blob { s.blob_ring_alpha() } else { s.alpha };
+            layers.shadow = (sc, alpha);
+            layers.blob = blob;
             for k in 0..3 {
                 for (c, e) in layers.lut[k].iter_mut().enumerate() {
-                    *e = blend(c as u32, sc[k] as u32, s.alpha as u32) as u8;
+                    *e = blend(c as u32, sc[k] as u32, alpha as u32) as u8;
                 }
             }
         }
@@ -312,12 +336,12 @@ impl<
         layers.translucent.clear();
         for (i, o) in scene.objects.iter().enumerate() {
             if o.material.alpha < 255 {
-                self.frame_object(&mut f, scene, o, i, probe)?;
+                self.frame_object(&c, &mut f, scene, o, i, probe)?;
                 // Cannot fail: counted above.
                 let _ = layers.translucent.push((end(self), o.material.alpha));
             }
         }
-        let stats = self.frame_end(scene, f)?;
+        let stats = self.frame_end(scene, &c, &mut f)?;
         // Each list's most triangles on one row, against its capacity.
         for (list, capacity) in [(0u8, RA), (1, PA)] {
             let needed = self.layer_overlap(&layers.bounds, list);
@@ -446,6 +470,7 @@ impl<
                     &mut layers.stencil[l][..vw],
                     &layers.lut,
                     layers.shadow,
+                    layers.blob,
                 );
                 stats.add_row(frag, written);
                 if done {
@@ -577,7 +602,9 @@ fn sort_key(t: &TriRecord, verts: &[ScreenVertex]) -> u64 {
 
 /// One row of a shadow polygon: each pixel a receiver drew (depth below the far plane: on this
 /// row only the receivers have drawn yet) and no shadow polygon darkened yet is blended toward
-/// the shadow colour, and marked in the stencil. Returns `(fragments, written, finished)`.
+/// the shadow colour, and marked in the stencil (a blob disc, `blob`, darkens whatever the
+/// stencil says: the nested discs add up). Returns `(fragments, written, finished)`.
+#[allow(clippy::too_many_arguments)]
 fn shadow_row<C: TargetColor>(
     t: &mut ActiveTri,
     row: i32,
@@ -586,7 +613,10 @@ fn shadow_row<C: TargetColor>(
     stencil: &mut [u8],
     lut: &[[u8; 64]; 3],
     shadow: ([u8; 3], u8),
+    blob: bool,
 ) -> (u32, u32, bool) {
+    // A blob never sets the stencil bit, so every pixel stays open to the next disc.
+    let mark = if blob { 0 } else { SHADOWED };
     let width = colors.len().min(depth.len()).min(stencil.len()) as i32;
     let (xs, xe) = (t.edges[0].c().max(0), t.edges[1].c().min(width));
     let mut written = 0;
@@ -597,7 +627,7 @@ fn shadow_row<C: TargetColor>(
         if let (Some(words), true) = (rgb565_words_mut(&mut colors[r.clone()]), small) {
             for ((w, &z), s) in words.iter_mut().zip(zs).zip(ss.iter_mut()) {
                 if z != u16::MAX && *s & SHADOWED == 0 {
-                    *s |= SHADOWED;
+                    *s |= mark;
                     let v = *w as usize;
                     *w = (lut[0][v >> 11] as u16) << 11
                         | (lut[1][(v >> 5) & 63] as u16) << 5
@@ -608,7 +638,7 @@ fn shadow_row<C: TargetColor>(
         } else {
             for ((c, &z), s) in colors[r].iter_mut().zip(zs).zip(ss.iter_mut()) {
                 if z != u16::MAX && *s & SHADOWED == 0 {
-                    *s |= SHADOWED;
+                    *s |= mark;
                     if let Some(ch) = c.channels() {
                         let k = |i: usize| {
                             if small {

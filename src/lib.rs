@@ -245,7 +245,9 @@ pub use renderer::{
 pub use scalar::{Fx, FxRecip, Scalar, NDC_FRAC_BITS};
 pub use scene::{Object, Scene};
 pub use shade::{Light, Material, Shading};
-pub use shadow::{LayerError, Layering, PlanarShadow, ShadowLight};
+pub use shadow::{
+    LayerError, Layering, PlanarShadow, ShadowLight, ShadowMethod, BLOB_RINGS, BLOB_SIDES,
+};
 pub use shapes::{ParamValue, Shape, ShapeError};
 pub use strip::StripCanvas;
 pub use texture::{Texture, TextureError, TextureMode, Texturing, Wrap, MAX_TEXTURE_SIZE};

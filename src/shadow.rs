@@ -6,6 +6,26 @@
 use crate::math::{Mat4, Vec3};
 use crate::scalar::Scalar;
 
+/// How a planar shadow is drawn.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ShadowMethod {
+    /// The casters' triangles projected onto the plane from the light: the exact shadow
+    /// shape on the plane, stencilled so that overlaps darken once.
+    Projected,
+    /// The seeds' cheapest method: a soft round blob on the plane under each caster (where the
+    /// light projects the caster's origin), as wide as the caster, darkest (`alpha`) at its
+    /// centre: [`BLOB_RINGS`] nested discs of [`BLOB_SIDES`] sides, each darkening what the
+    /// discs inside it leave, so the darkness falls off in steps toward the rim. Its cost does
+    /// not grow with the caster's triangles. Overlapping blobs of two casters darken twice.
+    Blob,
+}
+
+/// The blob shadow's nested discs.
+pub const BLOB_RINGS: usize = 4;
+/// Sides of each blob disc.
+pub const BLOB_SIDES: usize = 16;
+
 /// The light a planar shadow is cast along.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub enum ShadowLight<S> {
@@ -37,6 +57,8 @@ pub struct PlanarShadow<S> {
     pub color: [u8; 3],
     /// The shadow's opacity, 0..=255.
     pub alpha: u8,
+    /// Projected polygons or blobs.
+    pub method: ShadowMethod,
 }
 
 impl<S: Scalar> PlanarShadow<S> {
@@ -48,7 +70,66 @@ impl<S: Scalar> PlanarShadow<S> {
             light,
             color: [0; 3],
             alpha,
+            method: ShadowMethod::Projected,
         }
+    }
+
+    /// This shadow drawn as blobs ([`ShadowMethod::Blob`]).
+    #[must_use]
+    pub const fn blob(self) -> Self {
+        PlanarShadow {
+            method: ShadowMethod::Blob,
+            ..self
+        }
+    }
+
+    /// The blob under `caster` ([`ShadowMethod::Blob`]), with shadow matrix `m`: the
+    /// transforms of its [`BLOB_RINGS`] discs (the unit disc of [`blob_disc`], largest first),
+    /// or `None` when the caster's origin projects to no point. Its centre is the caster's
+    /// origin projected onto the plane, its radius the caster's largest distance from its
+    /// origin. f64, once per caster and frame.
+    pub(crate) fn blob_rings(
+        &self,
+        m: &Mat4<S>,
+        caster: &crate::Object<'_, S>,
+    ) -> Option<[Mat4<S>; BLOB_RINGS]> {
+        let t = caster.transform.m.map(|r| r.map(|v| v.to_f64()));
+        let origin = [t[0][3], t[1][3], t[2][3]];
+        let c = m.m.map(|r| r.map(|v| v.to_f64()));
+        let h: [f64; 4] = core::array::from_fn(|i| {
+            c[i][0] * origin[0] + c[i][1] * origin[1] + c[i][2] * origin[2] + c[i][3]
+        });
+        if h[3].abs() < 1e-12 || !h.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        let centre = [h[0] / h[3], h[1] / h[3], h[2] / h[3]];
+        let mut radius = 0.0f64;
+        for &q in caster.mesh.positions() {
+            let w = caster.transform.transform_point(q).map(|v| v.to_f64());
+            let d = [
+                w[0] / w[3] - origin[0],
+                w[1] / w[3] - origin[1],
+                w[2] / w[3] - origin[2],
+            ];
+            radius = radius.max(libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+        }
+        let (u, n, w) = plane_basis(self.plane.map(|v| v.to_f64()));
+        Some(core::array::from_fn(|k| {
+            let r = radius * (BLOB_RINGS - k) as f64 / BLOB_RINGS as f64;
+            let mut t = Mat4::identity();
+            for i in 0..3 {
+                t.m[i] = [u[i] * r, n[i], w[i] * r, centre[i]].map(S::from_f64);
+            }
+            t
+        }))
+    }
+
+    /// Each blob disc's opacity: [`BLOB_RINGS`] of them over the centre make `alpha`,
+    /// `1 − (1 − α)^(1/BLOB_RINGS)` in 0..=255.
+    pub(crate) fn blob_ring_alpha(&self) -> u8 {
+        let a = self.alpha as f64 / 255.0;
+        let step = 1.0 - libm::pow(1.0 - a, 1.0 / BLOB_RINGS as f64);
+        libm::round(step * 255.0).clamp(0.0, 255.0) as u8
     }
 
     /// Whether every vertex of `object` lies in the plane, within 2⁻¹⁰ of its distance from
@@ -117,6 +198,54 @@ impl<S: Scalar> PlanarShadow<S> {
         })
     }
 }
+
+/// A right-handed orthonormal basis `(u, n, w)` of plane `a·x + b·y + c·z + d = 0`: `n` its unit
+/// normal, `u` and `w` in it (`(x, y, z)` for the level plane `0, 1, 0, d`).
+pub(crate) fn plane_basis(p: [f64; 4]) -> ([f64; 3], [f64; 3], [f64; 3]) {
+    let len = libm::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).max(1e-300);
+    let n = [p[0] / len, p[1] / len, p[2] / len];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let unit = |v: [f64; 3]| {
+        let l = libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        v.map(|c| c / l)
+    };
+    let u = if n[2].abs() < 0.9 {
+        unit(cross(n, [0.0, 0.0, 1.0]))
+    } else {
+        unit(cross([1.0, 0.0, 0.0], n)).map(|c| -c)
+    };
+    (u, n, cross(u, n))
+}
+
+/// The unit blob disc in the plane y = 0, facing +y: its centre and [`BLOB_SIDES`] rim points
+/// (positions) and its fan of triangles.
+pub(crate) fn blob_disc<S: Scalar>() -> [[S; 3]; BLOB_SIDES + 1] {
+    core::array::from_fn(|i| {
+        if i == 0 {
+            [S::ZERO; 3]
+        } else {
+            let a = core::f64::consts::TAU * (i - 1) as f64 / BLOB_SIDES as f64;
+            [libm::cos(a), 0.0, libm::sin(a)].map(S::from_f64)
+        }
+    })
+}
+
+/// [`blob_disc`]'s triangles: `(centre, rim i + 1, rim i)`, counter-clockwise seen from +y.
+pub(crate) const BLOB_FAN: [[u16; 3]; BLOB_SIDES] = {
+    let mut t = [[0u16; 3]; BLOB_SIDES];
+    let mut i = 0;
+    while i < BLOB_SIDES {
+        t[i] = [0, ((i + 1) % BLOB_SIDES) as u16 + 1, i as u16 + 1];
+        i += 1;
+    }
+    t
+};
 
 /// What a layered frame draws beyond the opaque pass: the objects (indices into
 /// [`crate::Scene::objects`]) that receive and cast a projected shadow, and the shadow.

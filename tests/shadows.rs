@@ -239,6 +239,11 @@ fn plain_render_refuses_translucent_materials_and_bad_layerings_are_errors() {
         r.render(&scene, &mut f).unwrap_err(),
         Error::NeedsLayers { object: 0 }
     );
+    let opaque = [Object {
+        material: unlit::<f64>([9, 9, 9]),
+        ..objects[0]
+    }];
+    let scene = Scene::new(&opaque, top_camera(), [Light::white([0.0, 1.0, 0.0])]);
     let mut layers = Layers::<64, 1, 1, 4>::new();
     let up = ShadowLight::Directional([0.0, 1.0, 0.0]);
     let plane = [0.0, 1.0, 0.0, 0.0];
@@ -259,6 +264,11 @@ fn plain_render_refuses_translucent_materials_and_bad_layerings_are_errors() {
             Layering::projected(&[0], &[0], PlanarShadow::new([f64::NAN; 4], up, 1)),
             LayerError::Shadow,
         ),
+        (
+            // The ground is at y = 0, the plane at y = 0.5.
+            Layering::projected(&[0], &[0], PlanarShadow::new([0.0, 1.0, 0.0, -0.5], up, 1)),
+            LayerError::OffPlane { object: 0 },
+        ),
     ];
     for (layering, want) in cases {
         let mut f = Frame::new(N, N, Rgb565::BLACK);
@@ -274,7 +284,12 @@ fn plain_render_refuses_translucent_materials_and_bad_layerings_are_errors() {
 #[test]
 fn shadow_benchmark_scenes_match_their_golden_images() {
     fn go<S: Scalar>(ty: &str) {
-        for b in [Bench::ShadowNone, Bench::Shadow, Bench::Translucent] {
+        for b in [
+            Bench::ShadowNone,
+            Bench::Shadow,
+            Bench::ShadowBlob,
+            Bench::Translucent,
+        ] {
             let mut f = Frame::new(240, 240, Rgb565::BLACK);
             render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut NoProbe).unwrap();
             f.assert_each_written_once();

@@ -6,7 +6,7 @@ use std::path::Path;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use scanline3d::demo::{render_shadow_scene, ShadowScene};
 use scanline3d::fixed::types::I16F16;
-use scanline3d::{Fx, NoProbe, Scalar, TargetColor};
+use scanline3d::{Fx, NoProbe, Scalar, ShadowMethod, TargetColor};
 
 use super::common::Frame;
 use super::{write_image, Args, FormatArg, NumberArg, OnOff, ShadowArg};
@@ -38,7 +38,11 @@ pub fn run(args: &Args) -> Result<(), (String, i32)> {
         ));
     }
     let o = ShadowScene {
-        projected: args.shadow.unwrap_or(ShadowArg::Projected) == ShadowArg::Projected,
+        shadow: match args.shadow.unwrap_or(ShadowArg::Projected) {
+            ShadowArg::None => None,
+            ShadowArg::Projected => Some(ShadowMethod::Projected),
+            ShadowArg::Blob => Some(ShadowMethod::Blob),
+        },
         plane: args.shadow_plane.unwrap_or([0.0, 1.0, 0.0, 0.0]),
         alpha: args.alpha.unwrap_or(255),
         spin_deg: 0.0,
@@ -76,7 +80,12 @@ fn frames<S: Scalar, C: TargetColor + Into<Rgb888>>(
             println!(
                 "shadow scene ({}, {}): {} triangles drawn of {}, {} fragments, {} pixels written, renderer and layers RAM {} bytes",
                 S::NAME,
-                if o.projected { "projected shadow" } else { "no shadow" },
+                match o.shadow {
+                    None => "no shadow",
+                    Some(ShadowMethod::Projected) => "projected shadow",
+                    Some(ShadowMethod::Blob) => "blob shadow",
+                    Some(_) => "shadow",
+                },
                 s.drawn,
                 s.triangles_in,
                 s.fragments,
