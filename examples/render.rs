@@ -129,13 +129,8 @@ enum OnOff {
 }
 
 fn v3(s: &str) -> Result<[f64; 3], String> {
-    let v: Vec<f64> = s
-        .split(',')
-        .map(|x| x.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|e| format!("{s:?}: {e}"))?;
-    match v[..] {
-        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([x, y, z]),
+    match numbers(s)?[..] {
+        [x, y, z] => Ok([x, y, z]),
         _ => Err(format!("{s:?}: expected three finite numbers x,y,z")),
     }
 }
@@ -157,7 +152,7 @@ struct FogArg {
 }
 
 /// Comma-separated finite numbers.
-fn numbers(s: &str) -> Result<Vec<f64>, String> {
+pub(crate) fn numbers(s: &str) -> Result<Vec<f64>, String> {
     let v: Vec<f64> = s
         .split(',')
         .map(|x| x.trim().parse::<f64>())

@@ -8,7 +8,8 @@
 
 use crate::camera::{Camera, CameraError, Projection};
 use crate::demo_assets::Floor;
-pub use crate::demo_assets::{Bench, CHECKER, CHECKER_TEXELS};
+pub use crate::demo_assets::{deg, Bench, BenchError, BenchFrame, CHECKER, CHECKER_TEXELS};
+pub(crate) use crate::demo_assets::{look, persp};
 pub use crate::demo_shadow::{render_shadow_scene, ShadowScene};
 use crate::math::Mat4;
 use crate::scalar::Scalar;
@@ -18,12 +19,6 @@ use crate::shapes::{Shape, ShapeError};
 
 /// The default torus mesh.
 pub type TorusShape<S> = Shape<S, 512, 1024>;
-
-/// Degrees to radians in `S`.
-#[must_use]
-pub fn deg<S: Scalar>(d: f64) -> S {
-    S::from_f64(d * core::f64::consts::PI / 180.0)
-}
 
 /// The default torus: R = 1.0, r = 0.4, 32 × 16 segments.
 pub fn torus<S: Scalar>() -> Result<TorusShape<S>, ShapeError> {
@@ -90,57 +85,6 @@ pub type TorusRenderer<S, C> = crate::Renderer<S, C, 240, 240, 512, 480, 64>;
 /// Capacities of the benchmark torus renderer: exactly what a full turn in 1° steps needs
 /// (see [`TorusRenderer`] for one with a margin).
 pub const TORUS_CAPACITY: (usize, usize, usize) = (512, 466, 61);
-
-/// What one benchmark frame produced.
-#[derive(Copy, Clone, Debug)]
-pub struct BenchFrame {
-    /// The frame's statistics.
-    pub stats: crate::Stats,
-    /// `size_of` the renderer the scene used.
-    pub renderer_ram_bytes: usize,
-}
-
-/// Why a benchmark frame failed.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum BenchError<E> {
-    /// Building the scene failed (a shape or camera).
-    Scene,
-    /// Rendering failed.
-    Render(crate::Error<E>),
-}
-
-impl<E: core::fmt::Display> core::fmt::Display for BenchError<E> {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match self {
-            BenchError::Scene => write!(f, "building the benchmark scene failed (shape or camera)"),
-            BenchError::Render(e) => write!(f, "rendering the benchmark scene failed: {e}"),
-        }
-    }
-}
-
-impl<E: core::fmt::Debug + core::fmt::Display> core::error::Error for BenchError<E> {}
-
-pub(crate) fn look<S: Scalar>(
-    eye: [f64; 3],
-    target: [f64; 3],
-    projection: Projection<S>,
-) -> Result<Camera<S>, CameraError> {
-    Camera::look_at(
-        eye.map(S::from_f64),
-        target.map(S::from_f64),
-        [S::ZERO, S::ONE, S::ZERO],
-        projection,
-    )
-}
-
-pub(crate) fn persp<S: Scalar>(fov_deg: f64, near: f64, far: f64) -> Projection<S> {
-    Projection::Perspective {
-        fov_y: deg(fov_deg),
-        near: S::from_f64(near),
-        far: S::from_f64(far),
-    }
-}
 
 /// The 16 KB part's torus frame: side in pixels, triangle and active capacities, for QEMU's
 /// `microbit` (nRF51, 16 KB RAM) with the mesh in flash. The renderer's vertex store, triangle

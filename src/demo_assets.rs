@@ -1,7 +1,66 @@
-//! The textured benchmark scenes' assets (`demo::Bench::Textured` and its variants): the
-//! checkerboard texture in flash and the floor mesh.
+//! The benchmark scenes' shared parts: the scene list ([`Bench`]), what a frame produced or why
+//! it failed, the camera helpers, and the textured scenes' assets (the checkerboard texture in
+//! flash and the floor mesh).
 
+use crate::camera::{Camera, CameraError, Projection};
 use crate::scalar::Scalar;
+
+/// Degrees to radians in `S`.
+#[must_use]
+pub fn deg<S: Scalar>(d: f64) -> S {
+    S::from_f64(d * core::f64::consts::PI / 180.0)
+}
+
+/// What one benchmark frame produced.
+#[derive(Copy, Clone, Debug)]
+pub struct BenchFrame {
+    /// The frame's statistics.
+    pub stats: crate::Stats,
+    /// `size_of` the renderer the scene used.
+    pub renderer_ram_bytes: usize,
+}
+
+/// Why a benchmark frame failed.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum BenchError<E> {
+    /// Building the scene failed (a shape or camera).
+    Scene,
+    /// Rendering failed.
+    Render(crate::Error<E>),
+}
+
+impl<E: core::fmt::Display> core::fmt::Display for BenchError<E> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            BenchError::Scene => write!(f, "building the benchmark scene failed (shape or camera)"),
+            BenchError::Render(e) => write!(f, "rendering the benchmark scene failed: {e}"),
+        }
+    }
+}
+
+impl<E: core::fmt::Debug + core::fmt::Display> core::error::Error for BenchError<E> {}
+
+pub(crate) fn look<S: Scalar>(
+    eye: [f64; 3],
+    target: [f64; 3],
+    projection: Projection<S>,
+) -> Result<Camera<S>, CameraError> {
+    Camera::look_at(
+        eye.map(S::from_f64),
+        target.map(S::from_f64),
+        [S::ZERO, S::ONE, S::ZERO],
+        projection,
+    )
+}
+
+pub(crate) fn persp<S: Scalar>(fov_deg: f64, near: f64, far: f64) -> Projection<S> {
+    Projection::Perspective {
+        fov_y: deg(fov_deg),
+        near: S::from_f64(near),
+        far: S::from_f64(far),
+    }
+}
 
 /// The textured benchmark's 64 × 64 texture: a two-tone checkerboard of 8 × 8-texel squares
 /// with a dark line along each square's top and left edge (the lines show a perspective

@@ -3,7 +3,7 @@
 //! the projected planar shadow of both on the ground (their shadows overlap), and with the torus
 //! translucent.
 
-use crate::demo::{deg, look, persp, Bench, BenchError, BenchFrame};
+use crate::demo_assets::{deg, look, persp, Bench, BenchError, BenchFrame};
 use crate::math::Mat4;
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};

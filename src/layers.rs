@@ -696,6 +696,24 @@ fn translucent_row<C: TargetColor>(
     };
     let mut written = 0;
     let r = xs as usize..xe as usize;
+    if let Some(words) = rgb565_words_mut(&mut colors[r.clone()]) {
+        // RGB565 words: the channels by shifts (the same values as `channels`).
+        for (w, &zb) in words.iter_mut().zip(&depth[r]) {
+            if ((z >> DEPTH_FRAC_BITS) as u16) < zb {
+                let d = *w as u32;
+                let s = v.map(|s| (s >> COLOR_FRAC_BITS) as u32);
+                *w = (blend(d >> 11, s[0], alpha) << 11
+                    | blend((d >> 5) & 63, s[1], alpha) << 5
+                    | blend(d & 31, s[2], alpha)) as u16;
+                written += 1;
+            }
+            z = z.wrapping_add(t.gx[0]);
+            for k in 0..3 {
+                v[k] = v[k].wrapping_add(g[k]);
+            }
+        }
+        return ((xe - xs) as u32, written);
+    }
     for (c, &zb) in colors[r.clone()].iter_mut().zip(&depth[r]) {
         if ((z >> DEPTH_FRAC_BITS) as u16) < zb {
             if let Some(d) = c.channels() {

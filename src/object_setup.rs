@@ -170,6 +170,12 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
     /// `tri` in screen winding (swapped for a mirrored object, whose mesh order is restored
     /// here for the face normal).
     pub(crate) fn face_color<C: TargetColor>(&self, tri: [u16; 3]) -> [u16; 3] {
+        let m = &self.obj.material;
+        if m.diffuse == S::ZERO && m.specular <= S::ZERO && !self.has_fx() {
+            // Unlit (the ambient term only): no face normal (the same value: the diffuse
+            // term is a product by zero). Shadow polygons are such faces.
+            return C::vertex_channels(lit_color(m, self.lights, [S::ZERO; 3], [S::ZERO; 3]));
+        }
         let [a, b, c] = tri.map(|i| self.obj.mesh.positions()[i as usize]);
         let (b, c) = if self.mirrored { (c, b) } else { (b, c) };
         let n = self.world_normal(face_normal(a, b, c), true);

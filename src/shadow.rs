@@ -86,8 +86,8 @@ impl<S: Scalar> PlanarShadow<S> {
     /// The blob under `caster` ([`ShadowMethod::Blob`]), with shadow matrix `m`: the
     /// transforms of its [`BLOB_RINGS`] discs (the unit disc of [`blob_disc`], largest first),
     /// or `None` when the caster's origin projects to no point. Its centre is the caster's
-    /// origin projected onto the plane, its radius the caster's largest distance from its
-    /// origin. f64, once per caster and frame.
+    /// origin projected onto the plane, its radius the largest distance of the caster's mesh from
+    /// its origin times the transform's largest scale. Once per caster and frame.
     pub(crate) fn blob_rings(
         &self,
         m: &Mat4<S>,
@@ -103,16 +103,27 @@ impl<S: Scalar> PlanarShadow<S> {
             return None;
         }
         let centre = [h[0] / h[3], h[1] / h[3], h[2] / h[3]];
-        let mut radius = 0.0f64;
+        // The mesh's largest distance from its origin (squared in the number type: a few
+        // products a vertex, no f64 per vertex, which is soft float on a Cortex-M0; a square
+        // that does not fit the type counts as three times its largest coordinate's square),
+        // times the transform's largest column length (its largest scale).
+        let mut r2 = 0.0f64;
         for &q in caster.mesh.positions() {
-            let w = caster.transform.transform_point(q).map(|v| v.to_f64());
-            let d = [
-                w[0] / w[3] - origin[0],
-                w[1] / w[3] - origin[1],
-                w[2] / w[3] - origin[2],
-            ];
-            radius = radius.max(libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+            let d = crate::math::dot(q, q);
+            let v = if d.is_valid() {
+                d.to_f64()
+            } else {
+                let m = q.iter().fold(0.0f64, |m, c| m.max(c.to_f64().abs()));
+                3.0 * m * m
+            };
+            r2 = r2.max(v);
         }
+        let scale = (0..3).fold(0.0f64, |m, j| {
+            m.max(libm::sqrt(
+                t[0][j] * t[0][j] + t[1][j] * t[1][j] + t[2][j] * t[2][j],
+            ))
+        });
+        let radius = libm::sqrt(r2) * scale;
         let (u, n, w) = plane_basis(self.plane.map(|v| v.to_f64()));
         Some(core::array::from_fn(|k| {
             let r = radius * (BLOB_RINGS - k) as f64 / BLOB_RINGS as f64;

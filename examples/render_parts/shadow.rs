@@ -13,15 +13,8 @@ use super::{write_image, Args, FormatArg, NumberArg, OnOff, ShadowArg};
 
 /// `--shadow-plane`: four finite numbers, the normal not zero.
 pub fn plane(s: &str) -> Result<[f64; 4], String> {
-    let v: Vec<f64> = s
-        .split(',')
-        .map(|x| x.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|e| format!("{s:?}: {e}"))?;
-    match v[..] {
-        [a, b, c, d] if v.iter().all(|x| x.is_finite()) && (a, b, c) != (0.0, 0.0, 0.0) => {
-            Ok([a, b, c, d])
-        }
+    match super::numbers(s)?[..] {
+        [a, b, c, d] if (a, b, c) != (0.0, 0.0, 0.0) => Ok([a, b, c, d]),
         _ => Err(format!(
             "{s:?}: expected four finite numbers a,b,c,d (the plane a·x + b·y + c·z + d = 0, (a, b, c) not zero)"
         )),
