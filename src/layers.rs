@@ -489,20 +489,19 @@ impl<
                 *dither,
                 stats,
             );
-            // Translucent triangles, farthest first (a selection per row: few are active).
-            let mut drawn = [false; PA];
-            loop {
-                let mut far: Option<usize> = None;
-                for j in 0..layers.post.len() {
-                    if layers.meta[j] as u8 == TRANSLUCENT
-                        && !drawn[j]
-                        && far.is_none_or(|f| layers.key[j] > layers.key[f])
-                    {
-                        far = Some(j);
-                    }
+            // Translucent triangles, farthest first: their indices sorted by key per row.
+            let mut order = [0u16; PA];
+            let mut n = 0;
+            for j in 0..layers.post.len() {
+                if layers.meta[j] as u8 == TRANSLUCENT {
+                    order[n] = j as u16;
+                    n += 1;
                 }
-                let Some(j) = far else { break };
-                drawn[j] = true;
+            }
+            let key = &layers.key;
+            order[..n].sort_unstable_by(|a, b| key[*b as usize].cmp(&key[*a as usize]));
+            for &j in &order[..n] {
+                let j = j as usize;
                 let alpha = (layers.meta[j] >> 8) as u32;
                 let (frag, written) =
                     translucent_row(layers.post.get_mut(j), row as i32, colors, depth, alpha);
