@@ -284,8 +284,10 @@ where
         }
         Bench::Torus => render_torus_strip::<S, C, D, P, 1>(spin_deg, dither, target, probe),
         Bench::ShadowNone | Bench::Shadow | Bench::ShadowBlob | Bench::Translucent => {
-            crate::demo_shadow::render_shadow_bench::<S, C, D, P>(
-                bench, spin_deg, dither, target, probe,
+            render_shadow_scene::<S, C, D, P>(
+                &ShadowScene::bench(bench, spin_deg, dither),
+                target,
+                probe,
             )
         }
         Bench::Icosphere => {

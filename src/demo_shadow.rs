@@ -66,24 +66,6 @@ impl ShadowScene {
     }
 }
 
-/// Renders shadow benchmark scene `bench` (one of [`Bench::ShadowNone`], [`Bench::Shadow`],
-/// [`Bench::ShadowBlob`], [`Bench::Translucent`]) at 240 × 240, the models turned by `spin_deg`.
-pub(crate) fn render_shadow_bench<S, C, D, P>(
-    bench: Bench,
-    spin_deg: f64,
-    dither: bool,
-    target: &mut D,
-    probe: &mut P,
-) -> Result<BenchFrame, BenchError<D::Error>>
-where
-    S: Scalar,
-    C: crate::TargetColor,
-    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: crate::Probe,
-{
-    render_shadow_scene::<S, C, D, P>(&ShadowScene::bench(bench, spin_deg, dither), target, probe)
-}
-
 /// Renders the shadow scene — a torus and a cube above a ground square, one directional light —
 /// at 240 × 240 with options `o`: drawn by [`crate::Renderer::render`] when it needs no layers
 /// (no shadow, an opaque torus), else by [`crate::Renderer::render_layered`].
