@@ -381,7 +381,7 @@ fn shadows(mcu: &BTreeMap<(String, String, String), u64>) -> String {
     let mut md = variant_table(
         mcu,
         "Shadows and translucency",
-        "The torus and cube above a ground square (`shadow_none`), with their projected shadow on the ground (`shadow`: stencilled, the two shadows overlap and darken once), with a soft blob under each (`shadow_blob`) and with the torus translucent (`translucent`: blended back to front after the opaque triangles of each row), each against its f64 twin. `tests/shadows.rs` checks the stencil, the receiver bound and the order independence. The last columns are the instructions each adds to `shadow_none`; the RAM of the renderer and the layers is in `BENCHMARKS.md`.",
+        "The torus and cube above a ground square (`shadow_none`), with their projected shadow on the ground (`shadow`: stencilled, the two shadows overlap and darken once), with a soft blob under each (`shadow_blob`), with shadow volumes (`shadow_volume`: counted per pixel in the stencil, z-fail; the torus shadows the ground and itself), with the torus translucent (`translucent`: blended back to front after the opaque triangles of each row) and with both models outlined (`outline`: their contour edges from the eye, 1 px), each against its f64 twin. `tests/shadows.rs` checks the stencil, the receiver bound and the order independence, `tests/volumes.rs` the camera inside a volume, self-shadowing and the outlines' width and depth. The last columns are the instructions each adds to `shadow_none`; the RAM of the renderer and the layers is in `BENCHMARKS.md`.",
         &[
             (
                 Bench::Shadow,
@@ -396,10 +396,22 @@ fn shadows(mcu: &BTreeMap<(String, String, String), u64>) -> String {
                 Bench::ShadowBlob,
             ),
             (
+                Bench::ShadowVolume,
+                "shadow volumes",
+                Some(Bench::ShadowNone),
+                Bench::ShadowVolume,
+            ),
+            (
                 Bench::Translucent,
                 "translucent torus",
                 Some(Bench::ShadowNone),
                 Bench::Translucent,
+            ),
+            (
+                Bench::Outline,
+                "outlines",
+                Some(Bench::ShadowNone),
+                Bench::Outline,
             ),
         ],
     );

@@ -65,7 +65,7 @@ enum SceneArg {
     Icosphere,
     Terrain,
     /// A torus and a cube above a ground square (the `shadow` benchmark scene): --shadow,
-    /// --shadow-plane and --alpha apply to it
+    /// --shadow-plane, --alpha and --outline apply to it
     Shadow,
 }
 
@@ -79,6 +79,9 @@ enum ShadowArg {
     Projected,
     /// A soft round blob under each model (nested discs; the seeds' cheapest method)
     Blob,
+    /// Shadow volumes of the models (stencil counting, z-fail): on the ground, on each other
+    /// and on themselves
+    Volume,
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -371,6 +374,10 @@ struct Args {
     /// blended over what is behind it
     #[arg(long, value_name = "A")]
     alpha: Option<u8>,
+    /// Outlines of `--scene shadow`'s models (their contour edges from the eye), 1 px, in this
+    /// colour
+    #[arg(long, value_name = "R,G,B", value_parser = rgb)]
+    outline: Option<[u8; 3]>,
     /// Output image (.png; with --frames > 1 an animated .png or .gif)
     #[arg(long, value_name = "FILE", default_value = "scanline3d.png")]
     out: PathBuf,
@@ -1096,13 +1103,16 @@ fn main() {
 
 fn main2(args: Args) -> Result<(), (String, i32)> {
     check_flags(&args).map_err(|e| (e, 2))?;
-    let shadow_flags = args.shadow.is_some() || args.shadow_plane.is_some() || args.alpha.is_some();
+    let shadow_flags = args.shadow.is_some()
+        || args.shadow_plane.is_some()
+        || args.alpha.is_some()
+        || args.outline.is_some();
     if args.scene == Some(SceneArg::Shadow) {
         return shadow::run(&args);
     }
     if shadow_flags {
         return Err((
-            "--shadow, --shadow-plane and --alpha apply to --scene shadow only".into(),
+            "--shadow, --shadow-plane, --alpha and --outline apply to --scene shadow only".into(),
             2,
         ));
     }

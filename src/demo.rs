@@ -283,13 +283,16 @@ where
             )
         }
         Bench::Torus => render_torus_strip::<S, C, D, P, 1>(spin_deg, dither, target, probe),
-        Bench::ShadowNone | Bench::Shadow | Bench::ShadowBlob | Bench::Translucent => {
-            render_shadow_scene::<S, C, D, P>(
-                &ShadowScene::bench(bench, spin_deg, dither),
-                target,
-                probe,
-            )
-        }
+        Bench::ShadowNone
+        | Bench::Shadow
+        | Bench::ShadowBlob
+        | Bench::Translucent
+        | Bench::ShadowVolume
+        | Bench::Outline => render_shadow_scene::<S, C, D, P>(
+            &ShadowScene::bench(bench, spin_deg, dither),
+            target,
+            probe,
+        ),
         Bench::Icosphere => {
             let shape = Shape::<S, 642, 1280>::icosphere(1.0, 3).map_err(|_| BenchError::Scene)?;
             let mut m = Material::matte([200, 60, 60], S::from_f64(0.1), S::from_f64(0.8));

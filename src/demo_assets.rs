@@ -166,11 +166,16 @@ pub enum Bench {
     /// [`Bench::ShadowNone`] with the torus translucent (drawn after the opaque triangles of
     /// each row, blended).
     Translucent,
+    /// [`Bench::ShadowNone`] with shadow volumes of both models ([`crate::VolumeShadow`]): on
+    /// the ground, on each other and on themselves.
+    ShadowVolume,
+    /// [`Bench::ShadowNone`] with both models outlined ([`crate::Outline`]).
+    Outline,
 }
 
 impl Bench {
     /// Every benchmark scene.
-    pub const ALL: [Bench; 21] = [
+    pub const ALL: [Bench; 23] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -192,6 +197,8 @@ impl Bench {
         Bench::Shadow,
         Bench::ShadowBlob,
         Bench::Translucent,
+        Bench::ShadowVolume,
+        Bench::Outline,
     ];
 
     /// Its name in reports.
@@ -219,6 +226,8 @@ impl Bench {
             Bench::Shadow => "shadow",
             Bench::ShadowBlob => "shadow_blob",
             Bench::Translucent => "translucent",
+            Bench::ShadowVolume => "shadow_volume",
+            Bench::Outline => "outline",
         }
     }
 }

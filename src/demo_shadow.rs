@@ -1,14 +1,15 @@
-//! The shadow benchmark scenes (`demo::Bench::ShadowNone`, `Shadow`, `Translucent`): a torus
-//! and a cube above a ground square, lit by one directional light, drawn without a shadow, with
-//! the projected planar shadow of both on the ground (their shadows overlap), and with the torus
-//! translucent.
+//! The shadow benchmark scenes (`demo::Bench::ShadowNone`, `Shadow`, `ShadowBlob`,
+//! `ShadowVolume`, `Translucent`, `Outline`): a torus and a cube above a ground square, lit by
+//! one directional light, drawn without a shadow, with the projected planar shadow of both on
+//! the ground (their shadows overlap), with blobs, with shadow volumes, with the torus
+//! translucent, and outlined.
 
 use crate::demo_assets::{deg, look, persp, Bench, BenchError, BenchFrame};
 use crate::math::Mat4;
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::{Light, Material};
-use crate::shadow::{Layering, PlanarShadow, ShadowLight, ShadowMethod};
+use crate::shadow::{Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow};
 use crate::shapes::Shape;
 use crate::{Layers, Renderer};
 
@@ -16,8 +17,18 @@ use crate::{Layers, Renderer};
 /// post lists (the shadow polygons of both casters, or the translucent torus).
 pub const SHADOW_CAPACITY: (usize, usize, usize, usize, usize) = (1024, 1024, 64, 4, 64);
 
+/// The shadow-volume scene's capacities (as [`SHADOW_CAPACITY`]): each caster's volume adds
+/// two vertices per mesh vertex and its caps and silhouette quads.
+pub const VOLUME_CAPACITY: (usize, usize, usize, usize, usize) = (1280, 1536, 64, 4, 192);
+
+/// How far the shadow volumes reach from the casters (world units): past the ground.
+pub const VOLUME_REACH: f64 = 6.0;
+
+/// The outlines' colour.
+pub const OUTLINE_COLOR: [u8; 3] = [20, 20, 20];
+
 /// The direction toward the scene's light (also the shadow's).
-pub const SHADOW_LIGHT: [f64; 3] = [-1.5, 2.5, -0.2];
+pub const SHADOW_LIGHT: [f64; 3] = [-1.6, 1.5, 0.8];
 
 /// The shadow's opacity (black at 140/255).
 pub const SHADOW_ALPHA: u8 = 140;
@@ -29,8 +40,12 @@ pub const TRANSLUCENT_ALPHA: u8 = 150;
 /// [`ShadowScene::bench`].
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct ShadowScene {
-    /// The shadow of the torus and the cube (`None`: no shadow).
+    /// The planar shadow of the torus and the cube (`None`: no planar shadow).
     pub shadow: Option<ShadowMethod>,
+    /// Shadow volumes of the torus and the cube instead (with `shadow` `None`).
+    pub volume: bool,
+    /// Outlines of the torus and the cube, in this colour.
+    pub outline: Option<[u8; 3]>,
     /// The plane the shadow falls on, `a·x + b·y + c·z + d = 0`: the ground square is placed
     /// in it (centred at the plane's point nearest the origin; `0, 1, 0, 0` is the level
     /// ground).
@@ -44,8 +59,9 @@ pub struct ShadowScene {
 }
 
 impl ShadowScene {
-    /// Benchmark scene `bench` ([`Bench::ShadowNone`], [`Bench::Shadow`] or
-    /// [`Bench::Translucent`]) turned by `spin_deg`.
+    /// Benchmark scene `bench` ([`Bench::ShadowNone`], [`Bench::Shadow`],
+    /// [`Bench::ShadowBlob`], [`Bench::ShadowVolume`], [`Bench::Translucent`] or
+    /// [`Bench::Outline`]) turned by `spin_deg`.
     #[must_use]
     pub fn bench(bench: Bench, spin_deg: f64, dither: bool) -> Self {
         ShadowScene {
@@ -54,6 +70,8 @@ impl ShadowScene {
                 Bench::ShadowBlob => Some(ShadowMethod::Blob),
                 _ => None,
             },
+            volume: bench == Bench::ShadowVolume,
+            outline: (bench == Bench::Outline).then_some(OUTLINE_COLOR),
             plane: [0.0, 1.0, 0.0, 0.0],
             alpha: if bench == Bench::Translucent {
                 TRANSLUCENT_ALPHA
@@ -81,8 +99,6 @@ where
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
     P: crate::Probe,
 {
-    const V: usize = SHADOW_CAPACITY.0;
-    const T: usize = SHADOW_CAPACITY.1;
     let ground = Shape::<S, 4, 2>::plane(5.0, 5.0, 1, 1).map_err(|_| BenchError::Scene)?;
     let torus = Shape::<S, 288, 576>::torus(0.7, 0.25, 24, 12).map_err(|_| BenchError::Scene)?;
     let cube = Shape::<S, 24, 12>::cube(0.35).map_err(|_| BenchError::Scene)?;
@@ -119,7 +135,16 @@ where
         .map_err(|_| BenchError::Scene)?;
     let l = SHADOW_LIGHT.map(S::from_f64);
     let scene = Scene::new(&objects, camera, [Light::white(l)]).with_background([24, 28, 40]);
-    let layering = match o.shadow {
+    // The models' adjacency (for volumes and outlines): built here, outside the frame (a
+    // mesh's setup; an application keeps it with the mesh).
+    let mut torus_adj = [[0u16; 3]; 576];
+    let mut cube_adj = [[0u16; 3]; 12];
+    if o.volume || o.outline.is_some() {
+        crate::mesh_adjacency(&torus.mesh(), &mut torus_adj).map_err(|_| BenchError::Scene)?;
+        crate::mesh_adjacency(&cube.mesh(), &mut cube_adj).map_err(|_| BenchError::Scene)?;
+    }
+    let adjacency: [&[[u16; 3]]; 2] = [&torus_adj, &cube_adj];
+    let mut layering = match o.shadow {
         Some(method) => Layering::projected(
             &[0],
             &[1, 2],
@@ -132,20 +157,47 @@ where
                 )
             },
         ),
+        None if o.volume => Layering::volumes(
+            &[1, 2],
+            VolumeShadow {
+                light: ShadowLight::Directional(l),
+                reach: S::from_f64(VOLUME_REACH),
+                adjacency: &adjacency,
+                color: [0; 3],
+                alpha: SHADOW_ALPHA,
+            },
+        ),
         None => Layering::none(),
     };
-    let plain = o.shadow.is_none() && o.alpha == 255;
+    if let Some(color) = o.outline {
+        layering = layering.with_outline(Outline {
+            objects: &[1, 2],
+            adjacency: &adjacency,
+            color,
+        });
+    }
+    let plain = o.shadow.is_none() && !o.volume && o.outline.is_none() && o.alpha == 255;
     // Rendering triangle ids makes every triangle flat (one more vertex record per drawn
     // triangle): those renders get a larger vertex store.
-    if C::triangle_id(0).is_some() {
-        draw::<S, C, D, P, { V + T }>(plain, &scene, &layering, o.dither, target, probe)
-    } else {
-        draw::<S, C, D, P, V>(plain, &scene, &layering, o.dither, target, probe)
+    const V: usize = SHADOW_CAPACITY.0;
+    const T: usize = SHADOW_CAPACITY.1;
+    const PA: usize = SHADOW_CAPACITY.4;
+    const VV: usize = VOLUME_CAPACITY.0;
+    const VT: usize = VOLUME_CAPACITY.1;
+    const VPA: usize = VOLUME_CAPACITY.4;
+    let ids = C::triangle_id(0).is_some();
+    let (s, l, d) = (&scene, &layering, o.dither);
+    match (o.volume, ids) {
+        (false, false) => draw::<S, C, D, P, V, T, PA>(plain, s, l, d, target, probe),
+        (false, true) => draw::<S, C, D, P, { V + T }, T, PA>(plain, s, l, d, target, probe),
+        (true, false) => draw::<S, C, D, P, VV, VT, VPA>(plain, s, l, d, target, probe),
+        (true, true) => draw::<S, C, D, P, { VV + VT }, VT, VPA>(plain, s, l, d, target, probe),
     }
 }
 
-/// Draws `scene` plainly (`plain`) or in layers, with a vertex store of `V`.
-fn draw<S, C, D, P, const V: usize>(
+/// Draws `scene` plainly (`plain`) or in layers, with a vertex store of `V`, a triangle store of
+/// `T` and a post list of `PA`.
+fn draw<S, C, D, P, const V: usize, const T: usize, const PA: usize>(
     plain: bool,
     scene: &Scene<'_, S, 1>,
     layering: &Layering<'_, S>,
@@ -159,10 +211,8 @@ where
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
     P: crate::Probe,
 {
-    const T: usize = SHADOW_CAPACITY.1;
     const A: usize = SHADOW_CAPACITY.2;
     const RA: usize = SHADOW_CAPACITY.3;
-    const PA: usize = SHADOW_CAPACITY.4;
     let mut r = Renderer::<S, C, 240, 240, V, T, A>::new();
     r.set_dither(dither);
     if plain {

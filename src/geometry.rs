@@ -31,11 +31,11 @@ pub(crate) use crate::object_setup::{ObjectSetup, QuickLight};
 /// The geometry stage's constants over a frame's objects ([`Renderer::frame_begin`]).
 #[derive(Copy, Clone)]
 pub(crate) struct FrameConst<S> {
-    vp: Viewport,
+    pub(crate) vp: Viewport,
     /// The guard band, in the number type.
-    g: S,
+    pub(crate) g: S,
     /// Projection × view.
-    pv: Mat4<S>,
+    pub(crate) pv: Mat4<S>,
     /// The pool entries the Phong lights, point lights and fog reserve.
     reserved: usize,
     /// The first Phong material's pool entry.
@@ -50,7 +50,7 @@ pub(crate) struct FrameConst<S> {
 #[derive(Default)]
 pub(crate) struct Frame {
     /// Vertices and triangles the frame needs so far.
-    need: (usize, usize),
+    pub(crate) need: (usize, usize),
     pub(crate) stats: Stats,
 }
 
@@ -77,7 +77,7 @@ impl<
         for (index, obj) in scene.objects.iter().enumerate() {
             self.frame_object(&c, &mut f, scene, obj, index, probe)?;
         }
-        self.frame_end(scene, &c, &mut f)
+        self.frame_end(scene, &c, &mut f, ACTIVE)
     }
 
     /// The geometry stage's start: the stores emptied, every object checked for what its
@@ -241,14 +241,16 @@ impl<
         Ok(())
     }
 
-    /// The geometry stage's end: the capacities checked, the buckets sorted and the frame
-    /// prepared for the strip pass.
+    /// The geometry stage's end: the capacities checked (`active`: the most triangles one row
+    /// may hold, [`ACTIVE`] for a plain frame; a layered frame checks each of its lists), the
+    /// buckets sorted and the frame prepared for the strip pass.
     #[inline(always)]
     pub(crate) fn frame_end<E, const L: usize>(
         &mut self,
         scene: &Scene<'_, S, L>,
         c: &FrameConst<S>,
         f: &mut Frame,
+        active: usize,
     ) -> Result<Stats, Error<E>> {
         // In place (no copy of the statistics on the deepest stack).
         let (stats, need, reserved) = (&mut f.stats, f.need, c.reserved);
@@ -279,7 +281,7 @@ impl<
         }
         // Triangles needed but not stored (only when the store or the vertices overflowed).
         let store_skipped = need.1.saturating_sub(self.tris.len());
-        if need.0 > VERTS || need.1 > TRIS || max as usize > ACTIVE {
+        if need.0 > VERTS || need.1 > TRIS || max as usize > active {
             // Every capacity at once: what the frame needed against all three.
             let needed = Needs::new(need.0, need.1, max as usize);
             if self.overflow == OverflowPolicy::Error {
@@ -746,8 +748,22 @@ pub(crate) fn vertex_record<S: Scalar>(
     g: S,
     p: Vec3<S>,
 ) -> ScreenVertex {
+    vertex_record_keep(mvp, vp, g, p, u8::MAX)
+}
+
+/// [`vertex_record`] with only the outcode bits in `keep` (a shadow volume's vertices leave out
+/// [`crate::clip::FAR`]: beyond the far plane they are projected, their depth flattened onto
+/// it).
+#[inline(always)]
+pub(crate) fn vertex_record_keep<S: Scalar>(
+    mvp: &Mat4<S>,
+    vp: &Viewport,
+    g: S,
+    p: Vec3<S>,
+    keep: u8,
+) -> ScreenVertex {
     let clip = mvp.transform_point(p);
-    let mut flags = outcode(clip, g) as u16;
+    let mut flags = (outcode(clip, g) & keep) as u16;
     let mut sv = ScreenVertex::default();
     if !clip.iter().all(|v| v.is_valid()) {
         flags |= INVALID;

@@ -1,8 +1,9 @@
-//! Layered frames: each strip row drawn in layers — the shadow receivers, the projected shadow
-//! polygons (stencilled, so overlaps darken once), the other opaque objects, then the
-//! translucent triangles back to front — with the lists and the stencil lines in a
-//! [`Layers`] the caller owns. A frame drawn by [`Renderer::render`] uses none of this and pays
-//! nothing for it: no field, no branch.
+//! Layered frames: each strip row drawn in layers — the planar shadow's receivers, its
+//! projected polygons (stencilled, so overlaps darken once), the other opaque objects, the
+//! shadow volumes' faces (counted in the stencil, then every pixel with a non-zero count
+//! darkened), the outlines, then the translucent triangles back to front — with the lists and
+//! the stencil lines in a [`Layers`] the caller owns. A frame drawn by [`Renderer::render`]
+//! uses none of this and pays nothing for it: no field, no branch.
 
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
@@ -11,17 +12,19 @@ use heapless::Vec;
 
 use crate::color::{rgb565_word, rgb565_words_mut, TargetColor};
 use crate::kernel;
-use crate::kernel::records::{first_pixel, ActiveList, ActiveTri, ScreenVertex, TriRecord, FLAT};
-use crate::project::{DEPTH_FRAC_BITS, DEPTH_MAX};
-
-use crate::raster::{SpanMode, COLOR_FRAC_BITS};
+use crate::kernel::records::{first_pixel, ActiveList, ScreenVertex, TriRecord};
+use crate::layer_rows::{
+    blend, darken_span, div255, outline_row, shadow_row, translucent_row, volume_row, Darken, Post,
+};
+use crate::raster::SpanMode;
 use crate::renderer::*;
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::Material;
-use crate::shadow::{blob_disc, LayerError, Layering, ShadowMethod, BLOB_FAN};
+use crate::shadow::{blob_disc, LayerError, Layering, ShadowLight, ShadowMethod, BLOB_FAN};
 use crate::strip::draw_list_row;
 use crate::textured::{attach_pushed, is_textured};
+use crate::volume::volume_sign;
 
 /// The most translucent objects one layered frame draws.
 pub const MAX_TRANSLUCENT: usize = 16;
@@ -29,9 +32,9 @@ pub const MAX_TRANSLUCENT: usize = 16;
 /// [`Layers`] post-list entry kinds.
 const SHADOW: u8 = 1;
 const TRANSLUCENT: u8 = 2;
-
-/// Stencil bit: this pixel was darkened by a shadow polygon on this row.
-const SHADOWED: u8 = 1;
+/// A shadow-volume face; its sign (1, or 255 for −1) in the opacity byte.
+const VOLUME: u8 = 3;
+const OUTLINE: u8 = 4;
 
 /// What a layered frame needs besides the renderer, owned by the caller (a `static` on a
 /// microcontroller, like the renderer): `W` and `LINES` as the renderer's, `RA` receiver
@@ -43,7 +46,10 @@ const SHADOWED: u8 = 1;
 /// [`Layers::RAM_BYTES`] is the exact figure.
 #[derive(Debug)]
 pub struct Layers<const W: usize, const LINES: usize, const RA: usize, const PA: usize> {
-    /// Per pixel of each strip line: [`SHADOWED`] once a shadow polygon darkened it.
+    /// Per pixel of each strip line: a planar shadow's mark once a shadow polygon darkened it,
+    /// or the shadow volumes' count (modulo 256: a pixel inside at most 255 nested volumes
+    /// counts right). During the geometry stage, a bit per triangle of one object (which faces
+    /// turn toward the light or the eye).
     stencil: [[u8; W]; LINES],
     receivers: ActiveList<RA>,
     post: ActiveList<PA>,
@@ -52,8 +58,9 @@ pub struct Layers<const W: usize, const LINES: usize, const RA: usize, const PA:
     /// Per post-list entry: back-to-front sort key (larger is drawn first).
     key: [u64; PA],
     /// Vertex-store index where the receivers' vertices end, the opaque objects' vertices
-    /// end, and the shadow polygons' vertices end; the translucent objects' vertices follow.
-    bounds: [u16; 3],
+    /// end, the shadow polygons' (or volumes') vertices end and the outlines' vertices end;
+    /// the translucent objects' vertices follow.
+    bounds: [u16; 4],
     /// The translucent objects: the vertex-store index where each one's vertices end, and its
     /// opacity.
     translucent: Vec<(u16, u8), MAX_TRANSLUCENT>,
@@ -64,6 +71,8 @@ pub struct Layers<const W: usize, const LINES: usize, const RA: usize, const PA:
     shadow: ([u8; 3], u8),
     /// The shadow is blobs: nested discs that each darken (no stencil).
     blob: bool,
+    /// The shadow is volumes, counted in the stencil.
+    volume: bool,
     skipped: u32,
 }
 
@@ -82,11 +91,12 @@ impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize>
             post: ActiveList::new(),
             meta: [0; PA],
             key: [0; PA],
-            bounds: [0; 3],
+            bounds: [0; 4],
             translucent: Vec::new(),
             lut: [[0; 64]; 3],
             shadow: ([0; 3], 0),
             blob: false,
+            volume: false,
             skipped: 0,
         }
     }
@@ -97,13 +107,6 @@ impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize>
     pub fn skipped(&self) -> u32 {
         self.skipped
     }
-
-    fn remove_post(&mut self, i: usize) {
-        let last = self.post.len() - 1;
-        self.meta[i] = self.meta[last];
-        self.key[i] = self.key[last];
-        self.post.swap_remove(i);
-    }
 }
 
 impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize> Default
@@ -112,19 +115,6 @@ impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize> Defau
     fn default() -> Self {
         Self::new()
     }
-}
-
-/// `round(x / 255)` for `0 ≤ x ≤ 255·255`, without a division.
-#[inline(always)]
-fn div255(x: u32) -> u32 {
-    let x = x + 128;
-    (x + (x >> 8)) >> 8
-}
-
-/// Channel `c` blended toward `s` by `a` (0..=255): `round((c·(255 − a) + s·a)/255)`.
-#[inline(always)]
-fn blend(c: u32, s: u32, a: u32) -> u32 {
-    div255(c * (255 - a) + s * a)
 }
 
 impl<
@@ -144,7 +134,9 @@ impl<
     /// `layering`'s receivers, then its projected shadow (each receiver pixel darkened at most
     /// once, the stencil of `layers` keeping count), then the other opaque objects, then the
     /// translucent triangles ([`crate::Material::alpha`]) back to front, depth-tested against
-    /// the opaque ones and not writing depth. The shadow and the translucent triangles blend
+    /// the opaque ones and not writing depth. With [`Layering::volumes`] the shadow is
+    /// counted instead, after the opaque objects of each row (see [`crate::VolumeShadow`]);
+    /// [`Layering::with_outline`] adds outlines before the translucent triangles. The shadow and the translucent triangles blend
     /// onto the strip's pixels (`C = Csrc·α + Cdst·(1 − α)`): one product per channel and
     /// pixel (the only per-pixel products of the renderer), a table lookup for the shadow on
     /// a target of at most 6 bits per channel (RGB565).
@@ -228,7 +220,13 @@ impl<
     ) -> Result<Stats, Error<E>> {
         let n = scene.objects.len();
         let bad = |index: usize| Error::Layers(LayerError::NoSuchObject { index });
-        for &i in layering.receivers.iter().chain(layering.casters) {
+        let outlined = layering.outline.map_or(&[][..], |o| o.objects);
+        for &i in layering
+            .receivers
+            .iter()
+            .chain(layering.casters)
+            .chain(outlined)
+        {
             if i >= n {
                 return Err(bad(i));
             }
@@ -237,9 +235,18 @@ impl<
             Some(s) => Some((s.matrix().ok_or(Error::Layers(LayerError::Shadow))?, s)),
             None => None,
         };
+        if let Some(v) = &layering.volume {
+            if shadow.is_some() {
+                return Err(Error::Layers(LayerError::TwoShadows));
+            }
+            check_volume(scene, layering.casters, v, 8 * W * LINES)?;
+        }
+        if let Some(o) = &layering.outline {
+            check_adjacency(scene, o.objects, o.adjacency, 8 * W * LINES)?;
+        }
         let translucent = scene.objects.iter().any(|o| o.material.alpha < 255);
         // (A [`crate::TriangleId`] target records the opaque triangles only: nothing blends.)
-        if (shadow.is_some() || translucent)
+        if (shadow.is_some() || layering.volume.is_some() || translucent)
             && C::from_channels([0; 3]).channels().is_none()
             && C::triangle_id(0).is_none()
         {
@@ -290,6 +297,17 @@ impl<
         layers.bounds[1] = end(self);
         layers.shadow = ([0; 3], 0);
         layers.blob = false;
+        layers.volume = false;
+        let marks = layers.stencil.as_flattened_mut();
+        if let Some(v) = &layering.volume {
+            for (k, &i) in layering.casters.iter().enumerate() {
+                let adjacency = v.adjacency[k];
+                let o = &scene.objects[i];
+                self.volume_object(&c, &mut f, o, adjacency, v, marks, probe);
+            }
+            layers.volume = true;
+            set_blend::<C, W, LINES, RA, PA>(layers, v.color, v.alpha);
+        }
         if let Some((m, s)) = shadow {
             // Flat and unlit: only the coverage of these triangles is used.
             let material = Material::matte(s.color, S::ONE, S::ZERO).flat();
@@ -320,19 +338,27 @@ impl<
                     }
                 }
             }
-            let max = C::CHANNEL_MAX;
-            let sc: [u8; 3] =
-                core::array::from_fn(|k| div255(s.color[k] as u32 * max[k] as u32) as u8);
             let alpha = if blob { s.blob_ring_alpha() } else { s.alpha };
-            layers.shadow = (sc, alpha);
+            set_blend::<C, W, LINES, RA, PA>(layers, s.color, alpha);
             layers.blob = blob;
-            for k in 0..3 {
-                for (c, e) in layers.lut[k].iter_mut().enumerate() {
-                    *e = blend(c as u32, sc[k] as u32, alpha as u32) as u8;
-                }
-            }
         }
         layers.bounds[2] = end(self);
+        if let Some(o) = &layering.outline {
+            let cam = &scene.camera;
+            let eye = match cam.projection {
+                crate::Projection::Orthographic { .. } => {
+                    let r = cam.view.m[2];
+                    ([r[0], r[1], r[2]], true)
+                }
+                _ => (cam.eye, false),
+            };
+            let marks = layers.stencil.as_flattened_mut();
+            for (k, &i) in o.objects.iter().enumerate() {
+                let obj = &scene.objects[i];
+                self.outline_object(&c, &mut f, obj, o.adjacency[k], eye, o.color, marks, probe);
+            }
+        }
+        layers.bounds[3] = end(self);
         layers.translucent.clear();
         for (i, o) in scene.objects.iter().enumerate() {
             if o.material.alpha < 255 {
@@ -341,9 +367,9 @@ impl<
                 let _ = layers.translucent.push((end(self), o.material.alpha));
             }
         }
-        let stats = self.frame_end(scene, &c, &mut f)?;
+        let stats = self.frame_end(scene, &c, &mut f, usize::MAX)?;
         // Each list's most triangles on one row, against its capacity.
-        for (list, capacity) in [(0u8, RA), (1, PA)] {
+        for (list, capacity) in [(0u8, RA), (1, PA), (2, ACTIVE)] {
             let needed = self.layer_overlap(&layers.bounds, list);
             if needed > capacity && self.overflow == OverflowPolicy::Error {
                 self.next_row = self.vh;
@@ -360,16 +386,22 @@ impl<
         Ok(stats)
     }
 
-    /// The most triangles of list `list` (0: receivers, 1: shadow polygons and translucent
-    /// triangles) covering one row, by a sweep over the row-change counts (in `starts`, free
+    /// The most triangles of list `list` (0: receivers, 1: shadow, outline and translucent
+    /// triangles, 2: the other opaque ones) covering one row, by a sweep over the row-change counts (in `starts`, free
     /// once the buckets are sorted).
-    fn layer_overlap(&mut self, bounds: &[u16; 3], list: u8) -> usize {
+    fn layer_overlap(&mut self, bounds: &[u16; 4], list: u8) -> usize {
         let vh = self.vh;
         self.starts[..vh].fill(0);
         for t in self.tris.iter() {
             let i = t.v[1] as usize;
-            let post = i >= bounds[1] as usize;
-            if (list == 0 && i >= bounds[0] as usize) || (list == 1 && !post) {
+            let group = if i < bounds[0] as usize {
+                0
+            } else if i < bounds[1] as usize {
+                2
+            } else {
+                1
+            };
+            if group != list {
                 continue;
             }
             let [a, b, c] = t.indices().map(|k| self.verts[k].y as i32);
@@ -456,71 +488,88 @@ impl<
                 *dither,
                 stats,
             );
-            let mut i = 0;
-            while i < layers.post.len() {
-                if layers.meta[i] as u8 != SHADOW {
-                    i += 1;
-                    continue;
-                }
-                let (frag, written, done) = shadow_row(
-                    layers.post.get_mut(i),
-                    row as i32,
-                    colors,
-                    depth,
-                    &mut layers.stencil[l][..vw],
-                    &layers.lut,
-                    layers.shadow,
-                    layers.blob,
-                );
+            let Layers {
+                stencil,
+                lut,
+                shadow,
+                blob,
+                volume,
+                post,
+                meta,
+                key,
+                ..
+            } = layers;
+            let stencil = &mut stencil[l][..vw];
+            let d = Darken {
+                lut,
+                shadow: *shadow,
+            };
+            let (row, blob) = (row as i32, *blob);
+            let mut post = Post {
+                list: post,
+                meta,
+                key,
+            };
+            post.rows(SHADOW, row, |t, _, _| {
+                let (frag, written) = shadow_row(t, colors, depth, stencil, d, blob);
                 stats.add_row(frag, written);
-                if done {
-                    layers.remove_post(i);
-                } else {
-                    i += 1;
-                }
-            }
+            });
             draw_list_row::<C, ACTIVE, XA>(
                 active,
                 xactive,
-                row,
+                row as usize,
                 colors,
                 depth,
                 *depth_test,
                 *dither,
                 stats,
             );
+            if *volume {
+                // Count the volume faces behind the surface, then darken where the count is
+                // not zero, over the columns the faces covered.
+                let (mut lo, mut hi) = (vw, 0);
+                post.rows(VOLUME, row, |t, meta, _| {
+                    let (frag, r) = volume_row(t, depth, stencil, (meta >> 8) as u8);
+                    if !r.is_empty() {
+                        (lo, hi) = (lo.min(r.start), hi.max(r.end));
+                    }
+                    stats.add_row(frag, 0);
+                });
+                if lo < hi {
+                    let r = lo..hi;
+                    let written = darken_span(
+                        &mut colors[r.clone()],
+                        &depth[r.clone()],
+                        &mut stencil[r],
+                        d,
+                        |s| *s != 0,
+                    );
+                    stats.add_row(0, written);
+                }
+            }
+            post.rows(OUTLINE, row, |t, _, _| {
+                let (frag, written) = outline_row(t, colors, depth);
+                stats.add_row(frag, written);
+            });
             // Translucent triangles, farthest first: their indices sorted by key per row.
             let mut order = [0u16; PA];
             let mut n = 0;
-            for j in 0..layers.post.len() {
-                if layers.meta[j] as u8 == TRANSLUCENT {
+            for j in 0..post.list.len() {
+                if post.meta[j] as u8 == TRANSLUCENT {
                     order[n] = j as u16;
                     n += 1;
                 }
             }
-            let key = &layers.key;
+            let key = &post.key;
             order[..n].sort_unstable_by(|a, b| key[*b as usize].cmp(&key[*a as usize]));
             for &j in &order[..n] {
                 let j = j as usize;
-                let alpha = (layers.meta[j] >> 8) as u32;
-                let (frag, written) =
-                    translucent_row(layers.post.get_mut(j), row as i32, colors, depth, alpha);
+                let alpha = (post.meta[j] >> 8) as u32;
+                let (frag, written) = translucent_row(post.list.get_mut(j), colors, depth, alpha);
                 stats.add_row(frag, written);
             }
             // Advance (or retire) them after all are drawn: removal reorders the list.
-            let mut j = 0;
-            while j < layers.post.len() {
-                if layers.meta[j] as u8 == TRANSLUCENT {
-                    let t = layers.post.get_mut(j);
-                    let next = row as i32 + 1;
-                    if next >= t.row_end as i32 {
-                        layers.remove_post(j);
-                        continue;
-                    }
-                    t.advance(next);
-                }
-                j += 1;
-            }
+            post.rows(TRANSLUCENT, row, |_, _, _| {});
         }
         self.next_row = y0 + lines;
         Some((y0, lines))
@@ -549,7 +598,13 @@ impl<
             }
             if layers.post.len() > before {
                 let (kind, alpha) = if v < layers.bounds[2] as usize {
-                    (SHADOW, 0)
+                    if layers.volume {
+                        (VOLUME, volume_sign(rec))
+                    } else {
+                        (SHADOW, 0)
+                    }
+                } else if v < layers.bounds[3] as usize {
+                    (OUTLINE, 0)
                 } else {
                     let a = layers
                         .translucent
@@ -559,7 +614,9 @@ impl<
                     (TRANSLUCENT, a)
                 };
                 layers.meta[before] = kind as u16 | (alpha as u16) << 8;
-                layers.key[before] = sort_key(rec, verts);
+                if kind == TRANSLUCENT {
+                    layers.key[before] = sort_key(rec, verts);
+                }
             }
             return true;
         }
@@ -599,134 +656,71 @@ fn sort_key(t: &TriRecord, verts: &[ScreenVertex]) -> u64 {
     ((z(&a) + z(&b) + z(&c)) << 40) | (x << 20) | y
 }
 
-/// One row of a shadow polygon: each pixel a receiver drew (depth below the far plane: on this
-/// row only the receivers have drawn yet) and no shadow polygon darkened yet is blended toward
-/// the shadow colour, and marked in the stencil (a blob disc, `blob`, darkens whatever the
-/// stencil says: the nested discs add up). Returns `(fragments, written, finished)`.
-#[allow(clippy::too_many_arguments)]
-fn shadow_row<C: TargetColor>(
-    t: &mut ActiveTri,
-    row: i32,
-    colors: &mut [C],
-    depth: &[u16],
-    stencil: &mut [u8],
-    lut: &[[u8; 64]; 3],
-    shadow: ([u8; 3], u8),
-    blob: bool,
-) -> (u32, u32, bool) {
-    // A blob never sets the stencil bit, so every pixel stays open to the next disc.
-    let mark = if blob { 0 } else { SHADOWED };
-    let width = colors.len().min(depth.len()).min(stencil.len()) as i32;
-    let (xs, xe) = (t.edges[0].c().max(0), t.edges[1].c().min(width));
-    let mut written = 0;
-    if xs < xe {
-        let r = xs as usize..xe as usize;
-        let (zs, ss) = (&depth[r.clone()], &mut stencil[r.clone()]);
-        let small = C::CHANNEL_MAX.iter().all(|&m| m <= 63);
-        if let (Some(words), true) = (rgb565_words_mut(&mut colors[r.clone()]), small) {
-            for ((w, &z), s) in words.iter_mut().zip(zs).zip(ss.iter_mut()) {
-                if z != u16::MAX && *s & SHADOWED == 0 {
-                    *s |= mark;
-                    let v = *w as usize;
-                    *w = (lut[0][v >> 11] as u16) << 11
-                        | (lut[1][(v >> 5) & 63] as u16) << 5
-                        | lut[2][v & 31] as u16;
-                    written += 1;
-                }
-            }
-        } else {
-            for ((c, &z), s) in colors[r].iter_mut().zip(zs).zip(ss.iter_mut()) {
-                if z != u16::MAX && *s & SHADOWED == 0 {
-                    *s |= mark;
-                    if let Some(ch) = c.channels() {
-                        let k = |i: usize| {
-                            if small {
-                                lut[i][ch[i] as usize & 63]
-                            } else {
-                                blend(ch[i] as u32, shadow.0[i] as u32, shadow.1 as u32) as u8
-                            }
-                        };
-                        *c = C::from_channels([k(0), k(1), k(2)]);
-                        written += 1;
-                    }
-                }
-            }
+/// The shadow's colour in the target's channel units and its opacity, and the blend table for
+/// channels of at most 6 bits (RGB565), into `layers`.
+fn set_blend<
+    C: TargetColor,
+    const W: usize,
+    const LINES: usize,
+    const RA: usize,
+    const PA: usize,
+>(
+    layers: &mut Layers<W, LINES, RA, PA>,
+    color: [u8; 3],
+    alpha: u8,
+) {
+    let max = C::CHANNEL_MAX;
+    let sc: [u8; 3] = core::array::from_fn(|k| div255(color[k] as u32 * max[k] as u32) as u8);
+    layers.shadow = (sc, alpha);
+    for k in 0..3 {
+        for (c, e) in layers.lut[k].iter_mut().enumerate() {
+            *e = blend(c as u32, sc[k] as u32, alpha as u32) as u8;
         }
     }
-    let next = row + 1;
-    if next >= t.row_end as i32 {
-        return ((xe - xs).max(0) as u32, written, true);
-    }
-    t.advance(next);
-    ((xe - xs).max(0) as u32, written, false)
 }
 
-/// One row of a translucent triangle (set up without the fast path: unpacked depth and
-/// colour rows), blended with opacity `alpha` (0..=255) over the pixels it is in front of;
-/// depth is tested, not written. Does not advance the triangle. Returns
-/// `(fragments, written)`.
-fn translucent_row<C: TargetColor>(
-    t: &ActiveTri,
-    _row: i32,
-    colors: &mut [C],
-    depth: &[u16],
-    alpha: u32,
-) -> (u32, u32) {
-    let width = colors.len().min(depth.len()) as i32;
-    let (lc, rc) = (t.edges[0].c(), t.edges[1].c());
-    let (xs, xe) = (lc.max(0), rc.min(width));
-    if xs >= xe {
-        return (0, 0);
+/// Checks each object of `objects` has an adjacency table (`adjacency`, in the same order) of
+/// its mesh's triangle count, and at most `bits` triangles.
+fn check_adjacency<S: Scalar, E, const L: usize>(
+    scene: &Scene<'_, S, L>,
+    objects: &[usize],
+    adjacency: &[&[[u16; 3]]],
+    bits: usize,
+) -> Result<(), Error<E>> {
+    for (k, &object) in objects.iter().enumerate() {
+        let triangles = scene.objects[object].mesh.indices().len();
+        if adjacency.get(k).map(|a| a.len()) != Some(triangles) {
+            return Err(Error::Layers(LayerError::Adjacency { object }));
+        }
+        if triangles > bits {
+            return Err(Error::Layers(LayerError::TooManyTriangles {
+                object,
+                triangles,
+                capacity: bits,
+            }));
+        }
     }
-    let skip = xs - lc;
-    let flat = t.flags & FLAT != 0;
-    let at = |k: usize| t.row[k].wrapping_add(t.gx[k].wrapping_mul(skip));
-    let half = 1i32 << (COLOR_FRAC_BITS - 1);
-    let mut z = at(0).clamp(0, DEPTH_MAX << DEPTH_FRAC_BITS) + (1 << (DEPTH_FRAC_BITS - 1));
-    let (mut v, g) = if flat {
-        let c = t.flat_channels();
-        (c.map(|b| ((b as i32) << COLOR_FRAC_BITS) + half), [0i32; 3])
-    } else {
-        let max = C::CHANNEL_MAX;
-        (
-            core::array::from_fn(|k| at(k + 1).clamp(0, (max[k] as i32) << COLOR_FRAC_BITS) + half),
-            [t.gx[1], t.gx[2], t.gx[3]],
-        )
+    Ok(())
+}
+
+/// Checks a shadow volume's light, reach and the casters' adjacency tables.
+fn check_volume<S: Scalar, E, const L: usize>(
+    scene: &Scene<'_, S, L>,
+    casters: &[usize],
+    v: &crate::VolumeShadow<'_, S>,
+    bits: usize,
+) -> Result<(), Error<E>> {
+    let light_ok = match v.light {
+        ShadowLight::Directional(d) => {
+            d.iter().all(|c| c.is_valid()) && d.iter().any(|&c| c != S::ZERO)
+        }
+        ShadowLight::Point(p) => p.iter().all(|c| c.is_valid()),
     };
-    let mut written = 0;
-    let r = xs as usize..xe as usize;
-    if let Some(words) = rgb565_words_mut(&mut colors[r.clone()]) {
-        // RGB565 words: the channels by shifts (the same values as `channels`).
-        for (w, &zb) in words.iter_mut().zip(&depth[r]) {
-            if ((z >> DEPTH_FRAC_BITS) as u16) < zb {
-                let d = *w as u32;
-                let s = v.map(|s| (s >> COLOR_FRAC_BITS) as u32);
-                *w = (blend(d >> 11, s[0], alpha) << 11
-                    | blend((d >> 5) & 63, s[1], alpha) << 5
-                    | blend(d & 31, s[2], alpha)) as u16;
-                written += 1;
-            }
-            z = z.wrapping_add(t.gx[0]);
-            for k in 0..3 {
-                v[k] = v[k].wrapping_add(g[k]);
-            }
-        }
-        return ((xe - xs) as u32, written);
+    if !light_ok {
+        return Err(Error::Layers(LayerError::Shadow));
     }
-    for (c, &zb) in colors[r.clone()].iter_mut().zip(&depth[r]) {
-        if ((z >> DEPTH_FRAC_BITS) as u16) < zb {
-            if let Some(d) = c.channels() {
-                let src = v.map(|s| (s >> COLOR_FRAC_BITS) as u32);
-                *c = C::from_channels(core::array::from_fn(|k| {
-                    blend(d[k] as u32, src[k], alpha) as u8
-                }));
-                written += 1;
-            }
-        }
-        z = z.wrapping_add(t.gx[0]);
-        for k in 0..3 {
-            v[k] = v[k].wrapping_add(g[k]);
-        }
+    if !(v.reach.is_valid() && v.reach > S::ZERO) {
+        return Err(Error::Layers(LayerError::Reach));
     }
-    ((xe - xs) as u32, written)
+    check_adjacency(scene, casters, v.adjacency, bits)
 }

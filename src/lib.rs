@@ -195,6 +195,7 @@ mod geometry;
 mod geometry_attrs;
 pub mod hash;
 mod kernel;
+mod layer_rows;
 mod layers;
 mod math;
 mod mesh;
@@ -219,6 +220,7 @@ mod strip;
 mod texture;
 mod textured;
 mod textured_shapes;
+mod volume;
 mod wide;
 
 pub use fixed;
@@ -246,12 +248,14 @@ pub use scalar::{Fx, FxRecip, Scalar, NDC_FRAC_BITS};
 pub use scene::{Object, Scene};
 pub use shade::{Light, Material, Shading};
 pub use shadow::{
-    LayerError, Layering, PlanarShadow, ShadowLight, ShadowMethod, BLOB_RINGS, BLOB_SIDES,
+    LayerError, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow,
+    BLOB_RINGS, BLOB_SIDES,
 };
 pub use shapes::{ParamValue, Shape, ShapeError};
 pub use strip::StripCanvas;
 pub use texture::{Texture, TextureError, TextureMode, Texturing, Wrap, MAX_TEXTURE_SIZE};
 pub use textured_shapes::TexturedShape;
+pub use volume::{mesh_adjacency, AdjacencyError, NO_NEIGHBOUR};
 
 #[doc(inline)]
 pub use embedded_graphics_core::draw_target::DrawTarget;

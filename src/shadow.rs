@@ -258,17 +258,64 @@ pub(crate) const BLOB_FAN: [[u16; 3]; BLOB_SIDES] = {
     t
 };
 
+/// A shadow volume per caster ([`Layering::volume`]): the silhouette of each caster as seen
+/// from the light (found with its [`crate::mesh_adjacency`]) extruded away from the light by
+/// `reach`, closed by caps, and counted per pixel in the stencil lines (z-fail: the volume
+/// faces behind the visible surface, so a camera inside a volume needs nothing special).
+/// Every visible pixel inside a volume is blended toward `color` by `alpha`, whichever object
+/// it belongs to: casters shadow the ground, each other and themselves.
+///
+/// The near cap is each caster's faces turned away from the light, so those faces (already
+/// unlit: ambient only) are not darkened a second time by their own volume; the far cap is
+/// the same faces moved by `reach`. A volume part beyond the camera's far plane is flattened
+/// onto it (still counted: the volume stays closed). A caster should be a closed mesh whose
+/// triangles are counter-clockwise from outside; an open mesh casts from its faces turned
+/// away from the light.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct VolumeShadow<'a, S> {
+    /// The light (usually the scene's own light).
+    pub light: ShadowLight<S>,
+    /// How far each silhouette is extruded, in world units (> 0): past every surface the
+    /// shadow should reach (for a point light, from each caster vertex along the light's ray).
+    pub reach: S,
+    /// One adjacency table per caster, in the order of [`Layering::casters`]
+    /// ([`crate::mesh_adjacency`] of its mesh).
+    pub adjacency: &'a [&'a [[u16; 3]]],
+    /// The shadow's colour, 8 bits per channel.
+    pub color: [u8; 3],
+    /// The shadow's opacity, 0..=255.
+    pub alpha: u8,
+}
+
+/// Outlines ([`Layering::outline`]): each listed object's contour edges as seen from the eye
+/// (an edge between a face turned toward the eye and one turned away, found with the
+/// object's [`crate::mesh_adjacency`]) drawn as lines of `color`, 1 px wide, hidden where a
+/// nearer surface covers them.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Outline<'a> {
+    /// The outlined objects (indices into [`crate::Scene::objects`]).
+    pub objects: &'a [usize],
+    /// One adjacency table per outlined object, in the order of `objects`.
+    pub adjacency: &'a [&'a [[u16; 3]]],
+    /// The lines' colour, 8 bits per channel.
+    pub color: [u8; 3],
+}
+
 /// What a layered frame draws beyond the opaque pass: the objects (indices into
-/// [`crate::Scene::objects`]) that receive and cast a projected shadow, and the shadow.
-/// Translucent materials ([`crate::Material::alpha`]) need nothing here.
+/// [`crate::Scene::objects`]) that receive and cast a shadow, the shadow (planar or volumes)
+/// and the outlines. Translucent materials ([`crate::Material::alpha`]) need nothing here.
 #[derive(Copy, Clone, Debug)]
 pub struct Layering<'a, S> {
-    /// The objects the shadow falls on (drawn first on each row; opaque ones only).
+    /// The objects a planar shadow falls on (drawn first on each row; opaque ones only).
     pub receivers: &'a [usize],
-    /// The objects that cast it.
+    /// The objects that cast the planar shadow or the shadow volumes.
     pub casters: &'a [usize],
-    /// The shadow (`None`: receivers and casters are drawn as ordinary objects).
+    /// The planar shadow (`None`: receivers and casters are drawn as ordinary objects).
     pub shadow: Option<PlanarShadow<S>>,
+    /// Shadow volumes of the casters (not with a planar `shadow`: one stencil serves one).
+    pub volume: Option<VolumeShadow<'a, S>>,
+    /// Outlines.
+    pub outline: Option<Outline<'a>>,
 }
 
 impl<'a, S> Layering<'a, S> {
@@ -279,6 +326,8 @@ impl<'a, S> Layering<'a, S> {
             receivers: &[],
             casters: &[],
             shadow: None,
+            volume: None,
+            outline: None,
         }
     }
 
@@ -293,6 +342,29 @@ impl<'a, S> Layering<'a, S> {
             receivers,
             casters,
             shadow: Some(shadow),
+            volume: None,
+            outline: None,
+        }
+    }
+
+    /// Shadow volumes of `casters` on everything.
+    #[must_use]
+    pub const fn volumes(casters: &'a [usize], volume: VolumeShadow<'a, S>) -> Self {
+        Layering {
+            receivers: &[],
+            casters,
+            shadow: None,
+            volume: Some(volume),
+            outline: None,
+        }
+    }
+
+    /// This layering with `outline`.
+    #[must_use]
+    pub fn with_outline(self, outline: Outline<'a>) -> Self {
+        Layering {
+            outline: Some(outline),
+            ..self
         }
     }
 }
@@ -326,16 +398,39 @@ pub enum LayerError {
     /// The target colour cannot report its channels ([`crate::TargetColor::channels`]), so
     /// nothing can be blended onto it.
     Blending,
-    /// More receiver triangles (`list` 0) or shadow and translucent triangles (`list` 1)
-    /// cross one row than the [`crate::Layers`] lists hold (`RA`, `PA`).
+    /// More receiver triangles (`list` 0), shadow, outline and translucent triangles
+    /// (`list` 1) or other opaque triangles (`list` 2) cross one row than the
+    /// [`crate::Layers`] lists (`RA`, `PA`) or the renderer's active list (`ACTIVE`) hold.
     Capacity {
-        /// 0: receivers (`RA`), 1: shadow and translucent triangles (`PA`).
+        /// 0: receivers (`RA`), 1: shadow, outline and translucent triangles (`PA`), 2: the
+        /// other opaque triangles (`ACTIVE`).
         list: u8,
         /// The most triangles of the list on one row.
         needed: usize,
         /// Its capacity.
         capacity: usize,
     },
+    /// Both a planar shadow and shadow volumes: the stencil serves one of them per frame.
+    TwoShadows,
+    /// Object `object` (a volume caster or an outlined object) has no adjacency table, or one
+    /// whose length is not its mesh's triangle count.
+    Adjacency {
+        /// Index of the object in the scene.
+        object: usize,
+    },
+    /// Object `object` has more triangles than the stencil lines have bits
+    /// (`8·W·LINES`): a volume caster's or outlined object's faces are marked there while
+    /// its silhouette is found.
+    TooManyTriangles {
+        /// Index of the object in the scene.
+        object: usize,
+        /// Its triangles.
+        triangles: usize,
+        /// The bits of the stencil lines.
+        capacity: usize,
+    },
+    /// The volumes' `reach` is not a valid positive number.
+    Reach,
 }
 
 impl core::fmt::Display for LayerError {
@@ -360,6 +455,22 @@ impl core::fmt::Display for LayerError {
                 "more than {} translucent objects",
                 crate::MAX_TRANSLUCENT
             ),
+            LayerError::TwoShadows => {
+                write!(f, "a planar shadow and shadow volumes in one frame")
+            }
+            LayerError::Adjacency { object } => write!(
+                f,
+                "object {object} has no adjacency table of its mesh's triangle count"
+            ),
+            LayerError::TooManyTriangles {
+                object,
+                triangles,
+                capacity,
+            } => write!(
+                f,
+                "object {object} has {triangles} triangles, the stencil lines mark at most {capacity}"
+            ),
+            LayerError::Reach => write!(f, "the shadow volumes' reach is not a positive number"),
             LayerError::Blending => {
                 write!(f, "the target colour cannot report its channels for blending")
             }
@@ -370,10 +481,10 @@ impl core::fmt::Display for LayerError {
             } => write!(
                 f,
                 "{needed} {} triangles cross one row, the layers hold {capacity}",
-                if *list == 0 {
-                    "receiver"
-                } else {
-                    "shadow and translucent"
+                match list {
+                    0 => "receiver",
+                    1 => "shadow, outline and translucent",
+                    _ => "opaque (the renderer's ACTIVE)",
                 }
             ),
         }

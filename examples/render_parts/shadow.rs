@@ -1,5 +1,6 @@
 //! `render --scene shadow`: the shadow benchmark scene (`demo::render_shadow_scene`) with the
-//! shadow method, the shadow's plane and the torus's opacity from the command line.
+//! shadow method, the shadow's plane, the torus's opacity and the outlines from the command
+//! line.
 
 use std::path::Path;
 
@@ -30,12 +31,15 @@ pub fn run(args: &Args) -> Result<(), (String, i32)> {
             2,
         ));
     }
+    let shadow = args.shadow.unwrap_or(ShadowArg::Projected);
     let o = ShadowScene {
-        shadow: match args.shadow.unwrap_or(ShadowArg::Projected) {
-            ShadowArg::None => None,
+        shadow: match shadow {
+            ShadowArg::None | ShadowArg::Volume => None,
             ShadowArg::Projected => Some(ShadowMethod::Projected),
             ShadowArg::Blob => Some(ShadowMethod::Blob),
         },
+        volume: shadow == ShadowArg::Volume,
+        outline: args.outline,
         plane: args.shadow_plane.unwrap_or([0.0, 1.0, 0.0, 0.0]),
         alpha: args.alpha.unwrap_or(255),
         spin_deg: 0.0,
@@ -74,6 +78,7 @@ fn frames<S: Scalar, C: TargetColor + Into<Rgb888>>(
                 "shadow scene ({}, {}): {} triangles drawn of {}, {} fragments, {} pixels written, renderer and layers RAM {} bytes",
                 S::NAME,
                 match o.shadow {
+                    None if o.volume => "shadow volumes",
                     None => "no shadow",
                     Some(ShadowMethod::Projected) => "projected shadow",
                     Some(ShadowMethod::Blob) => "blob shadow",
