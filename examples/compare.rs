@@ -438,7 +438,7 @@ fn shadows(mcu: &BTreeMap<(String, String, String), u64>) -> String {
     }
     let _ = writeln!(
         md,
-        "\nA 64 × 64 map already takes half the budget and covers the 240 × 240 view with one texel per 3.75 × 3.75 pixels (blocky, aliased shadow edges); a map fine enough for the view is larger than the whole renderer. Projected shadows on planes and (to come) shadow volumes count in the strip's own lines instead, so shadow maps are not built."
+        "\nA 64 × 64 map already takes half the budget and covers the 240 × 240 view with one texel per 3.75 × 3.75 pixels (blocky, aliased shadow edges); a map fine enough for the view is larger than the whole renderer. Projected shadows on planes and shadow volumes count in the strip's own lines instead, so shadow maps are not built."
     );
     md
 }

@@ -145,6 +145,21 @@ fn camera<S: Scalar>(eye: [f64; 3], target: [f64; 3]) -> Camera<S> {
     .unwrap()
 }
 
+/// An orthographic camera at `eye` looking at the origin, 1 unit = 8 px.
+fn ortho<S: Scalar>(eye: [f64; 3], up: [f64; 3]) -> Camera<S> {
+    Camera::look_at(
+        eye.map(S::from_f64),
+        [S::ZERO; 3],
+        up.map(S::from_f64),
+        Projection::Orthographic {
+            height: S::from_f64(N as f64 / 8.0),
+            near: S::from_f64(1.0),
+            far: S::from_f64(20.0),
+        },
+    )
+    .unwrap()
+}
+
 /// The ground's colour darkened by the shadow, as the target shows it.
 fn shadowed_ground() -> Rgb888 {
     let c = |v: u8| ((v as u32 * (255 - SHADOW as u32) + 127) / 255) as u8;
@@ -246,17 +261,8 @@ fn slanted<S: Scalar>() -> Frame<Rgb888> {
         ([0.0, 3.0, 0.0], [0.5, 0.2, 0.5]),
         ([0.0, 0.5, 0.0], [2.0, 0.5, 2.0]),
     ]);
-    let cam = Camera::look_at(
-        [0.0, 10.0, 0.0].map(S::from_f64),
-        [S::ZERO; 3],
-        [0.0, 0.0, -1.0].map(S::from_f64),
-        Projection::Orthographic {
-            height: S::from_f64(N as f64 / 8.0),
-            near: S::from_f64(1.0),
-            far: S::from_f64(20.0),
-        },
-    )
-    .unwrap();
+    // From above (up = −z).
+    let cam = ortho([0.0, 10.0, 0.0], [0.0, 0.0, -1.0]);
     // Toward the light: up and toward −x, so shadows move +x by 0.5 per unit of drop.
     draw(&w, cam, [-0.5, 1.0, 0.0], How::Volume)
 }
@@ -334,17 +340,7 @@ fn outlined<S: Scalar>(cover: bool) -> Frame<Rgb888> {
             material: unlit([0, 0, 200]),
         });
     }
-    let cam = Camera::look_at(
-        [0.0, 0.0, 10.0].map(S::from_f64),
-        [S::ZERO; 3],
-        [0.0, 1.0, 0.0].map(S::from_f64),
-        Projection::Orthographic {
-            height: S::from_f64(N as f64 / 8.0),
-            near: S::from_f64(1.0),
-            far: S::from_f64(20.0),
-        },
-    )
-    .unwrap();
+    let cam = ortho([0.0, 0.0, 10.0], [0.0, 1.0, 0.0]);
     let scene = Scene::new(&objects, cam, [Light::white([S::ZERO, S::ZERO, S::ONE])]);
     let mut adjacency = [[0u16; 3]; 2];
     mesh_adjacency(&objects[0].mesh, &mut adjacency).unwrap();
@@ -503,4 +499,82 @@ fn bad_volume_and_outline_layerings_are_named_errors() {
             capacity: 8
         }))
     );
+}
+
+/// Shadow volumes, outlines and a translucent box in one frame, into embedded-graphics'
+/// `MockDisplay` (its overdraw check on): every pixel is written exactly once.
+fn every_pixel_once<S: Scalar>() {
+    use embedded_graphics::mock_display::MockDisplay;
+    let w = world::<S>(&[
+        ([0.0, 3.0, 0.0], [0.5, 0.2, 0.5]),
+        ([0.0, 0.5, 0.0], [2.0, 0.5, 2.0]),
+    ]);
+    let glass = world::<S>(&[([1.5, 2.0, 1.5], [0.4, 0.4, 0.4])]);
+    let objects = [
+        Object {
+            mesh: Mesh::new(&w.ground, &QUAD).unwrap(),
+            transform: Mat4::identity(),
+            material: unlit(GROUND),
+        },
+        Object {
+            mesh: Mesh::new(&w.caster, &w.caster_tris).unwrap(),
+            transform: Mat4::identity(),
+            material: unlit([220, 40, 40]),
+        },
+        Object {
+            mesh: Mesh::new(&glass.caster, &glass.caster_tris).unwrap(),
+            transform: Mat4::identity(),
+            material: unlit::<S>([40, 40, 220]).translucent(120),
+        },
+    ];
+    let cam = camera([4.0, 5.0, 6.0], [0.0, 0.5, 0.0]);
+    let scene = Scene::new(
+        &objects,
+        cam,
+        [Light::white([-0.5, 1.0, 0.3].map(S::from_f64))],
+    );
+    let adjacency: [&[[u16; 3]]; 1] = [&w.adjacency];
+    let layering = Layering::volumes(
+        &[1],
+        VolumeShadow {
+            light: ShadowLight::Directional([-0.5, 1.0, 0.3].map(S::from_f64)),
+            reach: S::from_f64(8.0),
+            adjacency: &adjacency,
+            color: [0; 3],
+            alpha: SHADOW,
+        },
+    )
+    .with_outline(Outline {
+        objects: &[1],
+        adjacency: &adjacency,
+        color: INK,
+    });
+    let mut r = Renderer::<S, Rgb888, 64, 64, 256, 256, 64>::new();
+    let mut layers = Layers::<64, 1, 4, 128>::new();
+    let mut display = MockDisplay::<Rgb888>::new();
+    let stats = r
+        .render_layered(&scene, &layering, &mut layers, &mut display)
+        .unwrap();
+    assert!(stats.drawn > 0);
+    let ink = Rgb888::new(INK[0], INK[1], INK[2]);
+    let (mut inked, mut dark) = (0, 0);
+    for y in 0..64 {
+        for x in 0..64 {
+            let p = display.get_pixel(Point::new(x, y));
+            assert!(p.is_some(), "({x}, {y}) not written");
+            inked += (p == Some(ink)) as u32;
+            dark += (p == Some(shadowed_ground())) as u32;
+        }
+    }
+    assert!(
+        inked > 20 && dark > 20,
+        "{inked} outline, {dark} shadowed pixels"
+    );
+}
+
+#[test]
+fn every_pixel_is_written_once_with_volumes_outlines_and_translucency() {
+    every_pixel_once::<Q>();
+    every_pixel_once::<f32>();
+    every_pixel_once::<f64>();
 }
