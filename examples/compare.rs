@@ -413,6 +413,18 @@ fn shadows(mcu: &BTreeMap<(String, String, String), u64>) -> String {
                 Some(Bench::ShadowNone),
                 Bench::Outline,
             ),
+            (
+                Bench::Edges,
+                "edges (contours and creases)",
+                Some(Bench::ShadowNone),
+                Bench::Edges,
+            ),
+            (
+                Bench::Wireframe,
+                "wireframe, hidden lines removed",
+                Some(Bench::ShadowNone),
+                Bench::Wireframe,
+            ),
         ],
     );
     // Shadow maps, evaluated: the light-view depth map's RAM against the renderer's budget.

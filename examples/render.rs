@@ -6,6 +6,8 @@
 
 #[path = "../tests/common/mod.rs"]
 mod common;
+#[path = "render_parts/edges.rs"]
+mod edges;
 #[path = "render_parts/shadow.rs"]
 mod shadow;
 
@@ -92,6 +94,9 @@ enum ShadingArg {
     Phong,
     /// Phong lit every 8 pixels, linear between
     FastPhong,
+    /// Lines along the edges (--edges, default all) over surfaces unlit in the background
+    /// colour, which hide the lines behind them (unless --see-through)
+    Wireframe,
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -363,7 +368,7 @@ struct Args {
     /// every strip height)
     #[arg(long, value_name = "LINES", default_value_t = 1)]
     strip: usize,
-    /// The shadow of `--scene shadow` (default: projected)
+    /// The shadow of `--scene shadow` (default: projected; none with --shading wireframe)
     #[arg(long, value_enum)]
     shadow: Option<ShadowArg>,
     /// The plane `--scene shadow`'s shadow falls on, a·x + b·y + c·z + d = 0 (default 0,1,0,0:
@@ -378,6 +383,19 @@ struct Args {
     /// colour
     #[arg(long, value_name = "R,G,B", value_parser = rgb)]
     outline: Option<[u8; 3]>,
+    /// Edges drawn over the model (1 px, hidden behind nearer surfaces unless --see-through)
+    /// [default: none; all with --shading wireframe]
+    #[arg(long, value_enum)]
+    edges: Option<edges::EdgesArg>,
+    /// The edges' colour [default: black; the model's --color with --shading wireframe]
+    #[arg(long = "edge-color", value_name = "R,G,B", value_parser = rgb)]
+    edge_color: Option<[u8; 3]>,
+    /// `--edges crease`: an edge whose two faces meet at more than this angle, degrees
+    #[arg(long = "crease-angle", value_name = "DEG", default_value_t = 40.0)]
+    crease_angle: f64,
+    /// Edges hidden behind surfaces are drawn too (and those of faces turned away)
+    #[arg(long = "see-through")]
+    see_through: bool,
     /// Output image (.png; with --frames > 1 an animated .png or .gif)
     #[arg(long, value_name = "FILE", default_value = "scanline3d.png")]
     out: PathBuf,
@@ -849,10 +867,17 @@ fn run<S: Scalar, C: TargetColor>(
             ShadingArg::Gouraud => Shading::Gouraud,
             ShadingArg::Phong => Shading::Phong,
             ShadingArg::FastPhong => Shading::FastPhong,
+            ShadingArg::Wireframe => Shading::Flat,
         },
         texture: s.texture,
         alpha: 255,
     };
+    let material = if args.shading == ShadingArg::Wireframe {
+        Material::unlit(args.background)
+    } else {
+        material
+    };
+    let mut edge_frames = edges::EdgeFrames::new(args, &m.name, &mesh)?;
     let mut r: Box<Big<S, C>> = Box::default();
     r.set_viewport(w, h);
     r.set_dither(args.dither == OnOff::On);
@@ -903,6 +928,17 @@ fn run<S: Scalar, C: TargetColor>(
                 }
             }
         };
+        if let Some(e) = edge_frames.as_mut() {
+            let stats = e
+                .draw(&mut r, &scene, &mut f)
+                .map_err(|msg| format!("{}: {msg}", m.name))?;
+            timed(&mut || e.draw_timed(&mut r, &scene, (w, h)));
+            out.needs.push(Needs::from_stats(&stats));
+            out.stats.push(stats);
+            out.passes.push(1);
+            out.frames.push(f);
+            continue;
+        }
         let one_pass = match args.pass_triangles {
             None => r.render(&scene, &mut f).map(Some),
             Some(_) => Ok(None),
@@ -1158,6 +1194,8 @@ fn check_flags(args: &Args) -> Result<(), String> {
             args.near, args.far
         ));
     }
+    finite("--crease-angle", args.crease_angle)?;
+    edges::check(args)?;
     if let Some(height) = args.ortho {
         finite("--ortho", height)?;
         if height <= 0.0 {

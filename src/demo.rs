@@ -10,7 +10,9 @@ use crate::camera::{Camera, CameraError, Projection};
 use crate::demo_assets::Floor;
 pub use crate::demo_assets::{deg, Bench, BenchError, BenchFrame, CHECKER, CHECKER_TEXELS};
 pub(crate) use crate::demo_assets::{look, persp};
-pub use crate::demo_shadow::{render_shadow_scene, ShadowScene};
+pub use crate::demo_shadow::{
+    render_shadow_scene, EdgeStyle, ShadowScene, CREASE_ANGLE, WIRE_COLOR,
+};
 use crate::math::Mat4;
 use crate::scalar::Scalar;
 use crate::scene::Object;
@@ -288,7 +290,9 @@ where
         | Bench::ShadowBlob
         | Bench::Translucent
         | Bench::ShadowVolume
-        | Bench::Outline => render_shadow_scene::<S, C, D, P>(
+        | Bench::Outline
+        | Bench::Edges
+        | Bench::Wireframe => render_shadow_scene::<S, C, D, P>(
             &ShadowScene::bench(bench, spin_deg, dither),
             target,
             probe,

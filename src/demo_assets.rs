@@ -171,11 +171,17 @@ pub enum Bench {
     ShadowVolume,
     /// [`Bench::ShadowNone`] with both models outlined ([`crate::Outline`]).
     Outline,
+    /// The shadow scene's torus and cube outlined with their creases (edges sharper than
+    /// [`crate::demo::CREASE_ANGLE`]: the cube's) besides their contours.
+    Edges,
+    /// The shadow scene as a wireframe with its hidden lines removed: every edge of the ground,
+    /// the torus and the cube, the surfaces unlit in the background colour.
+    Wireframe,
 }
 
 impl Bench {
     /// Every benchmark scene.
-    pub const ALL: [Bench; 23] = [
+    pub const ALL: [Bench; 25] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -199,6 +205,8 @@ impl Bench {
         Bench::Translucent,
         Bench::ShadowVolume,
         Bench::Outline,
+        Bench::Edges,
+        Bench::Wireframe,
     ];
 
     /// Its name in reports.
@@ -228,6 +236,8 @@ impl Bench {
             Bench::Translucent => "translucent",
             Bench::ShadowVolume => "shadow_volume",
             Bench::Outline => "outline",
+            Bench::Edges => "edges",
+            Bench::Wireframe => "wireframe",
         }
     }
 }

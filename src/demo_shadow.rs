@@ -1,15 +1,18 @@
 //! The shadow benchmark scenes (`demo::Bench::ShadowNone`, `Shadow`, `ShadowBlob`,
-//! `ShadowVolume`, `Translucent`, `Outline`): a torus and a cube above a ground square, lit by
+//! `ShadowVolume`, `Translucent`, `Outline`, `Edges`, `Wireframe`): a torus and a cube above a ground square, lit by
 //! one directional light, drawn without a shadow, with the projected planar shadow of both on
 //! the ground (their shadows overlap), with blobs, with shadow volumes, with the torus
-//! translucent, and outlined.
+//! translucent, outlined, with its edges and creases drawn (`Edges`) and as a wireframe with its
+//! hidden lines removed (`Wireframe`).
 
 use crate::demo_assets::{deg, look, persp, Bench, BenchError, BenchFrame};
 use crate::math::Mat4;
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::{Light, Material};
-use crate::shadow::{Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow};
+use crate::shadow::{
+    Edges, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow,
+};
 use crate::shapes::Shape;
 use crate::{Layers, Renderer};
 
@@ -20,6 +23,22 @@ pub const SHADOW_CAPACITY: (usize, usize, usize, usize, usize) = (1024, 1024, 64
 /// The shadow-volume scene's capacities (as [`SHADOW_CAPACITY`]): each caster's volume adds
 /// two vertices per mesh vertex and its caps and silhouette quads.
 pub const VOLUME_CAPACITY: (usize, usize, usize, usize, usize) = (1280, 1536, 64, 4, 192);
+
+/// The capacities (as [`SHADOW_CAPACITY`]) of the scene with every edge drawn
+/// ([`EdgeStyle::All`], [`Bench::Wireframe`]): each edge is a quad of four vertices and two
+/// triangles.
+pub const WIRE_CAPACITY: (usize, usize, usize, usize, usize) = (2560, 2048, 64, 4, 160);
+
+/// The capacities (as [`SHADOW_CAPACITY`]) of the scene with hidden edges drawn too
+/// ([`ShadowScene::see_through`]): every edge of every face.
+pub const SEE_THROUGH_CAPACITY: (usize, usize, usize, usize, usize) = (5120, 2560, 160, 4, 256);
+
+/// The angle between two faces above which their edge is a crease ([`EdgeStyle::Crease`]),
+/// degrees: the cube's edges (90°), not the torus's facets (15° and 30°).
+pub const CREASE_ANGLE: f64 = 40.0;
+
+/// The wireframe's lines' colour.
+pub const WIRE_COLOR: [u8; 3] = [120, 230, 170];
 
 /// How far the shadow volumes reach from the casters (world units): past the ground.
 pub const VOLUME_REACH: f64 = 6.0;
@@ -44,8 +63,18 @@ pub struct ShadowScene {
     pub shadow: Option<ShadowMethod>,
     /// Shadow volumes of the torus and the cube instead (with `shadow` `None`).
     pub volume: bool,
-    /// Outlines of the torus and the cube, in this colour.
+    /// Outlines of the torus and the cube (of the ground too with `wireframe`), in this colour.
     pub outline: Option<[u8; 3]>,
+    /// Which edges the outlines draw.
+    pub edges: EdgeStyle,
+    /// The crease angle of [`EdgeStyle::Crease`], degrees (0..=180; the benchmark's is
+    /// [`CREASE_ANGLE`]).
+    pub crease_angle: f64,
+    /// Hidden edges drawn too ([`Outline::see_through`]).
+    pub see_through: bool,
+    /// Every model unlit in the background colour ([`Material::unlit`]): with `outline`, a
+    /// wireframe.
+    pub wireframe: bool,
     /// The plane the shadow falls on, `a·x + b·y + c·z + d = 0`: the ground square is placed
     /// in it (centred at the plane's point nearest the origin; `0, 1, 0, 0` is the level
     /// ground).
@@ -58,10 +87,21 @@ pub struct ShadowScene {
     pub dither: bool,
 }
 
+/// Which edges [`ShadowScene::outline`] draws ([`Edges`]).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum EdgeStyle {
+    /// The contours.
+    Silhouette,
+    /// The contours and the creases sharper than [`CREASE_ANGLE`].
+    Crease,
+    /// Every edge.
+    All,
+}
+
 impl ShadowScene {
     /// Benchmark scene `bench` ([`Bench::ShadowNone`], [`Bench::Shadow`],
-    /// [`Bench::ShadowBlob`], [`Bench::ShadowVolume`], [`Bench::Translucent`] or
-    /// [`Bench::Outline`]) turned by `spin_deg`.
+    /// [`Bench::ShadowBlob`], [`Bench::ShadowVolume`], [`Bench::Translucent`], [`Bench::Outline`],
+    /// [`Bench::Edges`] or [`Bench::Wireframe`]) turned by `spin_deg`.
     #[must_use]
     pub fn bench(bench: Bench, spin_deg: f64, dither: bool) -> Self {
         ShadowScene {
@@ -71,7 +111,19 @@ impl ShadowScene {
                 _ => None,
             },
             volume: bench == Bench::ShadowVolume,
-            outline: (bench == Bench::Outline).then_some(OUTLINE_COLOR),
+            outline: match bench {
+                Bench::Outline | Bench::Edges => Some(OUTLINE_COLOR),
+                Bench::Wireframe => Some(WIRE_COLOR),
+                _ => None,
+            },
+            edges: match bench {
+                Bench::Edges => EdgeStyle::Crease,
+                Bench::Wireframe => EdgeStyle::All,
+                _ => EdgeStyle::Silhouette,
+            },
+            crease_angle: CREASE_ANGLE,
+            see_through: false,
+            wireframe: bench == Bench::Wireframe,
             plane: [0.0, 1.0, 0.0, 0.0],
             alpha: if bench == Bench::Translucent {
                 TRANSLUCENT_ALPHA
@@ -103,7 +155,14 @@ where
     let torus = Shape::<S, 288, 576>::torus(0.7, 0.25, 24, 12).map_err(|_| BenchError::Scene)?;
     let cube = Shape::<S, 24, 12>::cube(0.35).map_err(|_| BenchError::Scene)?;
     let spin = Mat4::rotate_y(deg(o.spin_deg));
-    let m = |c: [u8; 3]| Material::matte(c, S::from_f64(0.25), S::from_f64(0.75));
+    let background = [24, 28, 40];
+    let m = |c: [u8; 3]| {
+        if o.wireframe {
+            Material::unlit(background)
+        } else {
+            Material::matte(c, S::from_f64(0.25), S::from_f64(0.75))
+        }
+    };
     let objects = [
         Object {
             mesh: ground.mesh(),
@@ -134,16 +193,37 @@ where
     let camera = look([0.0, 3.8, 4.6], [0.0, 0.3, 0.0], persp(45.0, 0.5, 20.0))
         .map_err(|_| BenchError::Scene)?;
     let l = SHADOW_LIGHT.map(S::from_f64);
-    let scene = Scene::new(&objects, camera, [Light::white(l)]).with_background([24, 28, 40]);
+    let scene = Scene::new(&objects, camera, [Light::white(l)]).with_background(background);
     // The models' adjacency (for volumes and outlines): built here, outside the frame (a
     // mesh's setup; an application keeps it with the mesh).
+    let mut ground_adj = [[0u16; 3]; 2];
     let mut torus_adj = [[0u16; 3]; 576];
     let mut cube_adj = [[0u16; 3]; 12];
+    // And their creases (3 bits per triangle).
+    let mut ground_creases = [0u8; 1];
+    let mut torus_creases = [0u8; 216];
+    let mut cube_creases = [0u8; 5];
     if o.volume || o.outline.is_some() {
-        crate::mesh_adjacency(&torus.mesh(), &mut torus_adj).map_err(|_| BenchError::Scene)?;
-        crate::mesh_adjacency(&cube.mesh(), &mut cube_adj).map_err(|_| BenchError::Scene)?;
+        let bad = |_| BenchError::Scene;
+        crate::mesh_adjacency(&ground.mesh(), &mut ground_adj).map_err(bad)?;
+        crate::mesh_adjacency(&torus.mesh(), &mut torus_adj).map_err(bad)?;
+        crate::mesh_adjacency(&cube.mesh(), &mut cube_adj).map_err(bad)?;
+        if o.edges == EdgeStyle::Crease {
+            let a = o.crease_angle;
+            crate::mesh_creases(&ground.mesh(), &ground_adj, a, &mut ground_creases)
+                .map_err(bad)?;
+            crate::mesh_creases(&torus.mesh(), &torus_adj, a, &mut torus_creases).map_err(bad)?;
+            crate::mesh_creases(&cube.mesh(), &cube_adj, a, &mut cube_creases).map_err(bad)?;
+        }
     }
-    let adjacency: [&[[u16; 3]]; 2] = [&torus_adj, &cube_adj];
+    let every: [&[[u16; 3]]; 3] = [&ground_adj, &torus_adj, &cube_adj];
+    let creases: [&[u8]; 3] = [&ground_creases, &torus_creases, &cube_creases];
+    // The casters' (and the outlined models') tables; a wireframe outlines the ground too.
+    let (adjacency, creases, outlined) = if o.wireframe {
+        (&every[..], &creases[..], &[0, 1, 2][..])
+    } else {
+        (&every[1..], &creases[1..], &[1, 2][..])
+    };
     let mut layering = match o.shadow {
         Some(method) => Layering::projected(
             &[0],
@@ -162,7 +242,7 @@ where
             VolumeShadow {
                 light: ShadowLight::Directional(l),
                 reach: S::from_f64(VOLUME_REACH),
-                adjacency: &adjacency,
+                adjacency,
                 color: [0; 3],
                 alpha: SHADOW_ALPHA,
             },
@@ -170,34 +250,51 @@ where
         None => Layering::none(),
     };
     if let Some(color) = o.outline {
-        layering = layering.with_outline(Outline {
-            objects: &[1, 2],
-            adjacency: &adjacency,
-            color,
-        });
+        let edges = match o.edges {
+            EdgeStyle::Silhouette => Edges::Silhouette,
+            EdgeStyle::Crease => Edges::Crease(creases),
+            EdgeStyle::All => Edges::All,
+        };
+        layering = layering.with_outline(
+            Outline::silhouette(outlined, adjacency, color)
+                .with_edges(edges)
+                .see_through(o.see_through),
+        );
     }
     let plain = o.shadow.is_none() && !o.volume && o.outline.is_none() && o.alpha == 255;
     // Rendering triangle ids makes every triangle flat (one more vertex record per drawn
     // triangle): those renders get a larger vertex store.
-    const V: usize = SHADOW_CAPACITY.0;
-    const T: usize = SHADOW_CAPACITY.1;
-    const PA: usize = SHADOW_CAPACITY.4;
-    const VV: usize = VOLUME_CAPACITY.0;
-    const VT: usize = VOLUME_CAPACITY.1;
-    const VPA: usize = VOLUME_CAPACITY.4;
-    let ids = C::triangle_id(0).is_some();
-    let (s, l, d) = (&scene, &layering, o.dither);
-    match (o.volume, ids) {
-        (false, false) => draw::<S, C, D, P, V, T, PA>(plain, s, l, d, target, probe),
-        (false, true) => draw::<S, C, D, P, { V + T }, T, PA>(plain, s, l, d, target, probe),
-        (true, false) => draw::<S, C, D, P, VV, VT, VPA>(plain, s, l, d, target, probe),
-        (true, true) => draw::<S, C, D, P, { VV + VT }, VT, VPA>(plain, s, l, d, target, probe),
+    // Each set of capacities: vertices, triangles, active triangles, post list.
+    macro_rules! go {
+        ($cap:expr) => {{
+            const V: usize = $cap.0;
+            const T: usize = $cap.1;
+            const A: usize = $cap.2;
+            const PA: usize = $cap.4;
+            let (s, l, d) = (&scene, &layering, o.dither);
+            if C::triangle_id(0).is_some() {
+                draw::<S, C, D, P, { V + T }, T, A, PA>(plain, s, l, d, target, probe)
+            } else {
+                draw::<S, C, D, P, V, T, A, PA>(plain, s, l, d, target, probe)
+            }
+        }};
+    }
+    // Hidden edges take the largest stores, every edge the next, then volumes.
+    let lines = o.outline.is_some();
+    if lines && o.see_through {
+        go!(SEE_THROUGH_CAPACITY)
+    } else if lines && o.edges == EdgeStyle::All {
+        go!(WIRE_CAPACITY)
+    } else if o.volume {
+        go!(VOLUME_CAPACITY)
+    } else {
+        go!(SHADOW_CAPACITY)
     }
 }
 
 /// Draws `scene` plainly (`plain`) or in layers, with a vertex store of `V`, a triangle store of
-/// `T` and a post list of `PA`.
-fn draw<S, C, D, P, const V: usize, const T: usize, const PA: usize>(
+/// `T`, an active list of `A` and a post list of `PA`.
+fn draw<S, C, D, P, const V: usize, const T: usize, const A: usize, const PA: usize>(
     plain: bool,
     scene: &Scene<'_, S, 1>,
     layering: &Layering<'_, S>,
@@ -211,7 +308,6 @@ where
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
     P: crate::Probe,
 {
-    const A: usize = SHADOW_CAPACITY.2;
     const RA: usize = SHADOW_CAPACITY.3;
     let mut r = Renderer::<S, C, 240, 240, V, T, A>::new();
     r.set_dither(dither);

@@ -176,21 +176,26 @@ pub(crate) fn volume_row(
 }
 
 /// One row of an outline quad (flat, its colour the line's): each pixel where it lies in front
-/// of the surface, or behind it by at most [`OUTLINE_BIAS`], takes the line's colour; depth is
-/// not written. Returns `(fragments, written)`.
+/// of the surface, or behind it by at most [`OUTLINE_BIAS`], takes the line's colour (every
+/// pixel it covers when `see_through`); depth is not written. Returns `(fragments, written)`.
 pub(crate) fn outline_row<C: TargetColor>(
     t: &ActiveTri,
     colors: &mut [C],
     depth: &[u16],
+    see_through: bool,
 ) -> (u32, u32) {
     let (xs, xe, skip) = columns(t, colors.len().min(depth.len()));
     if xs >= xe {
         return (0, 0);
     }
     let ink = C::from_channels(t.flat_channels());
+    let r = xs as usize..xe as usize;
+    if see_through {
+        colors[r].fill(ink);
+        return ((xe - xs) as u32, (xe - xs) as u32);
+    }
     let mut z = depth_start(t, skip);
     let mut written = 0;
-    let r = xs as usize..xe as usize;
     for (c, &zb) in colors[r.clone()].iter_mut().zip(&depth[r]) {
         if depth_of(z) <= zb as u32 + OUTLINE_BIAS {
             *c = ink;

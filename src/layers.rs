@@ -21,10 +21,10 @@ use crate::renderer::*;
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::Material;
-use crate::shadow::{blob_disc, LayerError, Layering, ShadowLight, ShadowMethod, BLOB_FAN};
+use crate::shadow::{blob_disc, Edges, LayerError, Layering, ShadowLight, ShadowMethod, BLOB_FAN};
 use crate::strip::draw_list_row;
 use crate::textured::{attach_pushed, is_textured};
-use crate::volume::volume_sign;
+use crate::volume::{volume_sign, Lines, Pick};
 
 /// The most translucent objects one layered frame draws.
 pub const MAX_TRANSLUCENT: usize = 16;
@@ -73,6 +73,8 @@ pub struct Layers<const W: usize, const LINES: usize, const RA: usize, const PA:
     blob: bool,
     /// The shadow is volumes, counted in the stencil.
     volume: bool,
+    /// The outlines are drawn without the depth test ([`crate::Outline::see_through`]).
+    see_through: bool,
     skipped: u32,
 }
 
@@ -97,6 +99,7 @@ impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize>
             shadow: ([0; 3], 0),
             blob: false,
             volume: false,
+            see_through: false,
             skipped: 0,
         }
     }
@@ -243,6 +246,7 @@ impl<
         }
         if let Some(o) = &layering.outline {
             check_adjacency(scene, o.objects, o.adjacency, 8 * W * LINES)?;
+            check_creases(scene, o)?;
         }
         let translucent = scene.objects.iter().any(|o| o.material.alpha < 255);
         // (A [`crate::TriangleId`] target records the opaque triangles only: nothing blends.)
@@ -352,10 +356,23 @@ impl<
                 }
                 _ => (cam.eye, false),
             };
+            layers.see_through = o.see_through;
             let marks = layers.stencil.as_flattened_mut();
             for (k, &i) in o.objects.iter().enumerate() {
                 let obj = &scene.objects[i];
-                self.outline_object(&c, &mut f, obj, o.adjacency[k], eye, o.color, marks, probe);
+                let pick = match o.edges {
+                    Edges::Silhouette => Pick::Silhouette,
+                    Edges::Crease(tables) => Pick::Crease(tables[k]),
+                    Edges::All => Pick::All,
+                };
+                let lines = Lines {
+                    adjacency: o.adjacency[k],
+                    pick,
+                    see_through: o.see_through,
+                    color: o.color,
+                    eye,
+                };
+                self.outline_object(&c, &mut f, obj, lines, marks, probe);
             }
         }
         layers.bounds[3] = end(self);
@@ -547,8 +564,8 @@ impl<
                     stats.add_row(0, written);
                 }
             }
-            post.rows(OUTLINE, row, |t, _, _| {
-                let (frag, written) = outline_row(t, colors, depth);
+            post.rows(OUTLINE, row, |t, meta, _| {
+                let (frag, written) = outline_row(t, colors, depth, meta >> 8 != 0);
                 stats.add_row(frag, written);
             });
             // Translucent triangles, farthest first: their indices sorted by key per row.
@@ -604,7 +621,7 @@ impl<
                         (SHADOW, 0)
                     }
                 } else if v < layers.bounds[3] as usize {
-                    (OUTLINE, 0)
+                    (OUTLINE, layers.see_through as u8)
                 } else {
                     let a = layers
                         .translucent
@@ -698,6 +715,23 @@ fn check_adjacency<S: Scalar, E, const L: usize>(
                 triangles,
                 capacity: bits,
             }));
+        }
+    }
+    Ok(())
+}
+
+/// Checks an outline's crease tables ([`Edges::Crease`]): one per outlined object, of at least
+/// 3 bits per triangle.
+fn check_creases<S: Scalar, E, const L: usize>(
+    scene: &Scene<'_, S, L>,
+    o: &crate::Outline<'_>,
+) -> Result<(), Error<E>> {
+    if let Edges::Crease(tables) = o.edges {
+        for (k, &object) in o.objects.iter().enumerate() {
+            let bytes = (3 * scene.objects[object].mesh.indices().len()).div_ceil(8);
+            if tables.get(k).is_none_or(|t| t.len() < bytes) {
+                return Err(Error::Layers(LayerError::Creases { object }));
+            }
         }
     }
     Ok(())

@@ -248,14 +248,14 @@ pub use scalar::{Fx, FxRecip, Scalar, NDC_FRAC_BITS};
 pub use scene::{Object, Scene};
 pub use shade::{Light, Material, Shading};
 pub use shadow::{
-    LayerError, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow,
+    Edges, LayerError, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow,
     BLOB_RINGS, BLOB_SIDES,
 };
 pub use shapes::{ParamValue, Shape, ShapeError};
 pub use strip::StripCanvas;
 pub use texture::{Texture, TextureError, TextureMode, Texturing, Wrap, MAX_TEXTURE_SIZE};
 pub use textured_shapes::TexturedShape;
-pub use volume::{mesh_adjacency, AdjacencyError, NO_NEIGHBOUR};
+pub use volume::{mesh_adjacency, mesh_creases, AdjacencyError, NO_NEIGHBOUR};
 
 #[doc(inline)]
 pub use embedded_graphics_core::draw_target::DrawTarget;

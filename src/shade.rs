@@ -153,6 +153,15 @@ impl<S: Scalar> Material<S> {
         }
     }
 
+    /// `color` exactly, whatever the lights: flat, ambient 1, no diffuse or specular term. In
+    /// the background colour it hides what is behind it and shows nothing of itself — the
+    /// surfaces of a wireframe with its hidden lines removed ([`crate::Outline`] with
+    /// [`crate::Edges::All`]).
+    #[must_use]
+    pub const fn unlit(color: [u8; 3]) -> Self {
+        Material::matte(color, S::ONE, S::ZERO).flat()
+    }
+
     /// This material with [`Shading::Flat`]: one colour per face.
     #[must_use]
     pub const fn flat(self) -> Self {

@@ -287,10 +287,32 @@ pub struct VolumeShadow<'a, S> {
     pub alpha: u8,
 }
 
-/// Outlines ([`Layering::outline`]): each listed object's contour edges as seen from the eye
-/// (an edge between a face turned toward the eye and one turned away, found with the
-/// object's [`crate::mesh_adjacency`]) drawn as lines of `color`, 1 px wide, hidden where a
-/// nearer surface covers them.
+/// Which edges of an object an [`Outline`] draws.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Edges<'a> {
+    /// The contour as seen from the eye: the edges between a face turned toward the eye and
+    /// one turned away, and the open edges of faces turned toward it.
+    Silhouette,
+    /// The contour and the creases: besides the silhouette, every edge whose two faces meet at
+    /// more than a crease angle (and every open edge). One crease table per outlined object,
+    /// in the order of [`Outline::objects`], from [`crate::mesh_creases`] (a mesh's setup: the
+    /// angle is fixed there).
+    Crease(&'a [&'a [u8]]),
+    /// Every edge: with the depth test, a wireframe with its hidden lines removed.
+    All,
+}
+
+/// Outlines and wireframes ([`Layering::outline`]): the chosen [`Edges`] of each listed object
+/// (found with its [`crate::mesh_adjacency`]) drawn as lines of `color`, 1 px wide: each edge
+/// is a quad one pixel across its minor axis, so every column (or row) it crosses takes exactly
+/// one pixel by the top-left rule and joined edges leave no gap. With `see_through` off an edge
+/// is drawn only where it is not behind a nearer surface (within a small bias, so an edge on a
+/// surface shows) and only the edges of faces turned toward the eye are considered; with it on,
+/// every chosen edge shows, hidden or not.
+///
+/// A wireframe with hidden lines removed: [`Edges::All`] over objects whose material is
+/// [`crate::Material::unlit`] in the background colour (they fill the depth lines and hide what
+/// is behind them, but show only their edges).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub struct Outline<'a> {
     /// The outlined objects (indices into [`crate::Scene::objects`]).
@@ -299,6 +321,43 @@ pub struct Outline<'a> {
     pub adjacency: &'a [&'a [[u16; 3]]],
     /// The lines' colour, 8 bits per channel.
     pub color: [u8; 3],
+    /// Which edges are drawn.
+    pub edges: Edges<'a>,
+    /// Whether hidden edges are drawn too (no depth test, the faces turned away included).
+    pub see_through: bool,
+}
+
+impl<'a> Outline<'a> {
+    /// The silhouettes of `objects` in `color`, depth-tested.
+    #[must_use]
+    pub const fn silhouette(
+        objects: &'a [usize],
+        adjacency: &'a [&'a [[u16; 3]]],
+        color: [u8; 3],
+    ) -> Self {
+        Outline {
+            objects,
+            adjacency,
+            color,
+            edges: Edges::Silhouette,
+            see_through: false,
+        }
+    }
+
+    /// This outline with `edges`.
+    #[must_use]
+    pub const fn with_edges(self, edges: Edges<'a>) -> Self {
+        Outline { edges, ..self }
+    }
+
+    /// This outline with hidden edges shown (`true`) or removed.
+    #[must_use]
+    pub const fn see_through(self, on: bool) -> Self {
+        Outline {
+            see_through: on,
+            ..self
+        }
+    }
 }
 
 /// What a layered frame draws beyond the opaque pass: the objects (indices into
@@ -418,6 +477,12 @@ pub enum LayerError {
         /// Index of the object in the scene.
         object: usize,
     },
+    /// Outlined object `object` has no crease table ([`Edges::Crease`]), or one shorter than
+    /// its mesh's `3·T` bits ([`crate::mesh_creases`]).
+    Creases {
+        /// Index of the object in the scene.
+        object: usize,
+    },
     /// Object `object` has more triangles than the stencil lines have bits
     /// (`8·W·LINES`): a volume caster's or outlined object's faces are marked there while
     /// its silhouette is found.
@@ -461,6 +526,10 @@ impl core::fmt::Display for LayerError {
             LayerError::Adjacency { object } => write!(
                 f,
                 "object {object} has no adjacency table of its mesh's triangle count"
+            ),
+            LayerError::Creases { object } => write!(
+                f,
+                "outlined object {object} has no crease table of 3 bits per triangle (mesh_creases)"
             ),
             LayerError::TooManyTriangles {
                 object,

@@ -62,6 +62,13 @@ pub enum AdjacencyError {
         /// Its edge.
         edge: usize,
     },
+    /// The crease table ([`mesh_creases`]) holds fewer than 3 bits per triangle.
+    CreaseTableTooSmall {
+        /// The bytes it needs.
+        bytes: usize,
+    },
+    /// The crease angle is not within 0..=180 degrees.
+    Angle,
 }
 
 impl core::fmt::Display for AdjacencyError {
@@ -81,6 +88,10 @@ impl core::fmt::Display for AdjacencyError {
                 f,
                 "triangle {triangle} runs along its edge {edge} the same way as its neighbour (not consistently wound)"
             ),
+            AdjacencyError::CreaseTableTooSmall { bytes } => {
+                write!(f, "the crease table needs {bytes} bytes (3 bits per triangle)")
+            }
+            AdjacencyError::Angle => write!(f, "the crease angle is not within 0 to 180 degrees"),
         }
     }
 }
@@ -145,6 +156,141 @@ pub fn mesh_adjacency<S: Scalar>(
         }
     }
     Ok(out.iter().flatten().filter(|&&v| v == NO_NEIGHBOUR).count())
+}
+
+/// Which edges of a mesh are creases, into `out` (bit `3·t + e` of the bytes, least
+/// significant first, for edge `e` of triangle `t`, numbered as in [`mesh_adjacency`]): an
+/// edge whose two faces meet at more than `angle_deg` degrees (between their normals: 0 for a
+/// flat surface), or an open edge. A face of zero area makes no crease with its neighbours.
+/// The table is what [`crate::Edges::Crease`] draws; both sides of an edge carry the same bit.
+/// Returns the number of crease edges (an edge between two faces counted once).
+///
+/// For a mesh's setup, not per frame: one face normal per triangle, in f64 (the same table
+/// for every number type).
+///
+/// # Errors
+///
+/// [`AdjacencyError::BufferTooSmall`] when `adjacency` is shorter than the mesh's triangles,
+/// [`AdjacencyError::CreaseTableTooSmall`] when `out` holds fewer than `3·T` bits, and
+/// [`AdjacencyError::Angle`] for an angle outside 0..=180 degrees.
+pub fn mesh_creases<S: Scalar>(
+    mesh: &Mesh<'_, S>,
+    adjacency: &[[u16; 3]],
+    angle_deg: f64,
+    out: &mut [u8],
+) -> Result<usize, AdjacencyError> {
+    let (tris, pos) = (mesh.indices(), mesh.positions());
+    let n = tris.len();
+    if !(0.0..=180.0).contains(&angle_deg) {
+        return Err(AdjacencyError::Angle);
+    }
+    let adjacency = adjacency
+        .get(..n)
+        .ok_or(AdjacencyError::BufferTooSmall { needed: n })?;
+    let bytes = (3 * n).div_ceil(8);
+    let out = out
+        .get_mut(..bytes)
+        .ok_or(AdjacencyError::CreaseTableTooSmall { bytes })?;
+    out.fill(0);
+    // The unit normal of face `t` in f64 (zero for a face of zero area).
+    let normal = |t: usize| -> [f64; 3] {
+        let [a, b, c] = tris[t].map(|i| pos[i as usize].map(|v| v.to_f64()));
+        let (u, v) = (
+            [0, 1, 2].map(|k| b[k] - a[k]),
+            [0, 1, 2].map(|k| c[k] - a[k]),
+        );
+        let m = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let len = libm::sqrt(m.iter().map(|x| x * x).sum::<f64>());
+        if len > 0.0 && len.is_finite() {
+            m.map(|x| x / len)
+        } else {
+            [0.0; 3]
+        }
+    };
+    // Faces whose normals' dot product is within this of the limit are not a crease: rounding
+    // leaves a flat pair's at 1 − 1e-16 or so, which would make it a crease at 0°.
+    const FLAT: f64 = 1e-9;
+    let limit = libm::cos(angle_deg.to_radians());
+    let mut count = 0;
+    for (t, adj) in adjacency.iter().enumerate() {
+        for (e, &u) in adj.iter().enumerate() {
+            let u = u as usize;
+            let crease = if u >= n {
+                true
+            } else {
+                let (p, q) = (normal(t), normal(u));
+                let zero = |v: [f64; 3]| v == [0.0; 3];
+                !zero(p) && !zero(q) && p[0] * q[0] + p[1] * q[1] + p[2] * q[2] < limit - FLAT
+            };
+            if crease {
+                let bit = 3 * t + e;
+                out[bit / 8] |= 1 << (bit % 8);
+                if u >= n || t < u {
+                    count += 1;
+                }
+            }
+        }
+    }
+    Ok(count)
+}
+
+/// One object's outline: its adjacency table, which edges, whether hidden ones show, the
+/// colour (8 bits per channel) and the eye in world space (a point, or a direction toward the
+/// eye when `.1`: an orthographic camera).
+pub(crate) struct Lines<'a, S> {
+    pub(crate) adjacency: &'a [[u16; 3]],
+    pub(crate) pick: Pick<'a>,
+    pub(crate) see_through: bool,
+    pub(crate) color: [u8; 3],
+    pub(crate) eye: (Vec3<S>, bool),
+}
+
+/// Which edges an outline draws for one object ([`crate::Edges`] with the object's crease
+/// table).
+#[derive(Copy, Clone)]
+pub(crate) enum Pick<'a> {
+    Silhouette,
+    Crease(&'a [u8]),
+    All,
+}
+
+impl Pick<'_> {
+    /// Whether edge `e` of triangle `t` (turned toward the eye when `front`) is drawn from `t`,
+    /// with `across` the neighbour across it and whether that one is turned toward the eye
+    /// (`None`: an open edge). Each edge is drawn once: a contour edge from its face turned
+    /// toward the eye, an edge between two faces turned the same way from the lower index.
+    /// Without `see_through`, only edges of faces turned toward the eye.
+    pub(crate) fn draws(
+        self,
+        t: usize,
+        e: usize,
+        front: bool,
+        across: Option<(usize, bool)>,
+        see_through: bool,
+    ) -> bool {
+        let contour = front && across.is_none_or(|(_, f)| !f);
+        let inner = match across {
+            Some((u, f)) => f == front && t < u && (front || see_through),
+            // An open edge of a face turned away (the contour has the other open edges).
+            None => !front && see_through,
+        };
+        match self {
+            Pick::Silhouette => contour,
+            Pick::Crease(bits) => contour || (inner && crease_bit(bits, t, e)),
+            Pick::All => contour || inner,
+        }
+    }
+}
+
+/// Whether bit `3·t + e` of crease table `bits` is set (false past its end).
+#[inline]
+pub(crate) fn crease_bit(bits: &[u8], t: usize, e: usize) -> bool {
+    let bit = 3 * t + e;
+    bits.get(bit / 8).is_some_and(|b| b & (1 << (bit % 8)) != 0)
 }
 
 /// A volume triangle's sign from its stored vertex order: −1 (255) when the first index is
@@ -420,21 +566,24 @@ impl<
         self.push_tri(rec, &mut f.stats, &mut f.need);
     }
 
-    /// The outline of `obj` (its contour edges as seen from the camera) in `color` (8 bits per
-    /// channel): two triangles per edge, one pixel across. `marks` holds a bit per triangle
-    /// (checked).
-    #[allow(clippy::too_many_arguments)]
+    /// The outline of `obj` in `lines`: the edges its pick chooses ([`Pick::draws`]), two
+    /// triangles per edge, one pixel across. `marks` holds a bit per triangle (checked).
     pub(crate) fn outline_object<P: Probe>(
         &mut self,
         c: &FrameConst<S>,
         f: &mut Frame,
         obj: &Object<'_, S>,
-        adjacency: &[[u16; 3]],
-        eye: (Vec3<S>, bool),
-        color: [u8; 3],
+        lines: Lines<'_, S>,
         marks: &mut [u8],
         probe: &mut P,
     ) {
+        let Lines {
+            adjacency,
+            pick,
+            see_through,
+            color,
+            eye,
+        } = lines;
         let mesh = obj.mesh;
         let (positions, tris) = (mesh.positions(), mesh.indices());
         let toward = if eye.1 {
@@ -453,13 +602,15 @@ impl<
             C::CHANNEL_MAX,
         );
         for (t, tri) in tris.iter().enumerate() {
-            if !marked(marks, t) {
+            let front = marked(marks, t);
+            if !front && !see_through {
                 continue;
             }
             let adj = adjacency.get(t).copied().unwrap_or([NO_NEIGHBOUR; 3]);
             for e in 0..3 {
                 let u = adj[e] as usize;
-                if u < tris.len() && marked(marks, u) {
+                let across = (u < tris.len()).then(|| (u, marked(marks, u)));
+                if !pick.draws(t, e, front, across, see_through) {
                     continue;
                 }
                 let (i, j) = (tri[e] as usize, tri[(e + 1) % 3] as usize);
@@ -617,6 +768,45 @@ mod tests {
             mesh_adjacency(&mesh, &mut short),
             Err(AdjacencyError::BufferTooSmall { needed: 3 })
         );
+    }
+
+    #[test]
+    fn each_chosen_edge_is_drawn_once() {
+        let p = [
+            [0.0f64; 3],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let tet = [[0u16, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        let mesh = Mesh::new(&p, &tet).unwrap();
+        let mut adj = [[0u16; 3]; 4];
+        mesh_adjacency(&mesh, &mut adj).unwrap();
+        let all_creases = [0xffu8; 2];
+        // Faces 0 and 1 toward the eye: every pair of a tetrahedron's faces shares an edge, so
+        // 4 contour edges, 1 between the two front faces, 1 between the two back ones.
+        let front = |t: usize| t < 2;
+        let count = |pick: Pick<'_>, see: bool| {
+            let mut n = 0;
+            for t in 0..4 {
+                for e in 0..3 {
+                    let u = adj[t][e] as usize;
+                    n += pick.draws(t, e, front(t), Some((u, front(u))), see) as u32;
+                }
+            }
+            n
+        };
+        assert_eq!(count(Pick::Silhouette, false), 4);
+        assert_eq!(count(Pick::Silhouette, true), 4);
+        assert_eq!(count(Pick::All, false), 5);
+        assert_eq!(count(Pick::All, true), 6);
+        assert_eq!(count(Pick::Crease(&all_creases), false), 5);
+        assert_eq!(count(Pick::Crease(&[0; 2]), true), 4);
+        // Open edges: drawn from a front face always, from a back face only seen through.
+        assert!(Pick::All.draws(0, 0, true, None, false));
+        assert!(!Pick::All.draws(0, 0, false, None, false));
+        assert!(Pick::All.draws(0, 0, false, None, true));
+        assert!(!Pick::Silhouette.draws(0, 0, false, None, true));
     }
 
     #[test]

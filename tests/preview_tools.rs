@@ -667,3 +667,89 @@ fn the_summary_counts_triangles_skipped_as_invalid() {
     assert!(stdout.contains("/ invalid 0 |"), "{stdout}");
     assert!(!stderr.contains("skipped"), "{stderr}");
 }
+
+#[test]
+fn edges_and_wireframes_render_and_their_flags_are_checked() {
+    // A hidden-line wireframe of the torus (exact colours: RGB888): only the background and
+    // the lines, in the model's colour.
+    let png = tmp("wireframe.png");
+    let _ = std::fs::remove_file(&png);
+    let (code, stdout, stderr) = run(
+        "render",
+        &[
+            "--shading",
+            "wireframe",
+            "--format",
+            "rgb888",
+            "--background",
+            "10,20,30",
+            "--out",
+            png.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let (_, _, rgb) = common::read_png(&png).expect("a PNG");
+    let lines = rgb.chunks_exact(3).filter(|p| p == &[255, 160, 64]).count();
+    let bg = rgb.chunks_exact(3).filter(|p| p == &[10, 20, 30]).count();
+    assert_eq!(lines + bg, 240 * 240, "{stdout}");
+    // Seen through, the hidden lines add to it.
+    let through = tmp("wireframe_through.png");
+    let (code, _, stderr) = run(
+        "render",
+        &[
+            "--shading",
+            "wireframe",
+            "--see-through",
+            "--format",
+            "rgb888",
+            "--background",
+            "10,20,30",
+            "--out",
+            through.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let (_, _, rgb2) = common::read_png(&through).expect("a PNG");
+    let lines2 = rgb2
+        .chunks_exact(3)
+        .filter(|p| p == &[255, 160, 64])
+        .count();
+    assert!(lines2 > lines + lines / 4, "{lines2} vs {lines}");
+    // Edges over the shaded model and over the shadow scene.
+    for args in [
+        &["--edges", "crease", "--crease-angle", "10"][..],
+        &["--scene", "shadow", "--shadow", "none", "--edges", "all"][..],
+        &[
+            "--scene",
+            "shadow",
+            "--shading",
+            "wireframe",
+            "--see-through",
+        ][..],
+    ] {
+        let out = tmp("edges.png");
+        let _ = std::fs::remove_file(&out);
+        let mut all = args.to_vec();
+        all.extend(["--out", out.to_str().unwrap()]);
+        let (code, _, stderr) = run("render", &all);
+        assert_eq!(code, 0, "{args:?}: {stderr}");
+        assert!(out.exists(), "{args:?}");
+    }
+    bad_flags(
+        &["--edges", "crease", "--crease-angle", "200"],
+        &["--crease-angle must be in [0, 180] degrees, got 200"],
+    );
+    bad_flags(
+        &["--edge-color", "1,2,3"],
+        &["--edge-color", "need --edges"],
+    );
+    bad_flags(&["--see-through"], &["--see-through", "need --edges"]);
+    bad_flags(
+        &["--shading", "wireframe", "--edges", "none"],
+        &["--shading wireframe draws edges"],
+    );
+    bad_flags(
+        &["--edges", "all", "--pass-triangles", "100"],
+        &["one layered frame"],
+    );
+}

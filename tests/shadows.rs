@@ -291,6 +291,8 @@ fn shadow_benchmark_scenes_match_their_golden_images() {
             Bench::Translucent,
             Bench::ShadowVolume,
             Bench::Outline,
+            Bench::Edges,
+            Bench::Wireframe,
         ] {
             let mut f = Frame::new(240, 240, Rgb565::BLACK);
             render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut NoProbe).unwrap();

@@ -74,7 +74,7 @@ fn world<S: Scalar>(boxes: &[([f64; 3], [f64; 3])]) -> World<S> {
 const QUAD: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
 
 fn unlit<S: Scalar>(c: [u8; 3]) -> Material<S> {
-    Material::matte(c, S::ONE, S::ZERO).flat()
+    Material::unlit(c)
 }
 
 /// How a frame's shadow is drawn.
@@ -345,11 +345,7 @@ fn outlined<S: Scalar>(cover: bool) -> Frame<Rgb888> {
     let mut adjacency = [[0u16; 3]; 2];
     mesh_adjacency(&objects[0].mesh, &mut adjacency).unwrap();
     let adj: [&[[u16; 3]]; 1] = [&adjacency];
-    let layering = Layering::<S>::none().with_outline(Outline {
-        objects: &[0],
-        adjacency: &adj,
-        color: INK,
-    });
+    let layering = Layering::<S>::none().with_outline(Outline::silhouette(&[0], &adj, INK));
     let mut r = Renderer::<S, Rgb888, { N as usize }, { N as usize }, 64, 64, 16>::new();
     let mut layers = Layers::<{ N as usize }, 1, 4, 16>::new();
     let mut f = Frame::new(N, N, Rgb888::BLACK);
@@ -468,11 +464,7 @@ fn bad_volume_and_outline_layerings_are_named_errors() {
         run(&Layering::volumes(&[3], volume(&good[..], 4.0))),
         Some(Error::Layers(LayerError::NoSuchObject { index: 3 }))
     );
-    let outline = |objects| Outline {
-        objects,
-        adjacency: &good,
-        color: INK,
-    };
+    let outline = |objects| Outline::silhouette(objects, &good, INK);
     assert_eq!(
         run(&Layering::none().with_outline(outline(&[5]))),
         Some(Error::Layers(LayerError::NoSuchObject { index: 5 }))
@@ -544,11 +536,7 @@ fn every_pixel_once<S: Scalar>() {
             alpha: SHADOW,
         },
     )
-    .with_outline(Outline {
-        objects: &[1],
-        adjacency: &adjacency,
-        color: INK,
-    });
+    .with_outline(Outline::silhouette(&[1], &adjacency, INK));
     let mut r = Renderer::<S, Rgb888, 64, 64, 256, 256, 64>::new();
     let mut layers = Layers::<64, 1, 4, 128>::new();
     let mut display = MockDisplay::<Rgb888>::new();

@@ -1,16 +1,17 @@
 //! `render --scene shadow`: the shadow benchmark scene (`demo::render_shadow_scene`) with the
-//! shadow method, the shadow's plane, the torus's opacity and the outlines from the command
-//! line.
+//! shadow method, the shadow's plane, the torus's opacity, the outlines and edges (`--outline`,
+//! `--edges`, `--shading wireframe`) from the command line.
 
 use std::path::Path;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
-use scanline3d::demo::{render_shadow_scene, ShadowScene};
+use scanline3d::demo::{render_shadow_scene, EdgeStyle, ShadowScene};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::{Fx, NoProbe, Scalar, ShadowMethod, TargetColor};
 
 use super::common::Frame;
-use super::{write_image, Args, FormatArg, NumberArg, OnOff, ShadowArg};
+use super::edges::{self, EdgesArg};
+use super::{write_image, Args, FormatArg, NumberArg, OnOff, ShadingArg, ShadowArg};
 
 /// `--shadow-plane`: four finite numbers, the normal not zero.
 pub fn plane(s: &str) -> Result<[f64; 4], String> {
@@ -31,7 +32,20 @@ pub fn run(args: &Args) -> Result<(), (String, i32)> {
             2,
         ));
     }
-    let shadow = args.shadow.unwrap_or(ShadowArg::Projected);
+    if args.outline.is_some() && args.edge_color.is_some() {
+        return Err((
+            "--outline and --edge-color both set the lines' colour: give one".into(),
+            2,
+        ));
+    }
+    // A wireframe has no shadow unless asked for one.
+    let shadow = args
+        .shadow
+        .unwrap_or(if args.shading == ShadingArg::Wireframe {
+            ShadowArg::None
+        } else {
+            ShadowArg::Projected
+        });
     let o = ShadowScene {
         shadow: match shadow {
             ShadowArg::None | ShadowArg::Volume => None,
@@ -39,7 +53,19 @@ pub fn run(args: &Args) -> Result<(), (String, i32)> {
             ShadowArg::Blob => Some(ShadowMethod::Blob),
         },
         volume: shadow == ShadowArg::Volume,
-        outline: args.outline,
+        outline: match (args.outline, edges::chosen(args)) {
+            (Some(c), _) => Some(c),
+            (None, EdgesArg::None) => None,
+            (None, _) => Some(edges::color(args)),
+        },
+        edges: match edges::chosen(args) {
+            EdgesArg::None | EdgesArg::Silhouette => EdgeStyle::Silhouette,
+            EdgesArg::Crease => EdgeStyle::Crease,
+            EdgesArg::All => EdgeStyle::All,
+        },
+        crease_angle: args.crease_angle,
+        see_through: args.see_through,
+        wireframe: args.shading == ShadingArg::Wireframe,
         plane: args.shadow_plane.unwrap_or([0.0, 1.0, 0.0, 0.0]),
         alpha: args.alpha.unwrap_or(255),
         spin_deg: 0.0,
