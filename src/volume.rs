@@ -712,15 +712,19 @@ impl<
 mod tests {
     use super::*;
 
+    /// A tetrahedron's corners and its four faces, wound counter-clockwise from outside.
+    const CORNERS: [[f64; 3]; 4] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ];
+    const TET: [[u16; 3]; 4] = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+
     #[test]
     fn a_tetrahedron_is_closed_and_a_square_has_four_open_edges() {
-        let p = [
-            [0.0f64; 3],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-        ];
-        let tet = [[0u16, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        let p = CORNERS;
+        let tet = TET;
         let mesh = Mesh::new(&p, &tet).unwrap();
         let mut adj = [[0u16; 3]; 4];
         assert_eq!(mesh_adjacency(&mesh, &mut adj), Ok(0));
@@ -740,12 +744,7 @@ mod tests {
 
     #[test]
     fn bad_meshes_are_named() {
-        let p = [
-            [0.0f64; 3],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-        ];
+        let p = CORNERS;
         let flipped = [[0u16, 1, 2], [0, 1, 3]];
         let mesh = Mesh::new(&p, &flipped).unwrap();
         let mut adj = [[0u16; 3]; 2];
@@ -772,13 +771,8 @@ mod tests {
 
     #[test]
     fn each_chosen_edge_is_drawn_once() {
-        let p = [
-            [0.0f64; 3],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-        ];
-        let tet = [[0u16, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        let p = CORNERS;
+        let tet = TET;
         let mesh = Mesh::new(&p, &tet).unwrap();
         let mut adj = [[0u16; 3]; 4];
         mesh_adjacency(&mesh, &mut adj).unwrap();
