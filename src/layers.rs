@@ -689,6 +689,10 @@ fn set_blend<
     let max = C::CHANNEL_MAX;
     let sc: [u8; 3] = core::array::from_fn(|k| div255(color[k] as u32 * max[k] as u32) as u8);
     layers.shadow = (sc, alpha);
+    // The table serves channels of at most 6 bits (`darken_span`): wider ones blend directly.
+    if max.iter().any(|&m| m > 63) {
+        return;
+    }
     for k in 0..3 {
         for (c, e) in layers.lut[k].iter_mut().enumerate() {
             *e = blend(c as u32, sc[k] as u32, alpha as u32) as u8;
