@@ -224,6 +224,7 @@ fn main() {
     md.push_str(&phong_variants(&mcu));
     md.push_str(&point_lights(&mcu));
     md.push_str(&fog(&mcu));
+    md.push_str(&hdr(&mcu));
     md.push_str(&shadows(&mcu));
     std::fs::write(out.join("report.md"), md).unwrap_or_else(|e| fail(&e.to_string()));
 
@@ -372,6 +373,22 @@ fn fog(mcu: &BTreeMap<(String, String, String), u64>) -> String {
                 Bench::TexturedFog,
             ),
         ],
+    )
+}
+
+/// HDR lighting and tone mapping: the tone-mapped frame against its f64 twin, and what the tone
+/// map adds to the instructions of the same frame clamped.
+fn hdr(mcu: &BTreeMap<(String, String, String), u64>) -> String {
+    variant_table(
+        mcu,
+        "HDR and tone mapping",
+        "`hdr_gouraud`: the `point_gouraud` sphere with both lights twice as bright, exposure 0.6 and the filmic curve, per vertex, against its f64 twin. `tests/effects.rs` checks the curves, the clamp's equality with the plain lighting and the automatic exposure's convergence. The last columns are the instructions the tone map adds to the same frame clamped (`point_gouraud`).",
+        &[(
+            Bench::HdrGouraud,
+            "Gouraud, filmic, per vertex",
+            Some(Bench::PointGouraud),
+            Bench::HdrGouraud,
+        )],
     )
 }
 

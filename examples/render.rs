@@ -10,6 +10,8 @@ mod common;
 mod edges;
 #[path = "render_parts/shadow.rs"]
 mod shadow;
+#[path = "render_parts/tone.rs"]
+mod tone;
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -396,6 +398,18 @@ struct Args {
     /// Edges hidden behind surfaces are drawn too (and those of faces turned away)
     #[arg(long = "see-through")]
     see_through: bool,
+    /// HDR: the tone curve mapping the lit radiance to the display [default: clamp when
+    /// --exposure or --light-intensity is given]
+    #[arg(long, value_enum)]
+    tone: Option<tone::ToneArg>,
+    /// HDR: the radiance's factor before the tone curve (above 0, at most 16), or `auto`: adapted
+    /// frame by frame toward a mean luma of 96 from the previous frame's pixels (first over 16
+    /// frames at the first frame's pose)
+    #[arg(long, value_name = "E|auto", value_parser = tone::exposure)]
+    exposure: Option<tone::ExposureArg>,
+    /// HDR: every light's brightness factor (0 to 16; 1 = as its colour says)
+    #[arg(long = "light-intensity", value_name = "X")]
+    light_intensity: Option<f64>,
     /// Output image (.png; with --frames > 1 an animated .png or .gif)
     #[arg(long, value_name = "FILE", default_value = "scanline3d.png")]
     out: PathBuf,
@@ -753,7 +767,10 @@ impl<S: Scalar> FrameSetup<'_, S> {
     {
         let mut scene =
             Scene::new(objects, self.camera, self.lights).with_background(self.background);
-        if !self.effects.point_lights.is_empty() || self.effects.fog.is_some() {
+        if !self.effects.point_lights.is_empty()
+            || self.effects.fog.is_some()
+            || self.effects.tone.is_some()
+        {
             scene = scene.with_effects(&self.effects);
         }
         scene
@@ -878,6 +895,7 @@ fn run<S: Scalar, C: TargetColor>(
         material
     };
     let mut edge_frames = edges::EdgeFrames::new(args, &m.name, &mesh)?;
+    let mut auto = tone::auto(args);
     let mut r: Box<Big<S, C>> = Box::default();
     r.set_viewport(w, h);
     r.set_dither(args.dither == OnOff::On);
@@ -899,20 +917,35 @@ fn run<S: Scalar, C: TargetColor>(
             PointLight::new(p.position.map(S::from_f64), p.color).attenuation(c, l, q)
         })
         .collect();
+    let frame_setup = |k: usize, auto: Option<&scanline3d::AutoExposure>| FrameSetup {
+        camera,
+        lights: lights::<S>(args),
+        effects: Effects {
+            point_lights: &points,
+            fog: args
+                .fog
+                .map(|f| Fog::linear(S::from_f64(f.near), S::from_f64(f.far), f.color)),
+            tone: tone::tone_map(args, auto),
+        },
+        background: args.background,
+        transform: transform::<S>(args, s, k),
+        material,
+    };
     for k in 0..args.frames {
-        let fs = FrameSetup {
-            camera,
-            lights: lights::<S>(args),
-            effects: Effects {
-                point_lights: &points,
-                fog: args
-                    .fog
-                    .map(|f| Fog::linear(S::from_f64(f.near), S::from_f64(f.far), f.color)),
-            },
-            background: args.background,
-            transform: transform::<S>(args, s, k),
-            material,
-        };
+        if let Some(a) = auto.as_mut() {
+            // `--exposure auto`: adapted at the first pose first, then to each frame before.
+            let (pose, n) = if k == 0 {
+                (0, tone::AUTO_WARMUP)
+            } else {
+                (k - 1, 1)
+            };
+            for _ in 0..n {
+                let fs = frame_setup(pose, Some(a));
+                let objects = fs.object(mesh);
+                tone::adapt(a, &mut r, &fs.scene(&objects), (w, h));
+            }
+        }
+        let fs = frame_setup(k, auto.as_ref());
         let objects = fs.object(mesh);
         let scene = fs.scene(&objects);
         let mut f = Frame::new(w as u32, h as u32, C::from_channels([0; 3]));
@@ -1196,6 +1229,7 @@ fn check_flags(args: &Args) -> Result<(), String> {
     }
     finite("--crease-angle", args.crease_angle)?;
     edges::check(args)?;
+    tone::check(args)?;
     if let Some(height) = args.ortho {
         finite("--ortho", height)?;
         if height <= 0.0 {
@@ -1459,6 +1493,7 @@ fn budget<C: TargetColor>(
             range / v.max(1e-30)
         );
     }
+    tone::budget(args, args.ambient, args.diffuse, args.specular).map_err(|e| (e, 1))?;
     let short = short_capacities(&needs, passes > 1);
     if !short.is_empty() {
         // No renderer holds a frame: no RAM figure or renderer type, but what to do.

@@ -216,6 +216,11 @@ where
     }
 }
 
+/// The lights' intensity in the HDR benchmark scene ([`Bench::HdrGouraud`]).
+pub const HDR_INTENSITY: f64 = 2.0;
+/// The exposure of the HDR benchmark scene.
+pub const HDR_EXPOSURE: f64 = 0.6;
+
 /// Renders one frame of benchmark scene `bench` at 240 × 240 into `target`, with `dither`,
 /// reporting stages to `probe`. Meshes are generated on the stack; each scene has its own
 /// renderer sized for it (see [`BenchFrame::renderer_ram_bytes`]).
@@ -261,6 +266,7 @@ where
             S::from_f64(far),
             [150, 170, 200],
         )),
+        tone: None,
     };
     match bench {
         Bench::Cube => {
@@ -442,7 +448,8 @@ where
         | Bench::PointPhong
         | Bench::PointPhongFast
         | Bench::PointGouraud
-        | Bench::FogGouraud => {
+        | Bench::FogGouraud
+        | Bench::HdrGouraud => {
             let shape = Shape::<S, 162, 320>::icosphere(1.0, 2).map_err(|_| BenchError::Scene)?;
             let shading = match bench {
                 Bench::Phong | Bench::PointPhong => Shading::Phong,
@@ -471,8 +478,17 @@ where
             let lamps = crate::Effects {
                 point_lights: &lamp,
                 fog: None,
+                tone: None,
             };
             let haze = fog(2.2, 3.6);
+            let hdr = crate::Effects {
+                tone: Some(
+                    crate::ToneMap::new(crate::ToneCurve::Filmic)
+                        .with_intensity(S::from_f64(HDR_INTENSITY))
+                        .with_exposure(S::from_f64(HDR_EXPOSURE)),
+                ),
+                ..lamps
+            };
             let mut scene = crate::Scene::new(&objects, camera, light);
             if matches!(
                 bench,
@@ -481,6 +497,8 @@ where
                 scene = scene.with_effects(&lamps);
             } else if bench == Bench::FogGouraud {
                 scene = scene.with_effects(&haze);
+            } else if bench == Bench::HdrGouraud {
+                scene = scene.with_effects(&hdr);
             }
             // Room for triangle ids (one more vertex record per triangle).
             render_with::<S, C, D, P, 240, 240, 512, 192, 32, 1, 1, 512, 40>(

@@ -177,11 +177,14 @@ pub enum Bench {
     /// The shadow scene as a wireframe with its hidden lines removed: every edge of the ground,
     /// the torus and the cube, the surfaces unlit in the background colour.
     Wireframe,
+    /// [`Bench::PointGouraud`] in HDR: both lights [`crate::demo::HDR_INTENSITY`] times as
+    /// bright, exposure [`crate::demo::HDR_EXPOSURE`], the filmic tone curve.
+    HdrGouraud,
 }
 
 impl Bench {
     /// Every benchmark scene.
-    pub const ALL: [Bench; 25] = [
+    pub const ALL: [Bench; 26] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -207,6 +210,7 @@ impl Bench {
         Bench::Outline,
         Bench::Edges,
         Bench::Wireframe,
+        Bench::HdrGouraud,
     ];
 
     /// Its name in reports.
@@ -238,6 +242,7 @@ impl Bench {
             Bench::Outline => "outline",
             Bench::Edges => "edges",
             Bench::Wireframe => "wireframe",
+            Bench::HdrGouraud => "hdr_gouraud",
         }
     }
 }

@@ -22,6 +22,7 @@ use crate::shade::PreparedLight;
 /// let effects = Effects {
 ///     point_lights: &lamps,
 ///     fog: Some(Fog::linear(4.0, 9.0, [150, 170, 200])),
+///     tone: None,
 /// };
 /// # let objects: [Object<'_, f32>; 0] = [];
 /// # let camera = Camera::look_at([0.0, 0.0, 3.0], [0.0; 3], [0.0, 1.0, 0.0],
@@ -36,6 +37,8 @@ pub struct Effects<'a, S> {
     pub point_lights: &'a [PointLight<S>],
     /// Linear depth fog.
     pub fog: Option<Fog<S>>,
+    /// HDR lighting and tone mapping ([`crate::ToneMap`]; `None`: colours are clamped).
+    pub tone: Option<crate::ToneMap<S>>,
 }
 
 /// A point light: a position in world space, a colour and a distance attenuation.

@@ -79,6 +79,14 @@ pub enum Error<E> {
     /// The scene's fog ([`crate::Scene::fog`]) has `near ≥ far`, or a number that is NaN,
     /// infinite or at a fixed-point rail. Nothing was drawn.
     Fog,
+    /// The scene's tone map ([`crate::ToneMap`]) has an intensity or exposure that is not a
+    /// valid number within `0..=MAX_TONE_SCALE` (exposure above 0) (`object` `None`), or
+    /// object `object` is lit per pixel ([`crate::Shading::Phong`], `FastPhong`), which a tone
+    /// map does not reach (its lighting is per vertex). Nothing was drawn.
+    Tone {
+        /// The Phong object, or `None` for the tone map's numbers.
+        object: Option<usize>,
+    },
     /// The scene's camera fails [`crate::Camera::validate`] (its fields are public and may
     /// have been changed after [`crate::Camera::look_at`]). Nothing was drawn.
     Camera(crate::CameraError),
@@ -160,6 +168,14 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
             Error::Fog => write!(
                 f,
                 "the scene's fog needs finite numbers with near < far; nothing was drawn"
+            ),
+            Error::Tone { object: None } => write!(
+                f,
+                "the tone map's intensity and exposure must be finite, within 0 to 16 (exposure above 0); nothing was drawn"
+            ),
+            Error::Tone { object: Some(i) } => write!(
+                f,
+                "object {i} is lit per pixel (Phong), which the tone map does not reach: use flat or Gouraud shading; nothing was drawn"
             ),
             Error::Camera(e) => write!(f, "{e}; nothing was drawn"),
             Error::Shortfall(s) => {

@@ -731,6 +731,18 @@ fn lights_valid<S: Scalar, E, const L: usize>(scene: &Scene<'_, S, L>) -> Result
     if scene.fog().is_some_and(|f| !f.is_valid()) {
         return Err(Error::Fog);
     }
+    if let Some(t) = scene.tone() {
+        if !t.is_valid() {
+            return Err(Error::Tone { object: None });
+        }
+        if let Some(i) = scene
+            .objects
+            .iter()
+            .position(|o| o.material.shading.is_phong())
+        {
+            return Err(Error::Tone { object: Some(i) });
+        }
+    }
     Ok(scene
         .lights
         .iter()

@@ -220,6 +220,7 @@ mod strip;
 mod texture;
 mod textured;
 mod textured_shapes;
+mod tone;
 mod volume;
 mod wide;
 
@@ -255,6 +256,7 @@ pub use shapes::{ParamValue, Shape, ShapeError};
 pub use strip::StripCanvas;
 pub use texture::{Texture, TextureError, TextureMode, Texturing, Wrap, MAX_TEXTURE_SIZE};
 pub use textured_shapes::TexturedShape;
+pub use tone::{AutoExposure, Metered, ToneCurve, ToneMap, MAX_TONE_SCALE};
 pub use volume::{mesh_adjacency, mesh_creases, AdjacencyError, NO_NEIGHBOUR};
 
 #[doc(inline)]

@@ -125,8 +125,15 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         } else {
             [S::ZERO; 3]
         };
-        let lit =
-            crate::shade::lit_color_points(m, self.lights, self.scene.point_lights(), n, w, to_eye);
+        let lit = crate::shade::lit_color_points(
+            m,
+            self.lights,
+            self.scene.point_lights(),
+            n,
+            w,
+            to_eye,
+            self.scene.tone(),
+        );
         match &self.scene.fog() {
             // A textured material's spans fog its pixels (texel × light, then fog).
             Some(f) if m.texture.is_none() => {

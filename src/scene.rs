@@ -72,6 +72,12 @@ impl<'a, S: Scalar, const L: usize> Scene<'a, S, L> {
         self.effects.and_then(|e| e.fog.as_ref())
     }
 
+    /// The tone map (none without [`Scene::effects`]).
+    #[must_use]
+    pub fn tone(&self) -> Option<&'a crate::ToneMap<S>> {
+        self.effects.and_then(|e| e.tone.as_ref())
+    }
+
     /// This scene on background colour `background`.
     #[must_use]
     pub fn with_background(self, background: [u8; 3]) -> Self {

@@ -352,7 +352,8 @@ pub(crate) fn lit_color<S: Scalar>(
     finish(m, sums)
 }
 
-/// [`lit_color`] with point lights too, at world point `p` ([`crate::PointLight::at`]).
+/// [`lit_color`] with point lights too, at world point `p` ([`crate::PointLight::at`]), and
+/// the scene's tone map.
 pub(crate) fn lit_color_points<S: Scalar>(
     m: &Material<S>,
     lights: &[PreparedLight<S>],
@@ -360,15 +361,22 @@ pub(crate) fn lit_color_points<S: Scalar>(
     n: Vec3<S>,
     p: Vec3<S>,
     to_eye: Vec3<S>,
+    tone: Option<&crate::ToneMap<S>>,
 ) -> [u16; 3] {
-    let mut sums = ([m.ambient; 3], [S::ZERO; 3]);
+    // With a tone map the lights' sums start at zero: the ambient term is not scaled by the
+    // lights' intensity.
+    let start = if tone.is_some() { S::ZERO } else { m.ambient };
+    let mut sums = ([start; 3], [S::ZERO; 3]);
     for l in lights {
         add_light(&mut sums, m, l, n, to_eye);
     }
     for pl in points {
         add_light(&mut sums, m, &pl.at(p), n, to_eye);
     }
-    finish(m, sums)
+    match tone {
+        Some(t) => t.map(m, m.ambient, sums.0, sums.1),
+        None => finish(m, sums),
+    }
 }
 
 /// The (diffuse coefficient, specular) sums of [`lit_color`].

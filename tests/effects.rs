@@ -9,8 +9,11 @@ use common::textures::{floor, floor_camera, FLOOR_VIEW};
 use common::Frame;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
 use scanline3d::prelude::*;
-use scanline3d::{Error, Texture, TextureMode};
+use scanline3d::{
+    AutoExposure, Error, Metered, Texture, TextureMode, ToneCurve, ToneMap, MAX_TONE_SCALE,
+};
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;
 
@@ -58,17 +61,29 @@ fn sphere<S: Scalar, const L: usize>(
     lights: [Light<S>; L],
     points: &[PointLight<S>],
 ) -> Frame<Rgb565> {
+    toned_sphere(shading, lights, points, None, COLOR)
+}
+
+/// [`sphere`] with a tone map and a material colour.
+fn toned_sphere<S: Scalar, const L: usize>(
+    shading: Shading,
+    lights: [Light<S>; L],
+    points: &[PointLight<S>],
+    tone: Option<ToneMap<S>>,
+    color: [u8; 3],
+) -> Frame<Rgb565> {
     let shape = Shape::<S, 642, 1280>::icosphere(1.0, 3).unwrap();
     let objects = [Object {
         mesh: shape.mesh(),
         transform: Mat4::identity(),
-        material: Material::matte(COLOR, S::from_f64(AMBIENT), S::from_f64(DIFFUSE))
+        material: Material::matte(color, S::from_f64(AMBIENT), S::from_f64(DIFFUSE))
             .specular(S::from_f64(SPECULAR), SHININESS)
             .shading(shading),
     }];
     let effects = Effects {
         point_lights: points,
         fog: None,
+        tone,
     };
     let scene = Scene::new(&objects, sphere_camera(), lights).with_effects(&effects);
     let mut r: Box<SphereRenderer<S>> = Box::default();
@@ -277,6 +292,7 @@ fn fog_floor<S: Scalar>(
             S::from_f64(FOG_FAR),
             FOG,
         )),
+        tone: None,
     };
     let mut scene = Scene::new(
         &objects,
@@ -409,6 +425,7 @@ fn bad_fog_and_bad_point_lights_are_reported() {
         let effects = Effects {
             point_lights: &[],
             fog: Some(fog),
+            tone: None,
         };
         let e = r
             .render(&scene.with_effects(&effects), &mut frame)
@@ -422,6 +439,7 @@ fn bad_fog_and_bad_point_lights_are_reported() {
     let effects = Effects {
         point_lights: &bad,
         fog: None,
+        tone: None,
     };
     let stats = r.render(&scene.with_effects(&effects), &mut frame).unwrap();
     assert_eq!(stats.invalid, 2);
@@ -445,9 +463,202 @@ fn effects_frames_match_their_golden_images() {
         Bench::PointGouraud,
         Bench::FogGouraud,
         Bench::TexturedFog,
+        Bench::HdrGouraud,
     ] {
         one::<Q>(b, "I16F16");
         one::<f32>(b, "f32");
         one::<f64>(b, "f64");
     }
+}
+
+#[test]
+fn tone_curves_are_monotone_and_bounded() {
+    fn go<S: Scalar>() {
+        for curve in [ToneCurve::Clamp, ToneCurve::Reinhard, ToneCurve::Filmic] {
+            let mut last = S::ZERO;
+            assert_eq!(curve.apply(S::ZERO), S::ZERO, "{curve:?}");
+            assert_eq!(curve.apply(S::from_f64(-3.0)), S::ZERO, "{curve:?}");
+            for k in 1..=400 {
+                let y = curve.apply(S::from_f64(k as f64 * 0.05));
+                assert!(y >= last && y <= S::ONE, "{curve:?} {} at {}", S::NAME, k);
+                last = y;
+            }
+        }
+        let near = |a: S, b: f64| (a.to_f64() - b).abs() < 1e-4;
+        assert!(near(ToneCurve::Reinhard.apply(S::ONE), 0.5));
+        assert!(near(ToneCurve::Clamp.apply(S::from_f64(0.3)), 0.3));
+        assert_eq!(ToneCurve::Clamp.apply(S::from_f64(7.0)), S::ONE);
+        assert_eq!(ToneCurve::Filmic.apply(S::from_f64(20.0)), S::ONE);
+        // The filmic toe: darker than the clamp below about 0.05, brighter above.
+        assert!(ToneCurve::Filmic.apply(S::from_f64(0.02)) < S::from_f64(0.02));
+        assert!(ToneCurve::Filmic.apply(S::from_f64(0.5)) > S::from_f64(0.5));
+    }
+    go::<Q>();
+    go::<f32>();
+    go::<f64>();
+}
+
+/// The sphere under its directional light and lamp, with `tone`.
+fn hdr_sphere<S: Scalar>(tone: Option<ToneMap<S>>, color: [u8; 3]) -> Frame<Rgb565> {
+    let light = [Light::white([-0.6, 0.8, 1.0].map(S::from_f64))];
+    toned_sphere(Shading::Gouraud, light, &[lamp()], tone, color)
+}
+
+#[test]
+fn a_clamp_tone_map_at_exposure_one_is_the_plain_image() {
+    fn go<S: Scalar>() {
+        let plain = hdr_sphere::<S>(None, COLOR);
+        let clamp = hdr_sphere(Some(ToneMap::<S>::new(ToneCurve::Clamp)), COLOR);
+        assert!(plain.px == clamp.px, "{}", S::NAME);
+        // The curves change it.
+        let filmic = hdr_sphere(Some(ToneMap::<S>::new(ToneCurve::Filmic)), COLOR);
+        assert!(plain.px != filmic.px, "{}", S::NAME);
+    }
+    go::<Q>();
+    go::<f32>();
+    go::<f64>();
+}
+
+/// Mean luma (0..=255) of the sphere's pixels (not the black background).
+fn sphere_luma(f: &Frame<Rgb565>) -> f64 {
+    let lit: Vec<f64> =
+        f.px.iter()
+            .filter(|c| **c != Rgb565::BLACK)
+            .map(|c| {
+                let (r, g, b) = (
+                    c.r() as f64 * 255.0 / 31.0,
+                    c.g() as f64 * 255.0 / 63.0,
+                    c.b() as f64 * 255.0 / 31.0,
+                );
+                (2.0 * r + 5.0 * g + b) / 8.0
+            })
+            .collect();
+    lit.iter().sum::<f64>() / lit.len().max(1) as f64
+}
+
+#[test]
+fn a_dark_material_under_a_bright_light_looks_like_a_normal_colour() {
+    fn go<S: Scalar>() {
+        let dark = [40, 40, 40];
+        // Clamped, at ordinary brightness: dim.
+        let dim = sphere_luma(&hdr_sphere::<S>(None, dark));
+        // Six times as bright, Reinhard: a mid grey, with highlights that do not clip.
+        let bright = ToneMap::<S>::new(ToneCurve::Reinhard).with_intensity(S::from_f64(6.0));
+        let f = hdr_sphere(Some(bright), dark);
+        let mid = sphere_luma(&f);
+        assert!(dim < 40.0, "{} {dim}", S::NAME);
+        assert!((60.0..200.0).contains(&mid), "{} {mid}", S::NAME);
+        // The same light clamped saturates more of the sphere than Reinhard does.
+        let clamped = hdr_sphere(
+            Some(ToneMap::<S>::new(ToneCurve::Clamp).with_intensity(S::from_f64(6.0))),
+            COLOR,
+        );
+        let reinhard = hdr_sphere(Some(bright), COLOR);
+        let white = |f: &Frame<Rgb565>| -> usize { f.px.iter().filter(|c| c.r() == 31).count() };
+        assert!(white(&clamped) > 2 * white(&reinhard) + 10, "{}", S::NAME);
+    }
+    go::<Q>();
+    go::<f32>();
+    go::<f64>();
+}
+
+#[test]
+fn automatic_exposure_adapts_to_bright_and_dark_scenes() {
+    fn go<S: Scalar>(intensity: f64) -> (f64, f64) {
+        let mut auto = AutoExposure::new(50, 128);
+        let mut first = 0.0;
+        for k in 0..24 {
+            let tone = ToneMap::<S>::new(ToneCurve::Reinhard)
+                .with_intensity(S::from_f64(intensity))
+                .with_exposure(auto.exposure::<S>());
+            let f = hdr_sphere(Some(tone), COLOR);
+            // Measured as the strips go out (here the frame in one call to a target that
+            // discards it), sphere and background alike.
+            let mut sink = scanline3d::hash::NullTarget::<Rgb565>::new(SIZE, SIZE);
+            let mut m = Metered::new(&mut sink);
+            let all = Rectangle::new(Point::zero(), Size::new(SIZE, SIZE));
+            m.fill_contiguous(&all, f.px.iter().copied()).unwrap();
+            let mean = m.mean();
+            if k == 0 {
+                first = mean as f64;
+            }
+            auto.adapt(mean);
+            if k == 23 {
+                return (first, mean as f64);
+            }
+        }
+        unreachable!()
+    }
+    for (bright, dark) in [
+        (go::<Q>(8.0), go::<Q>(0.25)),
+        (go::<f64>(8.0), go::<f64>(0.25)),
+    ] {
+        // Too bright, then near the target; too dark, then near it.
+        assert!(
+            bright.0 > 70.0 && (bright.1 - 50.0).abs() < 6.0,
+            "{bright:?}"
+        );
+        assert!(dark.0 < 35.0 && (dark.1 - 50.0).abs() < 6.0, "{dark:?}");
+    }
+    // The exposure stays within its range whatever is measured.
+    // Leaving the background out: the sphere's own mean.
+    let f = hdr_sphere::<f64>(None, COLOR);
+    let mut sink = scanline3d::hash::NullTarget::<Rgb565>::new(SIZE, SIZE);
+    let mut m = Metered::new(&mut sink).excluding(Rgb565::BLACK);
+    let all = Rectangle::new(Point::zero(), Size::new(SIZE, SIZE));
+    m.fill_contiguous(&all, f.px.iter().copied()).unwrap();
+    assert_eq!(m.mean() as f64, sphere_luma(&f).floor());
+    m.reset();
+    assert_eq!(m.mean(), 0);
+    let mut a = AutoExposure::new(200, 256);
+    for _ in 0..40 {
+        a.adapt(0);
+    }
+    assert_eq!(a.exposure_bits(), (MAX_TONE_SCALE as u32) << 16);
+    for _ in 0..40 {
+        a.adapt(255);
+    }
+    assert!(a.exposure_bits() >= 1 << 8);
+}
+
+#[test]
+fn bad_tone_maps_are_named_errors() {
+    fn go<S: Scalar>(
+        tone: ToneMap<S>,
+        shading: Shading,
+    ) -> Option<Error<core::convert::Infallible>> {
+        let shape = Shape::<S, 42, 80>::icosphere(1.0, 1).unwrap();
+        let objects = [Object {
+            mesh: shape.mesh(),
+            transform: Mat4::identity(),
+            material: Material::matte(COLOR, S::ONE, S::ZERO).shading(shading),
+        }];
+        let effects = Effects {
+            point_lights: &[],
+            fog: None,
+            tone: Some(tone),
+        };
+        let light = [Light::white([S::ZERO, S::ZERO, S::ONE])];
+        let scene = Scene::new(&objects, sphere_camera(), light).with_effects(&effects);
+        let mut r: Box<SphereRenderer<S>> = Box::default();
+        let mut f = Frame::new(SIZE, SIZE, Rgb565::BLACK);
+        r.render(&scene, &mut f).err()
+    }
+    let numbers = Some(Error::Tone { object: None });
+    let t = ToneMap::<f32>::new(ToneCurve::Reinhard);
+    assert_eq!(go(t.with_exposure(0.0), Shading::Gouraud), numbers);
+    assert_eq!(go(t.with_exposure(f32::NAN), Shading::Gouraud), numbers);
+    assert_eq!(go(t.with_intensity(17.0), Shading::Gouraud), numbers);
+    assert_eq!(go(t.with_intensity(-1.0), Shading::Flat), numbers);
+    assert_eq!(go(t, Shading::Phong), Some(Error::Tone { object: Some(0) }));
+    assert_eq!(go(t, Shading::Gouraud), None);
+    let q = ToneMap::<Q>::new(ToneCurve::Filmic);
+    assert_eq!(
+        go(q.with_exposure(Q::from_f64(16.5)), Shading::Gouraud),
+        numbers
+    );
+    assert_eq!(
+        go(q.with_intensity(Q::from_f64(16.0)), Shading::Gouraud),
+        None
+    );
 }

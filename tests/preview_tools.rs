@@ -753,3 +753,73 @@ fn edges_and_wireframes_render_and_their_flags_are_checked() {
         &["one layered frame"],
     );
 }
+
+#[test]
+fn tone_mapping_flags_render_and_are_checked() {
+    // Automatic exposure brings a dim and a bright sphere to about the same brightness.
+    let mean = |intensity: &str| {
+        let out = tmp(&format!("tone_{intensity}.png"));
+        let (code, _, stderr) = run(
+            "render",
+            &[
+                "--scene",
+                "icosphere",
+                "--format",
+                "rgb888",
+                "--tone",
+                "filmic",
+                "--exposure",
+                "auto",
+                "--light-intensity",
+                intensity,
+                "--out",
+                out.to_str().unwrap(),
+            ],
+        );
+        assert_eq!(code, 0, "{stderr}");
+        let (_, _, rgb) = common::read_png(&out).expect("a PNG");
+        let lit: Vec<f64> = rgb
+            .chunks_exact(3)
+            .filter(|p| p != &[0, 0, 0])
+            .map(|p| (2.0 * p[0] as f64 + 5.0 * p[1] as f64 + p[2] as f64) / 8.0)
+            .collect();
+        lit.iter().sum::<f64>() / lit.len() as f64
+    };
+    let (dim, bright) = (mean("0.3"), mean("4"));
+    assert!((dim - bright).abs() < 12.0, "{dim} vs {bright}");
+    // The budget states the HDR range and refuses what overflows Q16.16.
+    let (code, stdout, _) = run(
+        "render",
+        &["--light-intensity", "3", "--tone", "reinhard", "--budget"],
+    );
+    assert_eq!(code, 0);
+    assert!(stdout.contains("HDR lighting: radiance up to"), "{stdout}");
+    let (code, _, stderr) = run(
+        "render",
+        &[
+            "--light-intensity",
+            "16",
+            "--exposure",
+            "16",
+            "--diffuse",
+            "1",
+            "--budget",
+        ],
+    );
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("overflows Q16.16"), "{stderr}");
+    bad_flags(&["--exposure", "0"], &["--exposure", "above 0"]);
+    bad_flags(&["--exposure", "bright"], &["auto"]);
+    bad_flags(
+        &["--light-intensity", "17"],
+        &["--light-intensity must be in [0, 16], got 17"],
+    );
+    bad_flags(
+        &["--tone", "reinhard", "--shading", "phong"],
+        &["not with --shading phong"],
+    );
+    bad_flags(
+        &["--scene", "shadow", "--tone", "filmic"],
+        &["not --scene shadow"],
+    );
+}

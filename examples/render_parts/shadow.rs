@@ -32,6 +32,12 @@ pub fn run(args: &Args) -> Result<(), (String, i32)> {
             2,
         ));
     }
+    if super::tone::on(args) {
+        return Err((
+            "--tone, --exposure and --light-intensity apply to models, not --scene shadow".into(),
+            2,
+        ));
+    }
     if args.outline.is_some() && args.edge_color.is_some() {
         return Err((
             "--outline and --edge-color both set the lines' colour: give one".into(),
