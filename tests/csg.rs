@@ -147,7 +147,7 @@ fn run(tool: &str, args: &[&str]) -> (i32, String, String) {
     let out = std::process::Command::new(example(tool))
         .args(args)
         .output()
-        .expect("run the example");
+        .expect("run the example (cargo test builds it; with --test csg, build it first)");
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stdout).into(),
