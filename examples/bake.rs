@@ -11,6 +11,8 @@
 //! meshoptimizer's topology-keeping simplifier reaches the budget; a textured mesh that would
 //! need its vertex-clustering one is refused (it joins vertices across seams).
 //!
+//! `--csg FILE` bakes a CSG tree (tests/common/csg.rs) instead of an OBJ.
+//!
 //! `--texture FILE.png` bakes an image instead: RGB565 texels (rounded, not cut) and a `static`
 //! `scanline3d::Texture` (power-of-two sizes up to 1024; `--wrap repeat|clamp` on both axes;
 //! transparent pixels become a colour key, `NAME_KEY`). Prints the size, the flash bytes and
@@ -18,6 +20,7 @@
 //!
 //! `cargo run --release --example bake -- model.obj --out model_mesh.rs`
 //! `cargo run --release --example bake -- scan.obj --max-triangles 4000 --out scan_mesh.rs --obj-out scan_4k.obj`
+//! `cargo run --release --example bake -- --csg examples/csg/part.csg --out part_mesh.rs`
 //! `cargo run --release --example bake -- --texture bricks.png --out bricks.rs --wrap repeat`
 
 #[path = "../tests/common/mod.rs"]
@@ -26,6 +29,7 @@ mod common;
 use std::path::PathBuf;
 
 use clap::{Parser, ValueEnum};
+use common::csg::load_csg;
 use common::obj::{
     bake_with_uvs, parse_obj, simplify, to_obj_with_uvs, write_atomic, NormalSource,
 };
@@ -49,8 +53,12 @@ enum WrapArg {
 #[command(name = "bake", version)]
 struct Args {
     /// The OBJ file
-    #[arg(required_unless_present = "texture", conflicts_with = "texture")]
+    #[arg(required_unless_present_any = ["texture", "csg"], conflicts_with_all = ["texture", "csg"])]
     obj: Option<PathBuf>,
+    /// Bake a CSG tree instead (format: tests/common/csg.rs): meshed with mesh booleans, normals
+    /// split at edges sharper than 40°
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["texture", "normals"])]
+    csg: Option<PathBuf>,
     /// Bake this PNG image into an RGB565 texture instead of an OBJ mesh
     #[arg(
         long,
@@ -100,8 +108,11 @@ fn run(args: &Args) -> Result<(), String> {
         println!("{}", bake_texture(png, out, args.name.as_deref(), wrap)?);
         return Ok(());
     }
-    let obj = args.obj.as_ref().ok_or("give an OBJ file, or --texture")?;
-    let file = parse_obj(obj)?;
+    let (obj, file) = match (&args.obj, &args.csg) {
+        (Some(obj), _) => (obj, parse_obj(obj)?),
+        (_, Some(csg)) => (csg, load_csg(csg)?.to_obj_file(&csg.display().to_string())),
+        _ => return Err("give an OBJ file, --csg FILE or --texture".into()),
+    };
     let source = match args.normals {
         Some(NormalsArg::File) => NormalSource::File,
         Some(NormalsArg::FaceAverage) => NormalSource::FaceAverage,

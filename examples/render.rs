@@ -18,6 +18,7 @@ use std::time::Instant;
 
 use clap::{Parser, ValueEnum};
 use common::compare::Timer;
+use common::csg::load_csg;
 use common::obj::{
     bounds, parse_obj, simplify, suggest_triangles, vertex_normals, NormalSource, ObjMesh,
 };
@@ -274,6 +275,10 @@ struct Args {
     /// OBJ file to render (triangulated; v/vt/vn and negative indices accepted)
     #[arg(long, value_name = "FILE", conflicts_with = "scene")]
     obj: Option<PathBuf>,
+    /// CSG tree to mesh and render (format: tests/common/csg.rs; e.g. examples/csg/part.csg);
+    /// corners get crease-angle normals (edges sharper than 40° stay hard)
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["scene", "obj"])]
+    csg: Option<PathBuf>,
     /// Built-in scene [default: torus]
     #[arg(long, value_enum)]
     scene: Option<SceneArg>,
@@ -452,8 +457,15 @@ struct Model {
 }
 
 fn model(args: &Args) -> Result<Model, String> {
-    if let Some(path) = &args.obj {
-        let file = parse_obj(path)?;
+    let file = match (&args.obj, &args.csg) {
+        (Some(path), _) => Some((path, parse_obj(path)?)),
+        (_, Some(path)) => Some((
+            path,
+            load_csg(path)?.to_obj_file(&path.display().to_string()),
+        )),
+        _ => None,
+    };
+    if let Some((path, file)) = file {
         let source = match args.normals {
             Some(NormalsArg::File) => {
                 if !file.all_corners_have_normals {

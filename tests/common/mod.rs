@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod compare;
+pub mod csg;
 pub mod obj;
 pub mod texture_io;
 pub mod textures;
