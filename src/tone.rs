@@ -50,10 +50,12 @@ impl ToneCurve {
             ToneCurve::Clamp => x,
             ToneCurve::Reinhard => x / (S::ONE + x),
             ToneCurve::Filmic => {
+                // As `x · g(x)`: the ratio `g` of two terms at least 0.03 and 0.14 keeps its
+                // relative precision in fixed point where `x(2.51x + 0.03)` would be a few
+                // steps of 2⁻¹⁶ (rounded that way, the curve turned down near 0).
                 let k = S::from_f64;
-                let num = x * (k(2.51) * x + k(0.03));
-                let den = x * (k(2.43) * x + k(0.59)) + k(0.14);
-                num / den
+                let g = (k(2.51) * x + k(0.03)) / (x * (k(2.43) * x + k(0.59)) + k(0.14));
+                x * g
             }
         };
         y.max(S::ZERO).min(S::ONE)

@@ -478,7 +478,17 @@ fn tone_curves_are_monotone_and_bounded() {
             let mut last = S::ZERO;
             assert_eq!(curve.apply(S::ZERO), S::ZERO, "{curve:?}");
             assert_eq!(curve.apply(S::from_f64(-3.0)), S::ZERO, "{curve:?}");
-            for k in 1..=400 {
+            // Finely near 0 (where rounding could turn a curve down), then to 20 × white.
+            for k in 1..=2048 {
+                let y = curve.apply(S::from_f64(k as f64 / 8192.0));
+                assert!(
+                    y >= last && y <= S::ONE,
+                    "{curve:?} {} at {k}/8192",
+                    S::NAME
+                );
+                last = y;
+            }
+            for k in 6..=400 {
                 let y = curve.apply(S::from_f64(k as f64 * 0.05));
                 assert!(y >= last && y <= S::ONE, "{curve:?} {} at {}", S::NAME, k);
                 last = y;
