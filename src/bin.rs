@@ -20,7 +20,8 @@ impl<
         const LINES: usize,
         const XV: usize,
         const XA: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
+        const ZL: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
 {
     /// The bucket of a stored triangle (see [`bucket_row`]).
     pub(crate) fn first_row(&self, t: &TriRecord) -> usize {

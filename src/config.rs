@@ -218,7 +218,8 @@ impl<
         const LINES: usize,
         const XV: usize,
         const XA: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
+        const ZL: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
 {
     /// This renderer type's size and capacities, by name.
     pub const CAPACITIES: Capacities = Capacities {

@@ -87,6 +87,10 @@ pub enum Error<E> {
         /// The Phong object, or `None` for the tone map's numbers.
         object: Option<usize>,
     },
+    /// A layered frame ([`crate::Renderer::render_layered`]: shadows, outlines, translucency)
+    /// on a renderer without depth lines ([`crate::NoDepthRenderer`]): the layers are tested
+    /// against the depth lines. Nothing was drawn.
+    NoDepthLines,
     /// The scene's camera fails [`crate::Camera::validate`] (its fields are public and may
     /// have been changed after [`crate::Camera::look_at`]). Nothing was drawn.
     Camera(crate::CameraError),
@@ -176,6 +180,10 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
             Error::Tone { object: Some(i) } => write!(
                 f,
                 "object {i} is lit per pixel (Phong), which the tone map does not reach: use flat or Gouraud shading; nothing was drawn"
+            ),
+            Error::NoDepthLines => write!(
+                f,
+                "shadows, outlines and translucency test against the depth lines, which this renderer does not have (ZL = 0): use a renderer with depth lines; nothing was drawn"
             ),
             Error::Camera(e) => write!(f, "{e}; nothing was drawn"),
             Error::Shortfall(s) => {

@@ -29,7 +29,8 @@ impl<
         const LINES: usize,
         const XV: usize,
         const XA: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
+        const ZL: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
 {
     /// The texture attributes of object `o`'s mesh vertices (stored from `base`, `n` of them)
     /// when it is textured, none otherwise (where the store has room).

@@ -131,7 +131,8 @@ impl<
         const LINES: usize,
         const XV: usize,
         const XA: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
+        const ZL: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
 {
     /// Draws one frame of `scene` into `target` in layers: each row of each strip draws the
     /// `layering`'s receivers, then its projected shadow (each receiver pixel darkened at most
@@ -151,7 +152,8 @@ impl<
     /// # Errors
     ///
     /// As [`Renderer::render`], and [`Error::Layers`] for a layering that cannot be drawn
-    /// ([`LayerError`]); all before anything is drawn.
+    /// ([`LayerError`]), [`Error::NoDepthLines`] on a renderer without depth lines (the
+    /// layers test against them); all before anything is drawn.
     pub fn render_layered<D, const L: usize, const RA: usize, const PA: usize>(
         &mut self,
         scene: &Scene<'_, S, L>,
@@ -221,6 +223,9 @@ impl<
         layers: &mut Layers<W, LINES, RA, PA>,
         probe: &mut P,
     ) -> Result<Stats, Error<E>> {
+        if ZL == 0 {
+            return Err(Error::NoDepthLines);
+        }
         let n = scene.objects.len();
         let bad = |index: usize| Error::Layers(LayerError::NoSuchObject { index });
         let outlined = layering.outline.map_or(&[][..], |o| o.objects);

@@ -12,6 +12,7 @@ use heapless::Vec;
 
 use crate::attrs::{ActiveExtra, FREE, TRI};
 use crate::color::TargetColor;
+use crate::depth_mode::DrawOrder;
 use crate::project::{ScreenVertex, MAX_SCREEN};
 use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
@@ -128,6 +129,7 @@ pub struct Renderer<
     const LINES: usize = 1,
     const XV: usize = 0,
     const XA: usize = 0,
+    const ZL: usize = LINES,
 > {
     pub(crate) verts: Vec<ScreenVertex, VERTS>,
     /// Texture attributes of the first `XV` vertices of the store (see "Textures").
@@ -143,8 +145,12 @@ pub struct Renderer<
     /// starting, −1 for each ending); then the insertion cursors of the bucket sort.
     pub(crate) starts: [i16; H],
     pub(crate) color: [[C; W]; LINES],
-    pub(crate) depth: [[u16; W]; LINES],
+    /// The depth lines, one per strip line (16-bit depth, 0 = nearest, 65535 = the far plane;
+    /// cleared to 65535): `ZL = LINES`, or none (`ZL = 0`, [`NoDepthRenderer`]).
+    pub(crate) depth: [[u16; W]; ZL],
     pub(crate) depth_test: DepthTest,
+    /// How a renderer without depth lines orders a row's triangles (unused with depth lines).
+    pub(crate) order: DrawOrder,
     pub(crate) dither: bool,
     /// Next row to rasterize (`vh` when no frame is prepared).
     pub(crate) next_row: usize,
@@ -173,7 +179,8 @@ impl<
         const LINES: usize,
         const XV: usize,
         const XA: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
+        const ZL: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
 {
     /// Exact RAM of this renderer in bytes.
     pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
@@ -186,6 +193,14 @@ impl<
         assert!(W >= 1 && W <= MAX_SCREEN, "W must be 1..=1024");
         assert!(H >= 1 && H <= MAX_SCREEN, "H must be 1..=1024");
         assert!(LINES >= 1, "LINES must be at least 1");
+        assert!(
+            ZL == LINES || ZL == 0,
+            "ZL (depth lines) must be LINES (a Z-buffer) or 0 (no depth lines)"
+        );
+        assert!(
+            ZL > 0 || (XV == 0 && XA == 0),
+            "a renderer without depth lines (ZL = 0) draws flat and Gouraud triangles: XV and XA must be 0"
+        );
         assert!(
             VERTS >= 1 && VERTS <= FLAT_BIT as usize,
             "VERTS must be 1..=32768"
@@ -225,8 +240,9 @@ impl<
             heads: [0; H],
             starts: [0; H],
             color: [[fill; W]; LINES],
-            depth: [[u16::MAX; W]; LINES],
+            depth: [[u16::MAX; W]; ZL],
             depth_test: DepthTest::Less,
+            order: DrawOrder::FarToNear,
             dither: false,
             next_row: H,
             vw: W,
@@ -509,8 +525,10 @@ impl<
         }
         self.check_target(target)?;
         let background = crate::color::quantize::<C>(first.background);
-        for (c, d) in self.color[..vh].iter_mut().zip(&mut self.depth[..vh]) {
+        for c in &mut self.color[..vh] {
             c[..vw].fill(background);
+        }
+        for d in self.depth.iter_mut().take(vh) {
             d[..vw].fill(u16::MAX);
         }
         let mut total = Stats::default();
@@ -660,7 +678,8 @@ impl<
         const LINES: usize,
         const XV: usize,
         const XA: usize,
-    > Default for Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
+        const ZL: usize,
+    > Default for Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
 {
     fn default() -> Self {
         Self::new()

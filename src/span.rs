@@ -4,6 +4,8 @@
 //! (`kernel::rows565`, `kernel::span565_*`) take the RGB565 `DepthTest::Less` case where they
 //! run.
 
+use core::iter::repeat;
+
 use crate::color::BAYER;
 use crate::color::{rgb565_word, rgb565_words_mut, TargetColor};
 use crate::kernel;
@@ -173,7 +175,37 @@ impl ActiveTri {
         test: DepthTest,
         dither: bool,
     ) -> (u32, u32, bool) {
-        let width = colors.len().min(depth.len()) as i32;
+        self.draw_row_in::<C, LESS>(row, colors, depth, test, dither)
+    }
+
+    /// [`ActiveTri::draw_row`] for a renderer without depth lines: every fragment is written.
+    #[inline(never)]
+    pub(crate) fn draw_row_no_depth<C: TargetColor>(
+        &mut self,
+        row: i32,
+        colors: &mut [C],
+        dither: bool,
+    ) -> (u32, u32, bool) {
+        self.draw_row_in::<C, NONE>(row, colors, &mut [], DepthTest::Always, dither)
+    }
+
+    /// The row of [`ActiveTri::draw_row`] (`Z` = [`LESS`]: with the depth line `depth` and
+    /// `test`; its fast triangles' spans are `Less`) or of
+    /// [`ActiveTri::draw_row_no_depth`] (`Z` = [`NONE`]: `depth` empty, `test` unused).
+    #[inline(always)]
+    fn draw_row_in<C: TargetColor, const Z: u8>(
+        &mut self,
+        row: i32,
+        colors: &mut [C],
+        depth: &mut [u16],
+        test: DepthTest,
+        dither: bool,
+    ) -> (u32, u32, bool) {
+        let width = if Z == NONE {
+            colors.len()
+        } else {
+            colors.len().min(depth.len())
+        } as i32;
         let (lc, rc) = (self.edges[0].c(), self.edges[1].c());
         let xs = lc.max(0);
         let xe = rc.min(width);
@@ -190,10 +222,10 @@ impl ActiveTri {
                         v[k] = v[k].wrapping_add(self.gx[k].wrapping_mul(skip));
                     }
                 }
-                let (zs, cs) = (&mut depth[x0..x1], &mut colors[x0..x1]);
+                let (zs, cs) = (zline::<Z>(depth, x0, x1), &mut colors[x0..x1]);
                 let written = if flat {
                     let c = C::from_channels(self.flat_channels());
-                    span_flat::<C, LESS>(zs, cs, v[0], self.gx[0], c)
+                    span_flat::<C, Z>(zs, cs, v[0], self.gx[0], c)
                 } else if dither && C::can_dither() {
                     let (z, rb, g) = (
                         [v[0], self.gx[0]],
@@ -201,12 +233,12 @@ impl ActiveTri {
                         [v[2], self.gx[2]],
                     );
                     if self.flags & DITHER_OK != 0 {
-                        span_packed_dither::<C, LESS>(zs, cs, z, rb, g, x0, row)
+                        span_packed_dither::<C, Z>(zs, cs, z, rb, g, x0, row)
                     } else {
-                        span_packed_dither_clamped::<C>(zs, cs, z, rb, g, x0, row)
+                        span_packed_dither_clamped::<C, Z>(zs, cs, z, rb, g, x0, row)
                     }
                 } else {
-                    span_packed::<C, LESS>(
+                    span_packed::<C, Z>(
                         zs,
                         cs,
                         [v[0], self.gx[0]],
@@ -240,7 +272,14 @@ impl ActiveTri {
                 gx: self.gx,
             };
             let dither = dither && C::can_dither();
-            let written = if flat {
+            let written = if Z == NONE {
+                if flat {
+                    let c = C::from_channels(self.flat_channels());
+                    span.fill_flat::<C, NONE>(colors, depth, c)
+                } else {
+                    span.fill_gouraud::<C, NONE>(colors, depth, dither)
+                }
+            } else if flat {
                 let c = C::from_channels(self.flat_channels());
                 match test {
                     DepthTest::Less => span.fill_flat::<C, LESS>(colors, depth, c),
@@ -281,6 +320,9 @@ pub(crate) fn span_flat<C: TargetColor, const T: u8>(
     gz: i32,
     color: C,
 ) -> u32 {
+    if T == NONE {
+        return span_flat_portable::<C, T>(repeat(NoDepth), cs, z, gz, color);
+    }
     if T == LESS {
         if let (Some(word), Some(words)) = (rgb565_word(color), rgb565_words_mut(cs)) {
             if let Some(written) = kernel::span565_flat_less(zs, words, z, gz, word) {
@@ -294,17 +336,16 @@ pub(crate) fn span_flat<C: TargetColor, const T: u8>(
 /// [`span_flat`]'s portable loop (the flat span kernel's twin).
 #[inline(always)]
 pub(crate) fn span_flat_portable<C: TargetColor, const T: u8>(
-    zs: &mut [u16],
+    zs: impl IntoIterator<Item = impl DepthSlot>,
     cs: &mut [C],
     mut z: i32,
     gz: i32,
     color: C,
 ) -> u32 {
     let mut written = 0;
-    for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
+    for (zb, cb) in zs.into_iter().zip(cs.iter_mut()) {
         let z16 = (z >> DEPTH_FRAC_BITS) as u16;
-        if passes::<T>(z16, *zb) {
-            *zb = z16;
+        if zb.pass::<T>(z16) {
             *cb = color;
             written += 1;
         }
@@ -325,6 +366,9 @@ pub(crate) fn span_packed<C: TargetColor, const T: u8>(
     rb: [u32; 2],
     g: [i32; 2],
 ) -> u32 {
+    if T == NONE {
+        return span_packed_portable::<C, T>(repeat(NoDepth), cs, z, rb, g);
+    }
     if T == LESS {
         if let Some(words) = rgb565_words_mut(cs) {
             if let Some(written) = kernel::span565_less(zs, words, z, rb, g) {
@@ -338,7 +382,7 @@ pub(crate) fn span_packed<C: TargetColor, const T: u8>(
 /// [`span_packed`]'s portable loop (the Gouraud span kernel's twin).
 #[inline(always)]
 pub(crate) fn span_packed_portable<C: TargetColor, const T: u8>(
-    zs: &mut [u16],
+    zs: impl IntoIterator<Item = impl DepthSlot>,
     cs: &mut [C],
     z: [i32; 2],
     rb: [u32; 2],
@@ -346,10 +390,9 @@ pub(crate) fn span_packed_portable<C: TargetColor, const T: u8>(
 ) -> u32 {
     let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
     let mut written = 0;
-    for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
+    for (zb, cb) in zs.into_iter().zip(cs.iter_mut()) {
         let z16 = (z as u32 >> 16) as u16;
-        if passes::<T>(z16, *zb) {
-            *zb = z16;
+        if zb.pass::<T>(z16) {
             *cb = packed_color::<C>(rb, g as u32);
             written += 1;
         }
@@ -378,6 +421,9 @@ pub(crate) fn span_packed_dither<C: TargetColor, const T: u8>(
     x0: usize,
     row: i32,
 ) -> u32 {
+    if T == NONE {
+        return span_packed_dither_portable::<C, T>(repeat(NoDepth), cs, z, rb, g, x0, row);
+    }
     if T == LESS {
         if let Some(words) = rgb565_words_mut(cs) {
             if let Some(written) = kernel::span565_less_dither(zs, words, z, rb, g, x0, row) {
@@ -391,7 +437,7 @@ pub(crate) fn span_packed_dither<C: TargetColor, const T: u8>(
 /// [`span_packed_dither`] in portable code (the twin of the Cortex-M routines).
 #[inline(always)]
 pub(crate) fn span_packed_dither_portable<C: TargetColor, const T: u8>(
-    zs: &mut [u16],
+    zs: impl IntoIterator<Item = impl DepthSlot>,
     cs: &mut [C],
     z: [i32; 2],
     rb: [u32; 2],
@@ -402,11 +448,10 @@ pub(crate) fn span_packed_dither_portable<C: TargetColor, const T: u8>(
     let offsets = dither_words::<C>(row);
     let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
     let mut written = 0;
-    for (x, (zb, cb)) in (x0..).zip(zs.iter_mut().zip(cs.iter_mut())) {
+    for (x, (zb, cb)) in (x0..).zip(zs.into_iter().zip(cs.iter_mut())) {
         let z16 = (z as u32 >> 16) as u16;
-        if passes::<T>(z16, *zb) {
+        if zb.pass::<T>(z16) {
             let [drb, dg] = offsets[x & 3];
-            *zb = z16;
             *cb = packed_color::<C>(rb.wrapping_add(drb), (g as u32).wrapping_add(dg));
             written += 1;
         }
@@ -424,8 +469,26 @@ pub(crate) fn span_packed_dither_portable<C: TargetColor, const T: u8>(
 /// the offset `d` is added in an `i32` and the channel is clamped to its range. Portable on
 /// every core (rare).
 #[inline(never)]
-pub(crate) fn span_packed_dither_clamped<C: TargetColor>(
+pub(crate) fn span_packed_dither_clamped<C: TargetColor, const T: u8>(
     zs: &mut [u16],
+    cs: &mut [C],
+    z: [i32; 2],
+    rb: [u32; 2],
+    g: [i32; 2],
+    x0: usize,
+    row: i32,
+) -> u32 {
+    if T == NONE {
+        dither_clamped_loop::<C, T>(repeat(NoDepth), cs, z, rb, g, x0, row)
+    } else {
+        dither_clamped_loop::<C, T>(zs, cs, z, rb, g, x0, row)
+    }
+}
+
+/// [`span_packed_dither_clamped`]'s loop over any depth slots.
+#[inline(always)]
+fn dither_clamped_loop<C: TargetColor, const T: u8>(
+    zs: impl IntoIterator<Item = impl DepthSlot>,
     cs: &mut [C],
     z: [i32; 2],
     rb: [u32; 2],
@@ -439,11 +502,10 @@ pub(crate) fn span_packed_dither_clamped<C: TargetColor>(
     let ([mut z, gz], [mut rb, grb], [mut g, gg]) = (z, rb, g);
     let q = |v: i64, frac: u32, max: u8| (v >> frac).clamp(0, max as i64) as u8;
     let mut written = 0;
-    for (x, (zb, cb)) in (x0..).zip(zs.iter_mut().zip(cs.iter_mut())) {
+    for (x, (zb, cb)) in (x0..).zip(zs.into_iter().zip(cs.iter_mut())) {
         let z16 = (z as u32 >> 16) as u16;
-        if z16 < *zb {
+        if zb.pass::<T>(z16) {
             let d = 2 * bayer[x & 3] as i64 - 15;
-            *zb = z16;
             *cb = C::from_channels([
                 q((rb >> 16) as i64 + (d << (fr - 5)), fr, C::CHANNEL_MAX[0]),
                 q(
@@ -480,6 +542,49 @@ pub(crate) const LESS: u8 = 0;
 pub(crate) const LESS_EQUAL: u8 = 1;
 pub(crate) const EQUAL: u8 = 2;
 pub(crate) const ALWAYS: u8 = 3;
+/// No depth line at all (a renderer without depth lines, [`crate::NoDepthRenderer`]): every
+/// fragment is written and no depth is read or stored.
+pub(crate) const NONE: u8 = 4;
+
+/// One pixel's depth slot in a span loop: the strip's stored depth, or [`NoDepth`].
+pub(crate) trait DepthSlot {
+    /// Whether a fragment at depth `z` passes test `T` here; stores `z` when it does.
+    fn pass<const T: u8>(self, z: u16) -> bool;
+}
+
+impl DepthSlot for &mut u16 {
+    #[inline(always)]
+    fn pass<const T: u8>(self, z: u16) -> bool {
+        if passes::<T>(z, *self) {
+            *self = z;
+            true
+        } else {
+            false
+        }
+    }
+}
+
+/// The depth slot of a renderer without depth lines: every fragment passes, nothing is stored
+/// (the span loops' depth arithmetic is then dead code and compiled out).
+#[derive(Copy, Clone)]
+pub(crate) struct NoDepth;
+
+impl DepthSlot for NoDepth {
+    #[inline(always)]
+    fn pass<const T: u8>(self, _z: u16) -> bool {
+        true
+    }
+}
+
+/// The depth slots of columns `x0..x1` for test `T`: none for [`NONE`].
+#[inline(always)]
+fn zline<const T: u8>(depth: &mut [u16], x0: usize, x1: usize) -> &mut [u16] {
+    if T == NONE {
+        &mut []
+    } else {
+        &mut depth[x0..x1]
+    }
+}
 
 /// The depth test, resolved at compile time in each monomorphized span loop.
 #[inline(always)]
@@ -508,7 +613,7 @@ impl Span {
         color: C,
     ) -> u32 {
         span_flat::<C, T>(
-            &mut depth[self.x0..self.x1],
+            zline::<T>(depth, self.x0, self.x1),
             &mut colors[self.x0..self.x1],
             self.z_start(),
             self.gx[0],
@@ -558,7 +663,10 @@ impl Span {
         );
         let rb = (rb as u32).wrapping_add(packed_rb_half::<C>());
         let [gz, grb, gg] = pack_zrgb::<C>(g[0], g[1], g[2], g[3]);
-        let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
+        let (zs, cs) = (
+            zline::<T>(depth, self.x0, self.x1),
+            &mut colors[self.x0..self.x1],
+        );
         span_packed::<C, T>(zs, cs, [z, gz], [rb, grb as u32], [g0, gg])
     }
 
@@ -571,17 +679,30 @@ impl Span {
         colors: &mut [C],
         depth: &mut [u16],
     ) -> u32 {
+        let cs = &mut colors[self.x0..self.x1];
+        if T == NONE {
+            self.round_loop::<C, T>(repeat(NoDepth), cs)
+        } else {
+            self.round_loop::<C, T>(&mut depth[self.x0..self.x1], cs)
+        }
+    }
+
+    /// [`Span::fill_gouraud_round`]'s loop over any depth slots.
+    #[inline(always)]
+    fn round_loop<C: TargetColor, const T: u8>(
+        &self,
+        zs: impl IntoIterator<Item = impl DepthSlot>,
+        cs: &mut [C],
+    ) -> u32 {
         let half = 1i32 << (COLOR_FRAC_BITS - 1);
         let mut z = self.z_start();
         let [_, r0, g0, b0] = self.start;
         let (mut r, mut g, mut b) = (r0 + half, g0 + half, b0 + half);
         let [gz, gr, gg, gb] = self.gx;
         let mut written = 0;
-        let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
-        for (zb, cb) in zs.iter_mut().zip(cs.iter_mut()) {
+        for (zb, cb) in zs.into_iter().zip(cs.iter_mut()) {
             let z16 = (z >> DEPTH_FRAC_BITS) as u16;
-            if passes::<T>(z16, *zb) {
-                *zb = z16;
+            if zb.pass::<T>(z16) {
                 *cb = C::from_channels([
                     (r >> COLOR_FRAC_BITS) as u8,
                     (g >> COLOR_FRAC_BITS) as u8,
@@ -607,6 +728,21 @@ impl Span {
         colors: &mut [C],
         depth: &mut [u16],
     ) -> u32 {
+        let cs = &mut colors[self.x0..self.x1];
+        if T == NONE {
+            self.dither_loop::<C, T>(repeat(NoDepth), cs)
+        } else {
+            self.dither_loop::<C, T>(&mut depth[self.x0..self.x1], cs)
+        }
+    }
+
+    /// [`Span::fill_gouraud_dither`]'s loop over any depth slots.
+    #[inline(always)]
+    fn dither_loop<C: TargetColor, const T: u8>(
+        &self,
+        zs: impl IntoIterator<Item = impl DepthSlot>,
+        cs: &mut [C],
+    ) -> u32 {
         let mut bias = [0i32; 4];
         let row = &BAYER[(self.row & 3) as usize];
         for (k, t) in bias.iter_mut().enumerate() {
@@ -616,12 +752,10 @@ impl Span {
         let [_, mut r, mut g, mut b] = self.start;
         let [gz, gr, gg, gb] = self.gx;
         let mut written = 0;
-        let (zs, cs) = (&mut depth[self.x0..self.x1], &mut colors[self.x0..self.x1]);
-        for (x, (zb, cb)) in (self.x0..).zip(zs.iter_mut().zip(cs.iter_mut())) {
+        for (x, (zb, cb)) in (self.x0..).zip(zs.into_iter().zip(cs.iter_mut())) {
             let z16 = (z >> DEPTH_FRAC_BITS) as u16;
-            if passes::<T>(z16, *zb) {
+            if zb.pass::<T>(z16) {
                 let t = bias[x & 3];
-                *zb = z16;
                 *cb = C::from_channels([
                     ((r + t) >> COLOR_FRAC_BITS) as u8,
                     ((g + t) >> COLOR_FRAC_BITS) as u8,

@@ -11,7 +11,8 @@ use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
 
 use crate::color::{rgb565_word, rgb565_words_mut, TargetColor};
-use crate::raster::SpanMode;
+use crate::depth_mode::{painter_key, DrawOrder};
+use crate::raster::{DepthTest, SpanMode};
 use crate::scalar::Scalar;
 use crate::textured::{attach_pushed, draw_row_textured, is_textured, TEXTURED};
 
@@ -69,7 +70,8 @@ impl<
         const LINES: usize,
         const XV: usize,
         const XA: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
+        const ZL: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
 {
     /// [`Renderer::render_strip`], reporting stage changes to `probe`.
     pub fn render_strip_probed<D, P>(
@@ -213,7 +215,15 @@ impl<
         if y0 >= vh {
             return None;
         }
-        let mode = SpanMode::new::<C>(self.depth_test, self.dither);
+        // Without depth lines every triangle is set up as for `Less` (its fast spans then
+        // skip the test).
+        let test = if ZL == 0 {
+            DepthTest::Less
+        } else {
+            self.depth_test
+        };
+        let mode = SpanMode::new::<C>(test, self.dither);
+        let painter = ZL == 0 && self.order == DrawOrder::FarToNear;
         let Renderer {
             verts,
             xverts,
@@ -236,7 +246,9 @@ impl<
         };
         let lines = LINES.min(limit).min(color.len()).min(vh - y0);
         for l in 0..lines {
-            if CLEAR {
+            if CLEAR && ZL == 0 {
+                color[l][..vw].fill(*background);
+            } else if CLEAR {
                 match (
                     rgb565_words_mut(&mut color[l][..vw]),
                     rgb565_word(*background),
@@ -278,9 +290,29 @@ impl<
                         ))
                 {
                     *skipped = skipped.saturating_add(1);
+                } else if painter && active.len() > before {
+                    active.sort_in_last(painter_key(&rec, verts));
                 }
             }
             probe.enter(Stage::Raster);
+            if ZL == 0 {
+                // No depth lines: every fragment written, in the list's order.
+                let mut i = 0;
+                while i < active.len() {
+                    let (frag, written, done) = active.get_mut(i).draw_row_no_depth(
+                        row as i32,
+                        &mut color[l][..vw],
+                        *dither,
+                    );
+                    stats.add_row(frag, written);
+                    match (done, painter) {
+                        (false, _) => i += 1,
+                        (true, true) => active.remove_in_order(i),
+                        (true, false) => active.swap_remove(i),
+                    }
+                }
+                continue;
+            }
             if XA > 0 {
                 draw_row_with_textures(
                     active,

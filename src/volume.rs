@@ -377,7 +377,8 @@ impl<
         const LINES: usize,
         const XV: usize,
         const XA: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA>
+        const ZL: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
 {
     /// The shadow volume of `obj` from `v`'s light, extruded by its reach (checked valid and
     /// positive): its vertices (each mesh vertex and its extruded copy, side by side) and its

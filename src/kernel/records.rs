@@ -302,7 +302,9 @@ pub(crate) struct ActiveTri {
     /// (0..=255; 0 for every other triangle). Set at setup and after every portable row
     /// ([`ActiveTri::set_routine_rows`]); the routine counts it down.
     pub(crate) routine_rows: u8,
-    /// Unused (explicit padding, so that the record has no implicit padding bytes).
+    /// Unused by the row routines (explicit padding, so that the record has no implicit
+    /// padding bytes); a renderer without depth lines keeps the painter's key here (the
+    /// farthest vertex's 16-bit depth, as `u16` bits).
     pub(crate) spare: i16,
     /// The left and right edges.
     pub(crate) edges: [EdgeDda; 2],
@@ -419,6 +421,13 @@ impl<const N: usize> ActiveList<N> {
             self.slots[i] = self.slots[last].clone();
         }
         self.len = last;
+    }
+
+    /// Removes entry `i` (`i < len`), keeping the order of the others (the painter's order of
+    /// a renderer without depth lines).
+    pub(crate) fn remove_in_order(&mut self, i: usize) {
+        self.slots[i..self.len].rotate_left(1);
+        self.len -= 1;
     }
 
     /// The list length after the Cortex-M row routine removed finished triangles (as
