@@ -225,6 +225,7 @@ fn main() {
     md.push_str(&point_lights(&mcu));
     md.push_str(&fog(&mcu));
     md.push_str(&hdr(&mcu));
+    md.push_str(&depth_modes(&mcu));
     md.push_str(&shadows(&mcu));
     std::fs::write(out.join("report.md"), md).unwrap_or_else(|e| fail(&e.to_string()));
 
@@ -389,6 +390,33 @@ fn hdr(mcu: &BTreeMap<(String, String, String), u64>) -> String {
             Some(Bench::PointGouraud),
             Bench::HdrGouraud,
         )],
+    )
+}
+
+/// Depth only where a scene needs it: the cube and the icosphere drawn without depth lines, in
+/// the painter's order and in any order, against the Z-buffer frame in f64 (same pixels where
+/// the mode is valid), and the instructions the modes save.
+fn depth_modes(mcu: &BTreeMap<(String, String, String), u64>) -> String {
+    variant_table(
+        mcu,
+        "Depth modes",
+        "`cube` and `icosphere` (one closed convex object each) on a renderer without depth lines (`NoDepthRenderer`: no depth RAM, no per-pixel depth test) in the painter's order (`*_painter`, farthest triangle first on each row) and in any order (`*_nodepth`, back-face culling alone), each against the Z-buffer frame of the same scene in f64: the f64 rows show that the modes draw the Z-buffer's pixels. `tests/depth_modes.rs` checks that at several angles in every number type and colour, that the painter's order draws two separate cubes as the Z-buffer does where any order does not, and that it fails on interpenetrating triangles. The last columns are the instructions each mode adds to (a negative figure: saves from) the Z-buffer frame; the RAM is in `BENCHMARKS.md`.",
+        &[
+            (Bench::CubePainter, "cube, painter's", Some(Bench::Cube), Bench::Cube),
+            (Bench::CubeNoDepth, "cube, any order", Some(Bench::Cube), Bench::Cube),
+            (
+                Bench::IcospherePainter,
+                "icosphere, painter's",
+                Some(Bench::Icosphere),
+                Bench::Icosphere,
+            ),
+            (
+                Bench::IcosphereNoDepth,
+                "icosphere, any order",
+                Some(Bench::Icosphere),
+                Bench::Icosphere,
+            ),
+        ],
     )
 }
 

@@ -6,6 +6,8 @@
 
 #[path = "../tests/common/mod.rs"]
 mod common;
+#[path = "render_parts/depth.rs"]
+mod depth;
 #[path = "render_parts/edges.rs"]
 mod edges;
 #[path = "render_parts/shadow.rs"]
@@ -712,6 +714,8 @@ struct Run<C> {
     /// Per frame, the number of passes it was drawn in (1: one `render`).
     passes: Vec<usize>,
     ns_per_frame: f64,
+    /// `--budget`: whether the frames need the depth lines.
+    depth: Option<depth::Summary>,
 }
 
 /// A piece of the mesh for one pass: consecutive triangles, with their own vertex arrays.
@@ -919,7 +923,9 @@ fn run<S: Scalar, C: TargetColor>(
         needs: Vec::new(),
         passes: Vec::new(),
         ns_per_frame: 0.0,
+        depth: None,
     };
+    let mut depth_check = depth::DepthCheck::<S, C>::new(args, s.texture.is_some());
     let mut times = Vec::new();
     let points: Vec<PointLight<S>> = args
         .point_light
@@ -990,6 +996,10 @@ fn run<S: Scalar, C: TargetColor>(
         };
         match one_pass {
             Ok(Some(stats)) => {
+                if let Some(d) = depth_check.as_mut() {
+                    d.check(&scene, &f, args.background)
+                        .map_err(|e| format!("{}: {e}", m.name))?;
+                }
                 timed(&mut || {
                     let mut t = Timer::default();
                     let mut sink = scanline3d::hash::NullTarget::<C>::new(w as u32, h as u32);
@@ -1049,6 +1059,7 @@ fn run<S: Scalar, C: TargetColor>(
     }
     times.sort_by(|a, b| a.total_cmp(b));
     out.ns_per_frame = times.get(times.len() / 2).copied().unwrap_or(0.0);
+    out.depth = depth_check.map(|d| d.summary);
     Ok(out)
 }
 
@@ -1549,9 +1560,13 @@ fn budget<C: TargetColor>(
         println!("  renderer type: Renderer<Fx<I16F16>, {color}, {w}, {h}, {verts}, {tris}, {active}, {lines}>");
     }
     // Work the scene does not need.
-    let closed_convex = is_closed_convex(m);
-    if closed_convex {
-        println!("  hint: one closed convex object: after back-face culling nothing overlaps, so no depth comparisons are needed: set DepthTest::Always");
+    if let Some(d) = &run.depth {
+        d.report(run.stats.len(), lines, w);
+    }
+    if is_closed_convex(m) {
+        println!(
+            "  (the mesh is one closed convex object: after back-face culling nothing overlaps)"
+        );
     }
     if args.shading == ShadingArg::Flat {
         println!("  hint: flat shading lights faces, not vertices: the mesh needs no vertex normals (saves {} bytes of flash)", 12 * m.positions.len());

@@ -164,6 +164,32 @@ where
     })
 }
 
+/// [`render_with`] on a 240 × 240 renderer without depth lines drawing in `order`.
+fn render_no_depth<S, C, D, P, const V: usize, const T: usize, const A: usize, const L: usize>(
+    scene: &crate::Scene<'_, S, L>,
+    order: crate::DrawOrder,
+    dither: bool,
+    target: &mut D,
+    probe: &mut P,
+) -> Result<BenchFrame, BenchError<D::Error>>
+where
+    S: Scalar,
+    C: crate::TargetColor,
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+    P: crate::Probe,
+{
+    let mut r = crate::NoDepthRenderer::<S, C, 240, 240, V, T, A>::new();
+    r.set_dither(dither);
+    r.set_order(order);
+    let stats = r
+        .render_probed(scene, target, probe)
+        .map_err(BenchError::Render)?;
+    Ok(BenchFrame {
+        stats,
+        renderer_ram_bytes: core::mem::size_of_val(&r),
+    })
+}
+
 /// The triangle capacity of the 240 × 240 torus benchmark frame.
 const TORUS_TRIS: usize = 466;
 /// The active-list capacity of the 240 × 240 torus benchmark frame.
@@ -242,9 +268,14 @@ where
         ($objects:expr, $camera:expr, $lights:expr, $v:expr, $t:expr, $a:expr) => {{
             let camera = $camera.map_err(|_| BenchError::Scene)?;
             let scene = crate::Scene::new(&$objects, camera, $lights);
-            render_with::<S, C, D, P, 240, 240, { $v }, $t, $a, 1, 1, 0, 0>(
-                &scene, dither, target, probe,
-            )
+            match bench.depth_order() {
+                None => render_with::<S, C, D, P, 240, 240, { $v }, $t, $a, 1, 1, 0, 0>(
+                    &scene, dither, target, probe,
+                ),
+                Some(order) => render_no_depth::<S, C, D, P, { $v }, $t, $a, 1>(
+                    &scene, order, dither, target, probe,
+                ),
+            }
         }};
     }
     // Rendering triangle ids makes every triangle flat, which takes one more vertex record
@@ -269,7 +300,7 @@ where
         tone: None,
     };
     match bench {
-        Bench::Cube => {
+        Bench::Cube | Bench::CubePainter | Bench::CubeNoDepth => {
             let shape = Shape::<S, 24, 12>::cube(1.0).map_err(|_| BenchError::Scene)?;
             let mut m = Material::matte([90, 160, 255], S::from_f64(0.2), S::from_f64(0.8));
             m.shading = Shading::Flat;
@@ -303,7 +334,7 @@ where
             target,
             probe,
         ),
-        Bench::Icosphere => {
+        Bench::Icosphere | Bench::IcospherePainter | Bench::IcosphereNoDepth => {
             let shape = Shape::<S, 642, 1280>::icosphere(1.0, 3).map_err(|_| BenchError::Scene)?;
             let mut m = Material::matte([200, 60, 60], S::from_f64(0.1), S::from_f64(0.8));
             m.specular = S::from_f64(0.6);

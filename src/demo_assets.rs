@@ -180,11 +180,31 @@ pub enum Bench {
     /// [`Bench::PointGouraud`] in HDR: both lights [`crate::demo::HDR_INTENSITY`] times as
     /// bright, exposure [`crate::demo::HDR_EXPOSURE`], the filmic tone curve.
     HdrGouraud,
+    /// [`Bench::Cube`] on a renderer without depth lines ([`crate::NoDepthRenderer`]) in the
+    /// painter's order ([`crate::DrawOrder::FarToNear`]): the same pixels (one convex object).
+    CubePainter,
+    /// [`Bench::Cube`] without depth lines in any order ([`crate::DrawOrder::Any`]): back-face
+    /// culling alone, as the seeds say suffices for one convex polyhedron.
+    CubeNoDepth,
+    /// [`Bench::Icosphere`] without depth lines in the painter's order.
+    IcospherePainter,
+    /// [`Bench::Icosphere`] without depth lines in any order.
+    IcosphereNoDepth,
 }
 
 impl Bench {
+    /// The order of a scene drawn without depth lines, or `None` for a Z-buffer scene.
+    #[must_use]
+    pub fn depth_order(self) -> Option<crate::DrawOrder> {
+        match self {
+            Bench::CubePainter | Bench::IcospherePainter => Some(crate::DrawOrder::FarToNear),
+            Bench::CubeNoDepth | Bench::IcosphereNoDepth => Some(crate::DrawOrder::Any),
+            _ => None,
+        }
+    }
+
     /// Every benchmark scene.
-    pub const ALL: [Bench; 26] = [
+    pub const ALL: [Bench; 30] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -211,6 +231,10 @@ impl Bench {
         Bench::Edges,
         Bench::Wireframe,
         Bench::HdrGouraud,
+        Bench::CubePainter,
+        Bench::CubeNoDepth,
+        Bench::IcospherePainter,
+        Bench::IcosphereNoDepth,
     ];
 
     /// Its name in reports.
@@ -243,6 +267,10 @@ impl Bench {
             Bench::Edges => "edges",
             Bench::Wireframe => "wireframe",
             Bench::HdrGouraud => "hdr_gouraud",
+            Bench::CubePainter => "cube_painter",
+            Bench::CubeNoDepth => "cube_nodepth",
+            Bench::IcospherePainter => "icosphere_painter",
+            Bench::IcosphereNoDepth => "icosphere_nodepth",
         }
     }
 }

@@ -272,3 +272,51 @@ fn layered_frames_need_depth_lines() {
     assert!(e.to_string().contains("depth lines"));
     assert!(f.writes.iter().all(|&n| n == 0), "nothing is drawn");
 }
+
+/// The benchmark's depth-mode scenes draw their Z-buffer scene's pixels at every angle, with
+/// less renderer RAM.
+fn bench_case<S: Scalar>() {
+    use scanline3d::demo::{render_bench, Bench};
+    for (b, zbuffer) in [
+        (Bench::CubePainter, Bench::Cube),
+        (Bench::CubeNoDepth, Bench::Cube),
+        (Bench::IcospherePainter, Bench::Icosphere),
+        (Bench::IcosphereNoDepth, Bench::Icosphere),
+    ] {
+        assert!(b.depth_order().is_some() && zbuffer.depth_order().is_none());
+        for spin in (0..360).step_by(30) {
+            for dither in [false, true] {
+                let frame = |scene| {
+                    let mut f = Frame::new(240, 240, Rgb565::BLACK);
+                    let r = render_bench::<S, Rgb565, _, _>(
+                        scene,
+                        spin as f64,
+                        dither,
+                        &mut f,
+                        &mut scanline3d::NoProbe,
+                    )
+                    .unwrap();
+                    (f, r)
+                };
+                let ((f, r), (z, rz)) = (frame(b), frame(zbuffer));
+                assert_eq!(differing(&f, &z), 0, "{b:?} at {spin}°, dither {dither}");
+                assert_eq!(rz.renderer_ram_bytes - r.renderer_ram_bytes, 240 * 2);
+            }
+        }
+    }
+}
+
+#[test]
+fn bench_depth_modes_fixed() {
+    bench_case::<Q>();
+}
+
+#[test]
+fn bench_depth_modes_f32() {
+    bench_case::<f32>();
+}
+
+#[test]
+fn bench_depth_modes_f64() {
+    bench_case::<f64>();
+}

@@ -823,3 +823,35 @@ fn tone_mapping_flags_render_and_are_checked() {
         &["not --scene shadow"],
     );
 }
+
+#[test]
+fn budget_measures_whether_a_scene_needs_depth() {
+    let pick = |args: &[&str]| {
+        let (code, stdout, stderr) = run("render", args);
+        assert_eq!(code, 0, "{args:?}: {stderr}");
+        stdout
+            .lines()
+            .find(|l| l.contains("pick:") || l.contains("depth:"))
+            .unwrap_or_else(|| panic!("{args:?}: no depth line in\n{stdout}"))
+            .to_string()
+    };
+    let frames = ["--budget", "--frames", "6", "--spin", "60"];
+    // One convex object: nothing overlaps after culling, any order does.
+    let cube = pick(&[&["--scene", "cube"][..], &frames].concat());
+    assert!(
+        cube.contains("NoDepthRenderer with DrawOrder::Any"),
+        "{cube}"
+    );
+    // The torus overlaps itself without interpenetrating: the painter's order draws it.
+    let torus = pick(&[&["--scene", "torus"][..], &frames].concat());
+    assert!(torus.contains("DrawOrder::FarToNear"), "{torus}");
+    // The CSG part's pocket: triangles the painter's order cannot sort.
+    let part = pick(&[&["--csg", "examples/csg/part.csg", "--fit"][..], &frames].concat());
+    assert!(part.contains("the Z-buffer"), "{part}");
+    // Phong needs the attribute stores, which a renderer without depth lines has not.
+    let phong = pick(&[&["--scene", "icosphere", "--shading", "phong"][..], &frames].concat());
+    assert!(
+        phong.contains("Phong shading needs the attribute stores"),
+        "{phong}"
+    );
+}
