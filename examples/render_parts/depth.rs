@@ -77,7 +77,7 @@ impl<S: Scalar, C: TargetColor> DepthCheck<S, C> {
         let mut draw = |order, background| -> Result<(Frame<C>, Stats), String> {
             let mut f = Frame::new(w, h, C::from_channels([0; 3]));
             self.renderer.set_order(order);
-            let scene = scene.clone().with_background(background);
+            let scene = (*scene).with_background(background);
             let stats = self
                 .renderer
                 .render(&scene, &mut f)
