@@ -392,6 +392,11 @@ struct Args {
     /// colour
     #[arg(long, value_name = "R,G,B", value_parser = rgb)]
     outline: Option<[u8; 3]>,
+    /// How depth is resolved: the Z-buffer, or without depth lines in the painter's order or in
+    /// any order (flat and Gouraud models without edges; `--budget` says which one a scene
+    /// needs)
+    #[arg(long, value_enum, default_value = "zbuffer")]
+    depth: depth::DepthArg,
     /// Edges drawn over the model (1 px, hidden behind nearer surfaces unless --see-through)
     /// [default: none; all with --shading wireframe]
     #[arg(long, value_enum)]
@@ -995,17 +1000,33 @@ fn run<S: Scalar, C: TargetColor>(
             Some(_) => Ok(None),
         };
         match one_pass {
-            Ok(Some(stats)) => {
+            Ok(Some(mut stats)) => {
                 if let Some(d) = depth_check.as_mut() {
-                    d.check(&scene, &f, args.background)
-                        .map_err(|e| format!("{}: {e}", m.name))?;
+                    if args.budget {
+                        d.check(&scene, &f, args.background)
+                            .map_err(|e| format!("{}: {e}", m.name))?;
+                    }
+                    if let Some(s) = d
+                        .draw(args, &scene, &mut f)
+                        .map_err(|e| format!("{}: {e}", m.name))?
+                    {
+                        stats = s;
+                    }
                 }
-                timed(&mut || {
-                    let mut t = Timer::default();
-                    let mut sink = scanline3d::hash::NullTarget::<C>::new(w as u32, h as u32);
-                    let _ = r.render_probed(&scene, &mut sink, &mut t);
-                    t.total.as_nanos() as f64
-                });
+                let mut sink = scanline3d::hash::NullTarget::<C>::new(w as u32, h as u32);
+                let mut t = Timer::default();
+                match depth_check.as_mut() {
+                    Some(d) if args.depth != depth::DepthArg::Zbuffer => timed(&mut || {
+                        t = Timer::default();
+                        let _ = d.renderer().render_probed(&scene, &mut sink, &mut t);
+                        t.total.as_nanos() as f64
+                    }),
+                    _ => timed(&mut || {
+                        t = Timer::default();
+                        let _ = r.render_probed(&scene, &mut sink, &mut t);
+                        t.total.as_nanos() as f64
+                    }),
+                }
                 out.needs.push(Needs::from_stats(&stats));
                 out.stats.push(stats);
                 out.passes.push(1);
@@ -1253,6 +1274,7 @@ fn check_flags(args: &Args) -> Result<(), String> {
     finite("--crease-angle", args.crease_angle)?;
     edges::check(args)?;
     tone::check(args)?;
+    depth::check(args)?;
     if let Some(height) = args.ortho {
         finite("--ortho", height)?;
         if height <= 0.0 {
@@ -1383,7 +1405,12 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
                 needs.vertices,
                 needs.triangles,
                 needs.active,
-            ),
+            ) - if args.depth == depth::DepthArg::Zbuffer {
+                0
+            } else {
+                // No depth lines.
+                args.strip * w * 2
+            },
             args.strip
         )
     };

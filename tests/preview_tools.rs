@@ -855,3 +855,47 @@ fn budget_measures_whether_a_scene_needs_depth() {
         "{phong}"
     );
 }
+
+#[test]
+fn depth_flag_draws_without_depth_lines() {
+    let image = |depth: &str| {
+        let out = tmp(&format!("depth_{depth}.png"));
+        let (code, stdout, stderr) = run(
+            "render",
+            &[
+                "--scene",
+                "torus",
+                "--rotate-x",
+                "70",
+                "--depth",
+                depth,
+                "--out",
+                out.to_str().unwrap(),
+            ],
+        );
+        assert_eq!(code, 0, "{stderr}");
+        (common::read_png(&out).expect("a PNG").2, stdout)
+    };
+    let (z, zs) = image("zbuffer");
+    let (p, ps) = image("painter");
+    let (a, _) = image("any");
+    // The torus seen from low: it overlaps itself, which the painter's order sorts out.
+    assert_eq!(z, p, "painter's differs from the Z-buffer");
+    let differ = z.chunks(3).zip(a.chunks(3)).filter(|(x, y)| x != y).count();
+    assert!(differ > 500, "any order should show hidden faces: {differ} px");
+    // Without depth lines the renderer is one depth line (240 · 2 bytes) smaller.
+    let ram = |s: &str| -> usize {
+        let i = s.find("renderer RAM ").expect("RAM figure") + "renderer RAM ".len();
+        s[i..].split(' ').next().unwrap().parse().unwrap()
+    };
+    assert_eq!(ram(&zs) - ram(&ps), 480);
+    bad_flags(
+        &["--depth", "any", "--shading", "phong"],
+        &["without depth lines", "Phong"],
+    );
+    bad_flags(
+        &["--depth", "painter", "--edges", "all"],
+        &["edges are tested against the depth lines"],
+    );
+    bad_flags(&["--depth", "none"], &["zbuffer", "painter", "any"]);
+}

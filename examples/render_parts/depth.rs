@@ -7,6 +7,56 @@
 use super::*;
 use scanline3d::{DrawOrder, NoDepthRenderer};
 
+/// `--depth`: how the output frames are drawn.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum DepthArg {
+    /// The Z-buffer (Renderer)
+    Zbuffer,
+    /// Without depth lines, farthest triangle first on each row (NoDepthRenderer, DrawOrder::FarToNear)
+    Painter,
+    /// Without depth lines, in any order: back-face culling alone (DrawOrder::Any)
+    Any,
+}
+
+impl DepthArg {
+    fn order(self) -> Option<DrawOrder> {
+        match self {
+            DepthArg::Zbuffer => None,
+            DepthArg::Painter => Some(DrawOrder::FarToNear),
+            DepthArg::Any => Some(DrawOrder::Any),
+        }
+    }
+}
+
+/// Why a scene cannot be drawn without depth lines, if it cannot.
+fn needs_depth(args: &Args, textured: bool) -> Option<&'static str> {
+    if textured {
+        Some("a textured material needs the attribute stores")
+    } else if matches!(args.shading, ShadingArg::Phong | ShadingArg::FastPhong) {
+        Some("Phong shading needs the attribute stores")
+    } else if edges::chosen(args) != edges::EdgesArg::None {
+        Some("edges are tested against the depth lines")
+    } else {
+        None
+    }
+}
+
+/// `--depth` with the other flags.
+pub fn check(args: &Args) -> Result<(), String> {
+    if args.depth == DepthArg::Zbuffer {
+        return Ok(());
+    }
+    if let Some(why) = needs_depth(args, args.texture.is_some()) {
+        return Err(format!("--depth painter and --depth any draw without depth lines, but {why}"));
+    }
+    if args.scene == Some(SceneArg::Shadow) || args.pass_triangles.is_some() {
+        return Err(
+            "--depth painter and --depth any: not with --scene shadow or --pass-triangles".into(),
+        );
+    }
+    Ok(())
+}
+
 /// The host's renderer without depth lines: the library's limits, as `Big` without the
 /// attribute stores (a renderer without depth lines has none).
 type NoDepth<S, C> = NoDepthRenderer<S, C, MAX_W, MAX_H, 32768, 32767, 32768>;
@@ -38,19 +88,12 @@ pub struct DepthCheck<S, C> {
 }
 
 impl<S: Scalar, C: TargetColor> DepthCheck<S, C> {
+    /// For `--budget` or `--depth painter|any`.
     pub fn new(args: &Args, textured: bool) -> Option<Self> {
-        if !args.budget {
+        if !args.budget && args.depth == DepthArg::Zbuffer {
             return None;
         }
-        let not_checked = if textured {
-            Some("a textured material needs the attribute stores")
-        } else if matches!(args.shading, ShadingArg::Phong | ShadingArg::FastPhong) {
-            Some("Phong shading needs the attribute stores")
-        } else if edges::chosen(args) != edges::EdgesArg::None {
-            Some("edges are tested against the depth lines")
-        } else {
-            None
-        };
+        let not_checked = needs_depth(args, textured);
         let mut renderer: Box<NoDepth<S, C>> = Box::default();
         renderer.set_viewport(args.size.0, args.size.1);
         renderer.set_dither(args.dither == OnOff::On);
@@ -63,7 +106,31 @@ impl<S: Scalar, C: TargetColor> DepthCheck<S, C> {
         })
     }
 
-    /// Checks the frame of `scene` the Z-buffer drew as `zbuffer` (its statistics `stats`).
+    /// Draws the frame of `scene` as `--depth` says, into `f`, if it says so (the frame's
+    /// statistics then).
+    pub fn draw(
+        &mut self,
+        args: &Args,
+        scene: &Scene<'_, S, LIGHTS>,
+        f: &mut Frame<C>,
+    ) -> Result<Option<Stats>, String> {
+        let Some(order) = args.depth.order() else {
+            return Ok(None);
+        };
+        self.renderer.set_order(order);
+        f.px.fill(C::from_channels([0; 3]));
+        self.renderer
+            .render(scene, f)
+            .map(Some)
+            .map_err(|e| format!("without depth lines: {e}"))
+    }
+
+    /// The renderer without depth lines, in `--depth`'s order (for timing).
+    pub fn renderer(&mut self) -> &mut NoDepth<S, C> {
+        &mut self.renderer
+    }
+
+    /// Checks the frame of `scene` the Z-buffer drew as `zbuffer`.
     pub fn check(
         &mut self,
         scene: &Scene<'_, S, LIGHTS>,
