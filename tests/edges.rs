@@ -26,17 +26,7 @@ fn ink() -> Rgb888 {
 /// An orthographic camera on the +z axis looking at the origin: pixel centre `(i + 0.5,
 /// j + 0.5)` is at `x = (i + 0.5 − 48)/8`, `y = (48 − j − 0.5)/8`.
 fn ortho<S: Scalar>(eye: [f64; 3]) -> Camera<S> {
-    Camera::look_at(
-        eye.map(S::from_f64),
-        [S::ZERO; 3],
-        [0.0, 1.0, 0.0].map(S::from_f64),
-        Projection::Orthographic {
-            height: S::from_f64(N as f64 / 8.0),
-            near: S::from_f64(1.0),
-            far: S::from_f64(30.0),
-        },
-    )
-    .unwrap()
+    common::ortho8(eye, [0.0, 1.0, 0.0], N, 30.0)
 }
 
 /// `mesh` (unlit in the background colour, turned by `transform`) seen from `eye`, with the

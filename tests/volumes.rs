@@ -147,17 +147,7 @@ fn camera<S: Scalar>(eye: [f64; 3], target: [f64; 3]) -> Camera<S> {
 
 /// An orthographic camera at `eye` looking at the origin, 1 unit = 8 px.
 fn ortho<S: Scalar>(eye: [f64; 3], up: [f64; 3]) -> Camera<S> {
-    Camera::look_at(
-        eye.map(S::from_f64),
-        [S::ZERO; 3],
-        up.map(S::from_f64),
-        Projection::Orthographic {
-            height: S::from_f64(N as f64 / 8.0),
-            near: S::from_f64(1.0),
-            far: S::from_f64(20.0),
-        },
-    )
-    .unwrap()
+    common::ortho8(eye, up, N, 20.0)
 }
 
 /// The ground's colour darkened by the shadow, as the target shows it.

@@ -188,6 +188,22 @@ pub fn screen_camera<S: Scalar>(h: u32) -> Camera<S> {
     .unwrap()
 }
 
+/// An orthographic camera at `eye` looking at the origin with `up` up, 1 world unit = 8 px on a
+/// frame `h` pixels high, near 1 and far `far` (`tests/edges.rs`, `tests/volumes.rs`).
+pub fn ortho8<S: Scalar>(eye: [f64; 3], up: [f64; 3], h: u32, far: f64) -> Camera<S> {
+    Camera::look_at(
+        eye.map(S::from_f64),
+        [S::ZERO; 3],
+        up.map(S::from_f64),
+        Projection::Orthographic {
+            height: S::from_f64(h as f64 / 8.0),
+            near: S::ONE,
+            far: S::from_f64(far),
+        },
+    )
+    .unwrap()
+}
+
 /// World position of screen point (sx, sy) (in pixels, y down) at world depth z, for a
 /// `screen_camera(h)` on a `w`-wide screen.
 pub fn at<S: Scalar>(w: u32, h: u32, sx: f64, sy: f64, z: f64) -> [S; 3] {
