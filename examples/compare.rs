@@ -383,13 +383,21 @@ fn hdr(mcu: &BTreeMap<(String, String, String), u64>) -> String {
     variant_table(
         mcu,
         "HDR and tone mapping",
-        "`hdr_gouraud`: the `point_gouraud` sphere with both lights twice as bright, exposure 0.6 and the filmic curve, per vertex, against its f64 twin. `tests/effects.rs` checks the curves, the clamp's equality with the plain lighting and the automatic exposure's convergence. The last columns are the instructions the tone map adds to the same frame clamped (`point_gouraud`).",
-        &[(
-            Bench::HdrGouraud,
-            "Gouraud, filmic, per vertex",
-            Some(Bench::PointGouraud),
-            Bench::HdrGouraud,
-        )],
+        "`hdr_gouraud`: the `point_gouraud` sphere with both lights twice as bright, exposure 0.6 and the filmic curve, per vertex; `hdr_phong`: the same scene in Phong, tone-mapped per pixel (`point_phong`'s sphere); each against its f64 twin. `tests/effects.rs` checks the curves, the clamp's equality with the plain lighting (per vertex and per pixel), the per-pixel curves against the ray-cast sphere, and the automatic exposure's convergence. The last columns are the instructions the tone map adds to the same frame clamped (`point_gouraud`, `point_phong`).",
+        &[
+            (
+                Bench::HdrGouraud,
+                "Gouraud, filmic, per vertex",
+                Some(Bench::PointGouraud),
+                Bench::HdrGouraud,
+            ),
+            (
+                Bench::HdrPhong,
+                "Phong, filmic, per pixel",
+                Some(Bench::PointPhong),
+                Bench::HdrPhong,
+            ),
+        ],
     )
 }
 

@@ -480,10 +480,11 @@ where
         | Bench::PointPhongFast
         | Bench::PointGouraud
         | Bench::FogGouraud
-        | Bench::HdrGouraud => {
+        | Bench::HdrGouraud
+        | Bench::HdrPhong => {
             let shape = Shape::<S, 162, 320>::icosphere(1.0, 2).map_err(|_| BenchError::Scene)?;
             let shading = match bench {
-                Bench::Phong | Bench::PointPhong => Shading::Phong,
+                Bench::Phong | Bench::PointPhong | Bench::HdrPhong => Shading::Phong,
                 Bench::PhongFast | Bench::PointPhongFast => Shading::FastPhong,
                 _ => Shading::Gouraud,
             };
@@ -528,7 +529,7 @@ where
                 scene = scene.with_effects(&lamps);
             } else if bench == Bench::FogGouraud {
                 scene = scene.with_effects(&haze);
-            } else if bench == Bench::HdrGouraud {
+            } else if matches!(bench, Bench::HdrGouraud | Bench::HdrPhong) {
                 scene = scene.with_effects(&hdr);
             }
             // Room for triangle ids (one more vertex record per triangle).

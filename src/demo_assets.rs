@@ -190,6 +190,8 @@ pub enum Bench {
     IcospherePainter,
     /// [`Bench::Icosphere`] without depth lines in any order.
     IcosphereNoDepth,
+    /// [`Bench::PointPhong`] in HDR as [`Bench::HdrGouraud`]: tone-mapped per pixel.
+    HdrPhong,
 }
 
 impl Bench {
@@ -204,7 +206,7 @@ impl Bench {
     }
 
     /// Every benchmark scene.
-    pub const ALL: [Bench; 30] = [
+    pub const ALL: [Bench; 31] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -235,6 +237,7 @@ impl Bench {
         Bench::CubeNoDepth,
         Bench::IcospherePainter,
         Bench::IcosphereNoDepth,
+        Bench::HdrPhong,
     ];
 
     /// Its name in reports.
@@ -271,6 +274,7 @@ impl Bench {
             Bench::CubeNoDepth => "cube_nodepth",
             Bench::IcospherePainter => "icosphere_painter",
             Bench::IcosphereNoDepth => "icosphere_nodepth",
+            Bench::HdrPhong => "hdr_phong",
         }
     }
 }

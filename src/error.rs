@@ -80,11 +80,10 @@ pub enum Error<E> {
     /// infinite or at a fixed-point rail. Nothing was drawn.
     Fog,
     /// The scene's tone map ([`crate::ToneMap`]) has an intensity or exposure that is not a
-    /// valid number within `0..=MAX_TONE_SCALE` (exposure above 0) (`object` `None`), or
-    /// object `object` is lit per pixel ([`crate::Shading::Phong`], `FastPhong`), which a tone
-    /// map does not reach (its lighting is per vertex). Nothing was drawn.
+    /// valid number within `0..=MAX_TONE_SCALE` (exposure above 0). Nothing was drawn.
+    /// (`object` is always `None`: Phong objects, once refused here, are tone-mapped per pixel.)
     Tone {
-        /// The Phong object, or `None` for the tone map's numbers.
+        /// `None` (no longer names an object).
         object: Option<usize>,
     },
     /// A layered frame ([`crate::Renderer::render_layered`]: shadows, outlines, translucency)

@@ -736,13 +736,6 @@ fn lights_valid<S: Scalar, E, const L: usize>(scene: &Scene<'_, S, L>) -> Result
         if !t.is_valid() {
             return Err(Error::Tone { object: None });
         }
-        if let Some(i) = scene
-            .objects
-            .iter()
-            .position(|o| o.material.shading.is_phong())
-        {
-            return Err(Error::Tone { object: Some(i) });
-        }
     }
     Ok(scene
         .lights

@@ -9,7 +9,8 @@ use crate::error::Error;
 use crate::geometry::ObjectSetup;
 use crate::math::{normalize, sub, Vec3};
 use crate::phong::{
-    PhongLight, PhongLights, PhongMaterial, PhongPoint, PhongPoints, MAX_PHONG_LIGHTS,
+    PhongLight, PhongLights, PhongMaterial, PhongPoint, PhongPoints, MAX_PHONG_LIGHTS, TONE_FILMIC,
+    TONE_NONE, TONE_REINHARD,
 };
 use crate::project::ScreenVertex;
 use crate::renderer::Renderer;
@@ -230,6 +231,21 @@ impl<
                 [origin[0], origin[1], origin[2]],
             )));
             let k = |c: S| (c.max(S::ZERO).min(S::from_i32(255))).to_fixed_i32(14);
+            // With a tone map the spans light in HDR: the coefficients carry the exposure
+            // (and the lights' intensity, but for the ambient term) and the curve is read per
+            // pixel (`phong::tone14`).
+            let (scale_a, scale_l, tone) = match scene.tone() {
+                Some(t) => (
+                    t.exposure,
+                    t.intensity * t.exposure,
+                    match t.curve {
+                        crate::ToneCurve::Clamp => TONE_NONE,
+                        crate::ToneCurve::Reinhard => TONE_REINHARD,
+                        crate::ToneCurve::Filmic => TONE_FILMIC,
+                    },
+                ),
+                None => (S::ONE, S::ONE, TONE_NONE),
+            };
             let mut lv = [0; MAX_PHONG_LIGHTS];
             for (x, l) in lv.iter_mut().zip(&lights.lights) {
                 let s: i64 = (0..3).map(|j| l.dir[j] as i64 * v[j] as i64).sum();
@@ -237,10 +253,15 @@ impl<
             }
             let pm = PhongMaterial {
                 color: m.color,
-                k: [k(m.ambient), k(m.diffuse), k(m.specular)],
+                k: [
+                    k(m.ambient * scale_a),
+                    k(m.diffuse * scale_l),
+                    k(m.specular * scale_l),
+                ],
                 shininess: m.shininess,
                 v,
                 lv,
+                tone,
             };
             pm.store(&mut self.xactive[slot]);
             self.xactive[slot].kind = MATERIAL;

@@ -58,6 +58,52 @@ pub(crate) struct PhongMaterial {
     pub(crate) v: [i32; 3],
     /// `L·V` of each light, Q1.14.
     pub(crate) lv: [i32; MAX_PHONG_LIGHTS],
+    /// The scene's tone curve ([`TONE_NONE`], [`TONE_REINHARD`], [`TONE_FILMIC`]); with a tone
+    /// map, `k` holds the coefficients times the exposure (ambient) or times the intensity and
+    /// the exposure (diffuse, specular).
+    pub(crate) tone: u8,
+}
+
+/// [`PhongMaterial::tone`]: the lit channel clamped to 255 (no tone map, or the clamp curve).
+pub(crate) const TONE_NONE: u8 = 0;
+/// [`PhongMaterial::tone`]: Reinhard's curve on the exposed radiance.
+pub(crate) const TONE_REINHARD: u8 = 1;
+/// [`PhongMaterial::tone`]: the filmic curve on the exposed radiance.
+pub(crate) const TONE_FILMIC: u8 = 2;
+
+/// White in the lit channel's format (Q8.14 channel units).
+const WHITE14: i64 = 255 << 14;
+/// The largest exposed radiance a tone curve reads, 128 × white (Q8.14 channel units, below
+/// 2²⁹): as `Fx<I16F16>`'s per-vertex radiance, which saturates at 128.5 × white.
+const HDR_MAX14: i64 = 128 * WHITE14;
+
+/// `num/den` in Q2.30 for `0 ≤ num ≤ 1.1·den`, `den ≥ 1`, without division: both are brought
+/// below 2³² together and `1/den` is a normalized reciprocal ([`recip_norm`]).
+fn ratio_q30(num: u64, den: u64) -> u64 {
+    let k = crate::wide::bitlen64(den.max(1)).saturating_sub(32);
+    let (n, d) = (num >> k, (den >> k).max(1));
+    let (m, e) = recip_norm(d);
+    // n < 2^32.2 and m ≤ 2^30: the product fits; e = 29 + bitlen(d) ≥ 30.
+    (n * m as u64) >> (e - 30)
+}
+
+/// The tone curve `tone` on an exposed radiance `v` (Q8.14 channel units, 255·2¹⁴ = white):
+/// the display channel, Q8.14 in 0..=255·2¹⁴. Reinhard `x/(1 + x)` and the filmic
+/// `x(2.51x + 0.03)/(x(2.43x + 0.59) + 0.14)` (clamped to 1) as [`crate::ToneCurve`]
+/// defines them, in integers: the filmic polynomials on `v/2¹⁰` (steps of 1/16 channel unit,
+/// constants Q2.14).
+fn tone14(v: i64, tone: u8) -> i32 {
+    let v = v.clamp(0, HDR_MAX14) as u64;
+    let q = if tone == TONE_REINHARD {
+        ratio_q30(v, v + WHITE14 as u64)
+    } else {
+        let (t, w) = (v >> 10, (WHITE14 >> 10) as u64);
+        // 2.51, 0.03, 2.43, 0.59, 0.14 in Q2.14; t ≤ 2^19, w = 4080: every product below 2^55.
+        let num = t * (41124 * t + 492 * w);
+        let den = t * (39813 * t + 9667 * w) + 2294 * w * w;
+        ratio_q30(num, den)
+    };
+    ((q.min(1 << 30) * WHITE14 as u64) >> 30) as i32
 }
 
 /// A point light as Phong spans see it.
@@ -172,7 +218,8 @@ impl PhongMaterial {
         words[3] = self.color[0] as i64
             | (self.color[1] as i64) << 8
             | (self.color[2] as i64) << 16
-            | (self.shininess as i64) << 24;
+            | (self.shininess as i64) << 24
+            | (self.tone as i64) << 32;
         words[4] = pack3(self.v);
         for k in 0..MAX_PHONG_LIGHTS {
             words[5 + k] = self.lv[k] as i64;
@@ -188,6 +235,7 @@ impl PhongMaterial {
             shininess: (w[3] >> 24) as u8,
             v: unpack3(w[4]),
             lv: [w[5] as i32, w[6] as i32, w[7] as i32, w[8] as i32],
+            tone: (w[3] >> 32) as u8,
         }
     }
 }
@@ -238,6 +286,11 @@ pub(crate) struct ShadeCtx {
     /// Ambient, diffuse, specular (Q8.14).
     k: [i32; 3],
     shininess: u8,
+    /// [`PhongMaterial::tone`].
+    tone: u8,
+    /// Where the specular sums saturate (Q8.14): white, or with a tone curve
+    /// [`HDR_MAX14`].
+    spec_cap: i32,
 }
 
 /// The point lights of a span in the forms [`shade`] uses ([`PhongPoints`]), their count
@@ -289,6 +342,12 @@ impl ShadeCtx {
             k: m.k,
             shininess: m.shininess,
             lv: m.lv,
+            tone: m.tone,
+            spec_cap: if m.tone == TONE_NONE {
+                WHITE14
+            } else {
+                HDR_MAX14
+            } as i32,
             ..Default::default()
         };
         for (k, pl) in l.lights.iter().enumerate() {
@@ -398,8 +457,9 @@ pub(crate) fn shade<const POINTS: bool>(
                 if rv > 0 {
                     let p = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
                     for ch in 0..3 {
-                        // Saturating: the channel is clamped at 255 anyway.
-                        spec[ch] = (spec[ch] + p * c.full[k][ch]).min(255 << 14);
+                        // Saturating: the channel is clamped at 255 (the tone curves read
+                        // at most 128 × white) anyway.
+                        spec[ch] = (spec[ch] + p * c.full[k][ch]).min(c.spec_cap);
                     }
                 }
             }
@@ -412,7 +472,11 @@ pub(crate) fn shade<const POINTS: bool>(
     for ch in 0..3 {
         // material · (Σ), Q8.14, plus the specular sum.
         let v = mul_wide(c.color[ch], light[ch]) + spec[ch] as i64;
-        out[ch] = v.clamp(0, 255 << 14) as i32;
+        out[ch] = if c.tone == TONE_NONE {
+            v.clamp(0, WHITE14) as i32
+        } else {
+            tone14(v, c.tone)
+        };
     }
     out
 }
@@ -453,7 +517,7 @@ fn add_points(
                 let q = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
                 let q = (mul_wide(q, att) >> 16) as i32;
                 for ch in 0..3 {
-                    spec[ch] = (spec[ch] + q * p.full[ch]).min(255 << 14);
+                    spec[ch] = (spec[ch] + q * p.full[ch]).min(c.spec_cap);
                 }
             }
         }
@@ -697,6 +761,7 @@ mod tests {
             shininess: 20,
             v: q(vd),
             lv: [(lv * ONE as f64).round() as i32, 0, 0, 0],
+            tone: TONE_NONE,
         };
         let mut worst = 0.0f64;
         for i in 0..200 {
@@ -756,8 +821,39 @@ mod tests {
             shininess: 255,
             v: [-16384, 5, 16383],
             lv: [-12000, 16384, 0, -1],
+            tone: TONE_FILMIC,
         };
         m.store(&mut e);
         assert_eq!(PhongMaterial::load(&e), m);
+    }
+
+    /// The integer tone curves against the f64 ones: within 1/8 of a channel unit (the filmic
+    /// constants rounded to Q2.14), monotone,
+    /// and white at the top of their range.
+    #[test]
+    fn tone14_follows_the_curves() {
+        let f64_curve = |tone: u8, x: f64| match tone {
+            TONE_REINHARD => x / (1.0 + x),
+            _ => (x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14)).min(1.0),
+        };
+        for tone in [TONE_REINHARD, TONE_FILMIC] {
+            let mut last = 0;
+            let mut worst = 0.0f64;
+            // Finely from 0 to 2 × white, then coarsely to past the top of the range.
+            let fine = (0..=2 * 255 * 64).map(|k| (k as i64) << 8);
+            let coarse = (3..=140).map(|k| k as i64 * WHITE14);
+            for v in fine.chain(coarse) {
+                let got = tone14(v, tone);
+                assert!(got >= last, "{tone} not monotone at {v}");
+                last = got;
+                let x = v.min(HDR_MAX14) as f64 / WHITE14 as f64;
+                let want = 255.0 * f64_curve(tone, x);
+                worst = worst.max((got as f64 / 16384.0 - want).abs());
+            }
+            assert!(worst < 1.0 / 8.0, "{tone}: {worst}");
+            assert_eq!(tone14(-5, tone), 0);
+            assert_eq!(tone14(i64::MAX / 4, tone), tone14(HDR_MAX14, tone));
+        }
+        assert_eq!(tone14(HDR_MAX14, TONE_FILMIC), WHITE14 as i32);
     }
 }

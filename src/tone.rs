@@ -1,7 +1,10 @@
 //! HDR lighting and tone mapping ([`ToneMap`], attached with [`crate::Effects::tone`]): the
 //! lights may be brighter than white and add up beyond it; the lit value is scaled by an
-//! exposure and mapped to the display by a tone curve instead of being clamped. Per vertex (flat
-//! and Gouraud shading), in the number type, before the colour is stored: nothing per pixel.
+//! exposure and mapped to the display by a tone curve instead of being clamped. Per vertex for
+//! flat and Gouraud shading, in the number type, before the colour is stored: nothing per
+//! pixel. Per pixel for Phong shading, in integers (the Phong spans' lit channel, Q8.14,
+//! exposed and mapped by the same curves with a normalized reciprocal instead of a division,
+//! read up to 128 × white as Q16.16 reads the per-vertex radiance).
 //!
 //! [`AutoExposure`] adapts the exposure over frames, as the eye adapts, from the brightness of
 //! the previous frame's pixels, measured as the strips reach the display ([`Metered`]: no

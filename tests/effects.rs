@@ -102,6 +102,12 @@ fn lamp<S: Scalar>() -> PointLight<S> {
 /// 8-bit channels, or `None` off the sphere. The view direction is the object origin's (as
 /// Phong's).
 fn reference(x: u32, y: u32) -> Option<[f64; 3]> {
+    reference_toned(x, y, None)
+}
+
+/// [`reference`] in HDR: every light `intensity` times as bright, the radiance times
+/// `exposure`, then `curve` (as `ToneMap` defines them), or plainly clamped for `None`.
+fn reference_toned(x: u32, y: u32, tone: Option<(ToneCurve, f64, f64)>) -> Option<[f64; 3]> {
     let p = common::ray_sphere(x, y, SIZE, FOV, EYE)?;
     let n = unit(p);
     let to = [0, 1, 2].map(|k| LAMP[k] - p[k]);
@@ -111,13 +117,23 @@ fn reference(x: u32, y: u32) -> Option<[f64; 3]> {
     let v = [0.0, 0.0, 1.0];
     let nl = dot(n, l);
     let rv = 2.0 * nl * dot(n, v) - dot(l, v);
+    let (curve, intensity, exposure) = tone.unwrap_or((ToneCurve::Clamp, 1.0, 1.0));
     Some([0, 1, 2].map(|c| {
         let lc = LAMP_COLOR[c] as f64;
-        let mut s = COLOR[c] as f64 * (AMBIENT + DIFFUSE * att * lc / 255.0 * nl.max(0.0));
+        let diffuse = intensity * DIFFUSE * att * lc / 255.0 * nl.max(0.0);
+        let mut s = COLOR[c] as f64 * (AMBIENT + diffuse);
         if nl > 0.0 && rv > 0.0 {
-            s += SPECULAR * att * lc * rv.powi(SHININESS as i32);
+            s += intensity * SPECULAR * att * lc * rv.powi(SHININESS as i32);
         }
-        s.clamp(0.0, 255.0)
+        let x = (exposure * s / 255.0).max(0.0);
+        255.0
+            * match curve {
+                ToneCurve::Clamp => x.min(1.0),
+                ToneCurve::Reinhard => x / (1.0 + x),
+                ToneCurve::Filmic => {
+                    (x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14)).min(1.0)
+                }
+            }
     }))
 }
 
@@ -129,6 +145,11 @@ fn red8(c: Rgb565) -> f64 {
 /// Worst and mean red difference (8-bit units) against [`reference`] over the pixels 2 px
 /// inside the sphere's outline.
 fn sphere_error(f: &Frame<Rgb565>) -> (f64, f64) {
+    sphere_error_toned(f, None)
+}
+
+/// [`sphere_error`] against [`reference_toned`].
+fn sphere_error_toned(f: &Frame<Rgb565>, tone: Option<(ToneCurve, f64, f64)>) -> (f64, f64) {
     let (mut worst, mut sum, mut n) = (0.0f64, 0.0, 0);
     for y in 2..SIZE - 2 {
         for x in 2..SIZE - 2 {
@@ -141,7 +162,7 @@ fn sphere_error(f: &Frame<Rgb565>) -> (f64, f64) {
             if !inside || f.get(x, y) == Rgb565::BLACK {
                 continue;
             }
-            let e = (red8(f.get(x, y)) - reference(x, y).unwrap()[0]).abs();
+            let e = (red8(f.get(x, y)) - reference_toned(x, y, tone).unwrap()[0]).abs();
             worst = worst.max(e);
             sum += e;
             n += 1;
@@ -464,6 +485,7 @@ fn effects_frames_match_their_golden_images() {
         Bench::FogGouraud,
         Bench::TexturedFog,
         Bench::HdrGouraud,
+        Bench::HdrPhong,
     ] {
         one::<Q>(b, "I16F16");
         one::<f32>(b, "f32");
@@ -660,7 +682,7 @@ fn bad_tone_maps_are_named_errors() {
     assert_eq!(go(t.with_exposure(f32::NAN), Shading::Gouraud), numbers);
     assert_eq!(go(t.with_intensity(17.0), Shading::Gouraud), numbers);
     assert_eq!(go(t.with_intensity(-1.0), Shading::Flat), numbers);
-    assert_eq!(go(t, Shading::Phong), Some(Error::Tone { object: Some(0) }));
+    assert_eq!(go(t, Shading::Phong), None);
     assert_eq!(go(t, Shading::Gouraud), None);
     let q = ToneMap::<Q>::new(ToneCurve::Filmic);
     assert_eq!(
@@ -671,4 +693,48 @@ fn bad_tone_maps_are_named_errors() {
         go(q.with_intensity(Q::from_f64(16.0)), Shading::Gouraud),
         None
     );
+}
+
+/// Phong and fast Phong are tone-mapped per pixel: with the clamp at intensity and exposure 1
+/// they are the plain images bit for bit, and in HDR they match the ray-cast sphere lit,
+/// exposed and mapped by the same curve as closely as the plain Phong sphere matches the plain
+/// one.
+#[test]
+fn phong_is_tone_mapped_per_pixel() {
+    fn go<S: Scalar>() {
+        for shading in [Shading::Phong, Shading::FastPhong] {
+            let plain = toned_sphere::<S, 0>(shading, [], &[lamp()], None, COLOR);
+            let clamp = toned_sphere::<S, 0>(
+                shading,
+                [],
+                &[lamp()],
+                Some(ToneMap::new(ToneCurve::Clamp)),
+                COLOR,
+            );
+            assert!(plain.px == clamp.px, "{} {shading:?}", S::NAME);
+            for curve in [ToneCurve::Clamp, ToneCurve::Reinhard, ToneCurve::Filmic] {
+                let (i, e) = (3.0, 0.7);
+                let tone = ToneMap::new(curve)
+                    .with_intensity(S::from_f64(i))
+                    .with_exposure(S::from_f64(e));
+                let f = toned_sphere::<S, 0>(shading, [], &[lamp()], Some(tone), COLOR);
+                let (worst, mean) = sphere_error_toned(&f, Some((curve, i, e)));
+                println!(
+                    "{} {shading:?} {curve:?}: red error {worst:.1} worst, {mean:.2} mean",
+                    S::NAME
+                );
+                assert!(
+                    worst < 24.0 && mean < 2.5,
+                    "{} {shading:?} {curve:?}",
+                    S::NAME
+                );
+                if curve != ToneCurve::Clamp {
+                    assert!(f.px != plain.px);
+                }
+            }
+        }
+    }
+    go::<Q>();
+    go::<f32>();
+    go::<f64>();
 }

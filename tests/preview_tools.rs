@@ -814,10 +814,21 @@ fn tone_mapping_flags_render_and_are_checked() {
         &["--light-intensity", "17"],
         &["--light-intensity must be in [0, 16], got 17"],
     );
-    bad_flags(
-        &["--tone", "reinhard", "--shading", "phong"],
-        &["not with --shading phong"],
+    // Phong is tone-mapped per pixel.
+    let (code, _, stderr) = run(
+        "render",
+        &[
+            "--tone",
+            "filmic",
+            "--light-intensity",
+            "2",
+            "--shading",
+            "phong",
+            "--out",
+            tmp("hdr_phong.png").to_str().unwrap(),
+        ],
     );
+    assert_eq!(code, 0, "{stderr}");
     bad_flags(
         &["--scene", "shadow", "--tone", "filmic"],
         &["not --scene shadow"],
@@ -882,7 +893,10 @@ fn depth_flag_draws_without_depth_lines() {
     // The torus seen from low: it overlaps itself, which the painter's order sorts out.
     assert_eq!(z, p, "painter's differs from the Z-buffer");
     let differ = z.chunks(3).zip(a.chunks(3)).filter(|(x, y)| x != y).count();
-    assert!(differ > 500, "any order should show hidden faces: {differ} px");
+    assert!(
+        differ > 500,
+        "any order should show hidden faces: {differ} px"
+    );
     // Without depth lines the renderer is one depth line (240 · 2 bytes) smaller.
     let ram = |s: &str| -> usize {
         let i = s.find("renderer RAM ").expect("RAM figure") + "renderer RAM ".len();

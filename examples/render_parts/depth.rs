@@ -47,7 +47,9 @@ pub fn check(args: &Args) -> Result<(), String> {
         return Ok(());
     }
     if let Some(why) = needs_depth(args, args.texture.is_some()) {
-        return Err(format!("--depth painter and --depth any draw without depth lines, but {why}"));
+        return Err(format!(
+            "--depth painter and --depth any draw without depth lines, but {why}"
+        ));
     }
     if args.scene == Some(SceneArg::Shadow) || args.pass_triangles.is_some() {
         return Err(

@@ -62,18 +62,6 @@ pub fn check(args: &Args) -> Result<(), String> {
             ));
         }
     }
-    if on(args)
-        && matches!(
-            args.shading,
-            super::ShadingArg::Phong | super::ShadingArg::FastPhong
-        )
-    {
-        return Err(
-            "--tone, --exposure and --light-intensity light per vertex: not with --shading \
-                    phong or fast-phong"
-                .into(),
-        );
-    }
     Ok(())
 }
 
