@@ -5,9 +5,12 @@
 //!
 //! Without depth lines the strip pass stores no depth, reads none and compares none: the RAM of
 //! `LINES · W` 16-bit depths and the per-pixel test disappear. The painter's order costs a
-//! sort instead: a triangle is placed among the row's active triangles by its key when it
-//! starts (a move of the records behind it) and taken out in place when it ends, so that every
-//! row draws its triangles farthest first; per triangle, not per pixel.
+//! sort instead, per triangle, not per pixel: a triangle is placed by its key among the row's
+//! active triangles when it starts and taken out when it ends, so that every row draws its
+//! triangles farthest first. The order is a list of active-list slots kept in the renderer's
+//! row-count array (`starts`, free during the strip pass: no RAM of its own) when `ACTIVE ≤ H`;
+//! otherwise the active records themselves are kept in order (a move of the records behind an
+//! insertion or removal: dearer).
 
 use crate::kernel::records::{ActiveList, ScreenVertex, TriRecord};
 use crate::renderer::Renderer;
@@ -87,6 +90,83 @@ impl<
         self.order = order;
         self
     }
+}
+
+/// Sets up a row's newly active triangle (slot `active.len() − 1`, just pushed) for the
+/// painter's order: its key `key`, and its place in `ord` (the order of the slots, `ACTIVE ≤
+/// H`) or, with `ord` `None`, among the records.
+pub(crate) fn painter_insert<const N: usize>(
+    active: &mut ActiveList<N>,
+    ord: Option<&mut [i16]>,
+    key: u16,
+) {
+    let Some(ord) = ord else {
+        active.sort_in_last(key);
+        return;
+    };
+    let n = active.len();
+    active.get_mut(n - 1).spare = key as i16;
+    // After every slot of key ≥ `key`: from the end, past the nearer ones.
+    let mut at = n - 1;
+    while at > 0 && (active.get_mut(ord[at - 1] as usize).spare as u16) < key {
+        ord[at] = ord[at - 1];
+        at -= 1;
+    }
+    ord[at] = (n - 1) as i16;
+}
+
+/// Draws row `row` of every active triangle into `colors` without depth lines, in the
+/// painter's order (`ord`, or the records' order) or in the list's order, and takes out the
+/// triangles whose last row it was. Returns (fragments, pixels written) added up.
+pub(crate) fn draw_row_no_depth<C: TargetColor, const N: usize>(
+    active: &mut ActiveList<N>,
+    ord: Option<&mut [i16]>,
+    painter: bool,
+    row: usize,
+    colors: &mut [C],
+    dither: bool,
+) -> (u32, u32) {
+    let mut sum = (0, 0);
+    let mut i = 0;
+    match ord {
+        Some(ord) if painter => {
+            while i < active.len() {
+                let slot = ord[i] as usize;
+                let (f, w, done) = active
+                    .get_mut(slot)
+                    .draw_row_no_depth(row as i32, colors, dither);
+                sum = (sum.0 + f, sum.1 + w);
+                if !done {
+                    i += 1;
+                    continue;
+                }
+                // The last slot moves into the freed one: rename it in the order, then close
+                // the order's gap.
+                let last = active.len() - 1;
+                active.swap_remove(slot);
+                if slot != last {
+                    if let Some(k) = ord[..=last].iter().position(|&s| s as usize == last) {
+                        ord[k] = slot as i16;
+                    }
+                }
+                ord.copy_within(i + 1..=last, i);
+            }
+        }
+        _ => {
+            while i < active.len() {
+                let (f, w, done) = active
+                    .get_mut(i)
+                    .draw_row_no_depth(row as i32, colors, dither);
+                sum = (sum.0 + f, sum.1 + w);
+                match (done, painter) {
+                    (false, _) => i += 1,
+                    (true, true) => active.remove_in_order(i),
+                    (true, false) => active.swap_remove(i),
+                }
+            }
+        }
+    }
+    sum
 }
 
 /// A triangle's painter's key: the depth of its farthest vertex (16-bit, larger is farther).

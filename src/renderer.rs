@@ -12,7 +12,7 @@ use heapless::Vec;
 
 use crate::attrs::{ActiveExtra, FREE, TRI};
 use crate::color::TargetColor;
-use crate::depth_mode::DrawOrder;
+use crate::depth_mode::{painter_insert, painter_key, DrawOrder};
 use crate::project::{ScreenVertex, MAX_SCREEN};
 use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scalar::Scalar;
@@ -607,7 +607,14 @@ impl<
         if row >= vh {
             return;
         }
-        let mode = SpanMode::new::<C>(self.depth_test, self.dither);
+        // Without depth lines, set up as the strip pass does (`strip.rs`).
+        let test = if ZL == 0 {
+            DepthTest::Less
+        } else {
+            self.depth_test
+        };
+        let mode = SpanMode::new::<C>(test, self.dither);
+        let painter = ZL == 0 && self.order == DrawOrder::FarToNear;
         let verts = &self.verts;
         for rec in &self.tris[..self.heads[row] as usize] {
             // A triangle that ends above the row needs no setup to be skipped: its lowest
@@ -638,6 +645,9 @@ impl<
                     ))
             {
                 self.active_skipped = self.active_skipped.saturating_add(1);
+            } else if painter && self.active.len() > before {
+                let ord = (ACTIVE <= H).then_some(&mut self.starts[..]);
+                painter_insert(&mut self.active, ord, painter_key(rec, verts));
             }
         }
     }

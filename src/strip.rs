@@ -11,7 +11,7 @@ use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
 
 use crate::color::{rgb565_word, rgb565_words_mut, TargetColor};
-use crate::depth_mode::{painter_key, DrawOrder};
+use crate::depth_mode::{draw_row_no_depth, painter_insert, painter_key, DrawOrder};
 use crate::raster::{DepthTest, SpanMode};
 use crate::scalar::Scalar;
 use crate::textured::{attach_pushed, draw_row_textured, is_textured, TEXTURED};
@@ -231,6 +231,7 @@ impl<
             tris,
             active,
             heads,
+            starts,
             color: own,
             depth,
             depth_test,
@@ -291,26 +292,17 @@ impl<
                 {
                     *skipped = skipped.saturating_add(1);
                 } else if painter && active.len() > before {
-                    active.sort_in_last(painter_key(&rec, verts));
+                    let ord = (ACTIVE <= H).then_some(&mut starts[..]);
+                    painter_insert(active, ord, painter_key(&rec, verts));
                 }
             }
             probe.enter(Stage::Raster);
             if ZL == 0 {
-                // No depth lines: every fragment written, in the list's order.
-                let mut i = 0;
-                while i < active.len() {
-                    let (frag, written, done) = active.get_mut(i).draw_row_no_depth(
-                        row as i32,
-                        &mut color[l][..vw],
-                        *dither,
-                    );
-                    stats.add_row(frag, written);
-                    match (done, painter) {
-                        (false, _) => i += 1,
-                        (true, true) => active.remove_in_order(i),
-                        (true, false) => active.swap_remove(i),
-                    }
-                }
+                // No depth lines: every fragment written, in the painter's or the list's order.
+                let ord = (ACTIVE <= H).then_some(&mut starts[..]);
+                let (frag, written) =
+                    draw_row_no_depth(active, ord, painter, row, &mut color[l][..vw], *dither);
+                stats.add_row(frag, written);
                 continue;
             }
             if XA > 0 {

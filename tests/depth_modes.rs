@@ -20,7 +20,10 @@ const N: usize = 96;
 #[derive(Copy, Clone, Debug, PartialEq)]
 enum Mode {
     ZBuffer,
+    /// The painter's order kept as a list of slots (`ACTIVE ≤ H`).
     Painter,
+    /// The painter's order kept in the active records themselves (`ACTIVE > H`).
+    PainterRecords,
     Any,
 }
 
@@ -57,14 +60,17 @@ fn draw<S: Scalar, C: TargetColor + Into<Rgb888>>(
             r.set_dither(dither);
             r.render(&scene, &mut f).unwrap()
         }
-        Mode::Painter | Mode::Any => {
+        Mode::Painter => {
+            let mut r = NoDepthRenderer::<S, C, N, N, 1024, 1024, 64>::new();
+            r.set_dither(dither);
+            r.render(&scene, &mut f).unwrap()
+        }
+        Mode::PainterRecords | Mode::Any => {
             let mut r = NoDepthRenderer::<S, C, N, N, 1024, 1024, 128>::new();
             r.set_dither(dither);
-            r.set_order(if mode == Mode::Painter {
-                DrawOrder::FarToNear
-            } else {
-                DrawOrder::Any
-            });
+            if mode == Mode::Any {
+                r.set_order(DrawOrder::Any);
+            }
             r.render(&scene, &mut f).unwrap()
         }
     };
@@ -104,7 +110,7 @@ fn convex_case<S: Scalar>() {
             }];
             for dither in [false, true] {
                 let (z, zs) = draw::<S, Rgb565>(&objects, Mode::ZBuffer, dither);
-                for mode in [Mode::Painter, Mode::Any] {
+                for mode in [Mode::Painter, Mode::PainterRecords, Mode::Any] {
                     let (f, s) = draw::<S, Rgb565>(&objects, mode, dither);
                     assert_eq!(differing(&z, &f), 0, "{mode:?} {shading:?} {deg}° {dither}");
                     // The same fragments, every one written (nothing to hide).
@@ -152,8 +158,23 @@ fn separate_objects_case<S: Scalar>() {
     ];
     let (z, _) = draw::<S, Rgb565>(&objects, Mode::ZBuffer, false);
     let (p, _) = draw::<S, Rgb565>(&objects, Mode::Painter, false);
+    let (pr, _) = draw::<S, Rgb565>(&objects, Mode::PainterRecords, false);
     let (a, _) = draw::<S, Rgb565>(&objects, Mode::Any, false);
     assert_eq!(differing(&z, &p), 0, "painter's differs from the Z-buffer");
+    assert_eq!(
+        differing(&z, &pr),
+        0,
+        "painter's (records) differs from the Z-buffer"
+    );
+    // From the middle row on (`seek_row`), the painter's order is kept too.
+    let scene = Scene::new(&objects, camera(), lights()).with_background([20, 30, 40]);
+    let mut r = NoDepthRenderer::<S, Rgb565, N, N, 1024, 1024, 64>::new();
+    r.prepare(&scene).unwrap();
+    r.seek_row(N / 2);
+    let mut g = Frame::new(N as u32, N as u32, Rgb565::BLACK);
+    while r.render_strip(&mut g).unwrap().is_some() {}
+    let half = N * N / 2;
+    assert_eq!(g.px[half..], p.px[half..], "painter's from seek_row");
     assert!(
         differing(&z, &a) > 50,
         "any order should show the far cube over the near one: {} pixels differ",
