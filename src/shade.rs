@@ -374,7 +374,7 @@ pub(crate) fn lit_color_points<S: Scalar>(
         add_light(&mut sums, m, &pl.at(p), n, to_eye);
     }
     match tone {
-        Some(t) => t.map(m, m.ambient, sums.0, sums.1),
+        Some(t) => t.map(m, sums.0, sums.1),
         None => finish(m, sums),
     }
 }

@@ -127,11 +127,12 @@ impl<S: Scalar> ToneMap<S> {
         f(m.ambient) + f(self.intensity) * lights as f64 * (f(m.diffuse) + f(m.specular))
     }
 
-    /// The display colour (8.8 per channel) from the lit sums: `ambient` (the material's
-    /// ambient coefficient), `light` (Σ diffuse·N·L·light per channel) and `spec` (Σ specular
+    /// The display colour (8.8 per channel) of material `m` from the lit sums: `light`
+    /// (Σ diffuse·N·L·light per channel) and `spec` (Σ specular
     /// terms per channel, in channel units 0..=255): `curve(exposure · (color·(ambient +
     /// intensity·light) + intensity·spec)/255)`.
-    pub(crate) fn map(&self, m: &Material<S>, ambient: S, light: [S; 3], spec: [S; 3]) -> [u16; 3] {
+    pub(crate) fn map(&self, m: &Material<S>, light: [S; 3], spec: [S; 3]) -> [u16; 3] {
+        let ambient = m.ambient;
         let mut out = [0u16; 3];
         for c in 0..3 {
             let coef = (ambient + self.intensity * light[c]) * self.exposure;
@@ -264,8 +265,8 @@ impl<'a, D: DrawTarget> Metered<'a, D> {
     }
 }
 
-/// The luma (0..=255) of `c`: `(2R + 5G + B)/8` of its channels scaled to 8 bits (`None` for
-/// a colour without channels).
+/// The luma (0..=255) of `c`: [`crate::luma`] (BT.601, embedded-graphics' weights) of its
+/// channels scaled to 8 bits, rounded (`None` for a colour without channels).
 fn luma<C: TargetColor>(c: C) -> Option<u64> {
     let max = C::CHANNEL_MAX;
     let ch = c.channels()?;
@@ -274,7 +275,8 @@ fn luma<C: TargetColor>(c: C) -> Option<u64> {
     if max[1] == 0 {
         return Some(v(0));
     }
-    Some((2 * v(0) + 5 * v(1) + v(2)) / 8)
+    let l = crate::color::luma([0, 1, 2].map(|k| (v(k) << 8) as u16));
+    Some((l as u64 + 128) >> 8)
 }
 
 /// Adds `c`'s luma to `(sum, count)` unless it is `skip`.

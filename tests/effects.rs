@@ -562,7 +562,8 @@ fn sphere_luma(f: &Frame<Rgb565>) -> f64 {
                     c.g() as f64 * 255.0 / 63.0,
                     c.b() as f64 * 255.0 / 31.0,
                 );
-                (2.0 * r + 5.0 * g + b) / 8.0
+                // BT.601 (embedded-graphics' weights), as `Metered` measures.
+                (77.0 * r + 150.0 * g + 29.0 * b) / 256.0
             })
             .collect();
     lit.iter().sum::<f64>() / lit.len().max(1) as f64
