@@ -218,8 +218,8 @@ impl AutoExposure {
 }
 
 /// A draw target that measures the luma of what passes through it to `target`: the strips of
-/// a frame as the renderer hands them over (no framebuffer). Luma is `(2R + 5G + B)/8` of the
-/// 8-bit channels; [`Metered::mean`] is the mean since [`Metered::reset`], of every pixel or
+/// a frame as the renderer hands them over (no framebuffer). Luma is BT.601's
+/// ([`crate::luma`]) of the 8-bit channels; [`Metered::mean`] is the mean since [`Metered::reset`], of every pixel or
 /// of those not in an excluded colour ([`Metered::excluding`]: the background, so that the
 /// exposure follows the objects, not how much of the screen they cover).
 #[derive(Debug)]
