@@ -221,6 +221,12 @@ impl Summary {
             );
         } else {
             println!("  pick: the Z-buffer (Renderer): neither order draws every frame right");
+            return;
         }
+        println!(
+            "    (RAM for speed: the Z-buffer's RGB565 Gouraud rows run in assembly on Cortex-M, \
+             the rows without depth lines in portable code, so large triangles get faster and a \
+             fine Gouraud mesh slower: compare the cube_* and icosphere_* rows of BENCHMARKS.md)"
+        );
     }
 }
