@@ -10,6 +10,7 @@ use crate::camera::{Camera, CameraError, Projection};
 use crate::demo_assets::Floor;
 pub use crate::demo_assets::{deg, Bench, BenchError, BenchFrame, CHECKER, CHECKER_TEXELS};
 pub(crate) use crate::demo_assets::{look, persp};
+pub use crate::demo_csg::{CSG_ACTIVE, CSG_TRIS};
 pub use crate::demo_shadow::{
     render_shadow_scene, EdgeStyle, ShadowScene, CREASE_ANGLE, WIRE_COLOR,
 };
@@ -125,7 +126,7 @@ where
 
 /// Renders `scene` with a fresh `W × H` renderer of capacities `V`, `T`, `A` and reports the
 /// frame's statistics and the renderer's size.
-fn render_with<
+pub(crate) fn render_with<
     S,
     C,
     D,
@@ -291,6 +292,7 @@ where
             )
         }
         Bench::Torus => render_torus_strip::<S, C, D, P, 1>(spin_deg, dither, target, probe),
+        Bench::Csg => crate::demo_csg::render_csg::<S, C, D, P>(spin_deg, dither, target, probe),
         Bench::ShadowNone
         | Bench::Shadow
         | Bench::ShadowBlob

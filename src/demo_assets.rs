@@ -180,11 +180,14 @@ pub enum Bench {
     /// [`Bench::PointGouraud`] in HDR: both lights [`crate::demo::HDR_INTENSITY`] times as
     /// bright, exposure [`crate::demo::HDR_EXPOSURE`], the filmic tone curve.
     HdrGouraud,
+    /// The example CSG part (`examples/csg/part.csg`: a block with a spherical pocket and a
+    /// drilled hole, 210 triangles) baked into flash, Gouraud, one white light.
+    Csg,
 }
 
 impl Bench {
     /// Every benchmark scene.
-    pub const ALL: [Bench; 26] = [
+    pub const ALL: [Bench; 27] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -211,6 +214,7 @@ impl Bench {
         Bench::Edges,
         Bench::Wireframe,
         Bench::HdrGouraud,
+        Bench::Csg,
     ];
 
     /// Its name in reports.
@@ -243,6 +247,7 @@ impl Bench {
             Bench::Edges => "edges",
             Bench::Wireframe => "wireframe",
             Bench::HdrGouraud => "hdr_gouraud",
+            Bench::Csg => "csg",
         }
     }
 }
