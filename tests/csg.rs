@@ -365,3 +365,29 @@ fn malformed_half_spaces_are_rejected_with_their_line_and_problem() {
         assert!(e.message.contains(words), "{text:?}: {e}");
     }
 }
+
+#[test]
+fn hostile_half_space_numbers_give_a_mesh_or_a_line_numbered_error() {
+    for hs in [
+        "plane 1e300 1e300 1e300 0",
+        "plane 1e-300 0 0 0",
+        "plane 1 0 0 -1e300",
+        "quadric 1e300 1e300 1e300 0 0 0 0 0 0 -1",
+        "quadric 1e-300 1e-300 1e-300 0 0 0 0 0 0 -1e-300",
+        "quadric -1e300 1e300 0 0 0 0 0 0 0 1e300",
+        "quadric 1 1 -1 0 0 0 0 0 0 0",
+        "quadric 1 1 1 0 0 0 0 0 0 -1 scale 1e-200",
+    ] {
+        let text = format!("b = box 2 2 2\nh = {hs}\nr = intersection b h\n");
+        match mesh_csg_text(&text) {
+            Ok(m) => {
+                check_closed(&m).unwrap_or_else(|e| panic!("{hs}: {e}"));
+                println!("{hs}: {} triangles", m.triangles.len());
+            }
+            Err(e) => {
+                assert!(e.line == 2 || e.line == 3, "{hs}: {e}");
+                println!("{hs}: {e}");
+            }
+        }
+    }
+}

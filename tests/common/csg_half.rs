@@ -33,6 +33,10 @@ pub struct HalfSpace {
 /// default 24 segments, 24 cells.
 const CELLS_PER_SEGMENT: usize = 1;
 
+/// The smallest bound a quadric is meshed in, in model units: 2⁻¹², 4 096 steps of the 2⁻²⁴
+/// grid the booleans snap to.
+const MIN_SIZE: f64 = 1.0 / 4096.0;
+
 /// Cells of margin around the bound (the grid's closing caps round off within two cells).
 const MARGIN_CELLS: f64 = 3.0;
 
@@ -46,14 +50,31 @@ impl HalfSpace {
     /// order.
     pub fn quadric(k: [f64; 10]) -> Self {
         let [a, b, c, d, e, f, g, h, i, j] = k;
-        HalfSpace {
+        let mut hs = HalfSpace {
             q: [
                 [a, d / 2.0, f / 2.0, g / 2.0],
                 [d / 2.0, b, e / 2.0, h / 2.0],
                 [f / 2.0, e / 2.0, c, i / 2.0],
                 [g / 2.0, h / 2.0, i / 2.0, j],
             ],
+        };
+        hs.normalize();
+        hs
+    }
+
+    /// Divides every coefficient by the largest magnitude (a positive factor: the same
+    /// half-space), so that sums and products of coefficients stay far from overflow and
+    /// underflow whatever the scale the text gave.
+    fn normalize(&mut self) {
+        let m = self.q.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        if m > 0.0 && m.is_finite() {
+            self.q = self.q.map(|r| r.map(|x| x / m));
         }
+    }
+
+    /// Every coefficient finite.
+    pub fn is_finite(&self) -> bool {
+        self.q.iter().flatten().all(|x| x.is_finite())
     }
 
     /// No second-degree term: a plane.
@@ -75,6 +96,10 @@ impl HalfSpace {
 
     /// Applies a transform given by its inverse `inv` (an affine 4 × 4 matrix, last row 0 0 0 1).
     pub fn transform_by_inverse(&mut self, inv: [[f64; 4]; 4]) {
+        // Scaling the inverse by a positive factor scales f by its square: the same half-space,
+        // and no overflow from a large inverse (a tiny `scale`).
+        let m = inv.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        let inv = inv.map(|r| r.map(|x| x / m));
         let mut t = [[0.0; 4]; 4];
         for (i, row) in t.iter_mut().enumerate() {
             for (j, x) in row.iter_mut().enumerate() {
@@ -85,6 +110,7 @@ impl HalfSpace {
             }
         }
         self.q = t;
+        self.normalize();
     }
 
     /// `f(p)`.
@@ -110,6 +136,9 @@ impl HalfSpace {
         hi: [f64; 3],
         segments: usize,
     ) -> Result<Option<CsgMesh>, String> {
+        if !self.is_finite() || self.is_constant() {
+            return Err("its coefficients are out of range after the transforms".into());
+        }
         if self.is_plane() {
             return self.plane_mesh(lo, hi);
         }
@@ -129,6 +158,12 @@ impl HalfSpace {
             None => (lo, hi),
         };
         let longest = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+        // The booleans snap to a 2⁻²⁴ grid: a surface much smaller would collapse.
+        if !(longest >= MIN_SIZE) {
+            return Err(format!(
+                "the quadric's part inside its operand is too small to mesh (under {MIN_SIZE:e} across)"
+            ));
+        }
         let inner = (segments * CELLS_PER_SEGMENT) as f64;
         let h = longest / inner;
         let origin = [0, 1, 2].map(|k| lo[k] - MARGIN_CELLS * h);
@@ -231,10 +266,14 @@ impl HalfSpace {
             return None;
         }
         let e = [0, 1, 2].map(|k| (r * inv[k][k]).sqrt());
-        Some((
+        let (lo, hi) = (
             [0, 1, 2].map(|k| c[k] - e[k]),
             [0, 1, 2].map(|k| c[k] + e[k]),
-        ))
+        );
+        lo.iter()
+            .chain(&hi)
+            .all(|x| x.is_finite())
+            .then_some((lo, hi))
     }
 
     /// A box with its top face on the plane, holding `lo..hi` (enlarged) below it.
