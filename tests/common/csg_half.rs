@@ -159,7 +159,7 @@ impl HalfSpace {
         };
         let longest = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
         // The booleans snap to a 2⁻²⁴ grid: a surface much smaller would collapse.
-        if !(longest >= MIN_SIZE) {
+        if longest.is_nan() || longest < MIN_SIZE {
             return Err(format!(
                 "the quadric's part inside its operand is too small to mesh (under {MIN_SIZE:e} across)"
             ));
