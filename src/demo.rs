@@ -7,6 +7,7 @@
 //! (255, 160, 64) on black; Gouraud; 240 × 240.
 
 use crate::camera::{Camera, CameraError, Projection};
+use crate::demo_assets::render_with;
 use crate::demo_assets::Floor;
 pub use crate::demo_assets::{deg, Bench, BenchError, BenchFrame, CHECKER, CHECKER_TEXELS};
 pub(crate) use crate::demo_assets::{look, persp};
@@ -122,47 +123,6 @@ where
     }];
     let scene = crate::Scene::new(&objects, camera().map_err(|_| BenchError::Scene)?, lights());
     render_with::<S, C, D, P, W, W, 512, T, A, 1, 1, 0, 0>(&scene, false, target, probe)
-}
-
-/// Renders `scene` with a fresh `W × H` renderer of capacities `V`, `T`, `A` and reports the
-/// frame's statistics and the renderer's size.
-pub(crate) fn render_with<
-    S,
-    C,
-    D,
-    P,
-    const W: usize,
-    const H: usize,
-    const V: usize,
-    const T: usize,
-    const A: usize,
-    const L: usize,
-    const LINES: usize,
-    const XV: usize,
-    const XA: usize,
->(
-    scene: &crate::Scene<'_, S, L>,
-    dither: bool,
-    target: &mut D,
-    probe: &mut P,
-) -> Result<BenchFrame, BenchError<D::Error>>
-where
-    S: Scalar,
-    C: crate::TargetColor,
-    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: crate::Probe,
-{
-    // Set in place: `with_dither` would move the renderer, which may take a second copy of it
-    // on the stack.
-    let mut r = crate::Renderer::<S, C, W, H, V, T, A, LINES, XV, XA>::new();
-    r.set_dither(dither);
-    let stats = r
-        .render_probed(scene, target, probe)
-        .map_err(BenchError::Render)?;
-    Ok(BenchFrame {
-        stats,
-        renderer_ram_bytes: core::mem::size_of_val(&r),
-    })
 }
 
 /// The triangle capacity of the 240 × 240 torus benchmark frame.

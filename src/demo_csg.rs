@@ -9,7 +9,7 @@
 //! type draws the same geometry and the twins' error is arithmetic, not a different mesh. (The
 //! Q16.16 copy is not needed; rendering from flash directly would take a Q16.16-only path.)
 
-use crate::demo_assets::{deg, look, persp, BenchError, BenchFrame};
+use crate::demo_assets::{deg, look, persp, render_with, BenchError, BenchFrame};
 use crate::demo_csg_mesh as baked;
 use crate::math::Mat4;
 use crate::scalar::Scalar;
@@ -34,8 +34,7 @@ fn transform<S: Scalar>(spin_deg: f64) -> Mat4<S> {
         .then(&Mat4::rotate_y(deg(spin_deg)))
 }
 
-/// Renders the `csg` frame; `render_with` is [`crate::demo`]'s renderer of the given
-/// capacities, passed in so this module needs none of its generics spelled twice.
+/// Renders the `csg` frame (240 × 240) at `spin_deg`, with `dither`, reporting stages to `probe`.
 pub(crate) fn render_csg<S, C, D, P>(
     spin_deg: f64,
     dither: bool,
@@ -79,23 +78,11 @@ where
     let scene = crate::Scene::new(&objects, camera, lights);
     if C::triangle_id(0).is_some() {
         // One more vertex record per drawn triangle, as in `render_bench`.
-        crate::demo::render_with::<
-            S,
-            C,
-            D,
-            P,
-            240,
-            240,
-            { VERTICES + CSG_TRIS },
-            CSG_TRIS,
-            CSG_ACTIVE,
-            1,
-            1,
-            0,
-            0,
-        >(&scene, dither, target, probe)
+        render_with::<S, C, D, P, 240, 240, { VERTICES + CSG_TRIS }, CSG_TRIS, CSG_ACTIVE, 1, 1, 0, 0>(
+            &scene, dither, target, probe,
+        )
     } else {
-        crate::demo::render_with::<S, C, D, P, 240, 240, VERTICES, CSG_TRIS, CSG_ACTIVE, 1, 1, 0, 0>(
+        render_with::<S, C, D, P, 240, 240, VERTICES, CSG_TRIS, CSG_ACTIVE, 1, 1, 0, 0>(
             &scene, dither, target, probe,
         )
     }
