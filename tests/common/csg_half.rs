@@ -16,9 +16,10 @@
 //!   chosen over a parametric construction because one path then serves every quadric (ellipsoids,
 //!   paraboloids, hyperboloids, elliptic cylinders and cones, in any orientation) without
 //!   classifying it, and over marching cubes because their vertices sit inside the cells rather
-//!   than on cell edges, which gives far fewer slivers. The price: the surface is an approximation
-//!   whose vertices lie within about a tenth of a cell of the true surface (linear interpolation
-//!   of `f / |∇f|` along cell edges), and a singular point (a cone's apex) may come out
+//!   than on cell edges, which as a rule gives fewer slivers (not compared here). The price: the
+//!   surface is an approximation (each vertex averages the linear interpolations of `f / |∇f|`
+//!   along its cell's crossed edges, so it sits a little inside a convex surface: volumes −1.4 %
+//!   to +0.3 % in tests/csg.rs at 24 segments), and a singular point (a cone's apex) may come out
 //!   non-manifold, which is then reported as an error.
 
 use super::{box_mesh, check_closed, signed_volume, CsgMesh};
