@@ -7,9 +7,11 @@
 //! (255, 160, 64) on black; Gouraud; 240 × 240.
 
 use crate::camera::{Camera, CameraError, Projection};
+use crate::demo_assets::render_with;
 use crate::demo_assets::Floor;
 pub use crate::demo_assets::{deg, Bench, BenchError, BenchFrame, CHECKER, CHECKER_TEXELS};
 pub(crate) use crate::demo_assets::{look, persp};
+pub use crate::demo_csg::{CSG_ACTIVE, CSG_TRIS};
 pub use crate::demo_shadow::{
     render_shadow_scene, EdgeStyle, ShadowScene, CREASE_ANGLE, WIRE_COLOR,
 };
@@ -121,47 +123,6 @@ where
     }];
     let scene = crate::Scene::new(&objects, camera().map_err(|_| BenchError::Scene)?, lights());
     render_with::<S, C, D, P, W, W, 512, T, A, 1, 1, 0, 0>(&scene, false, target, probe)
-}
-
-/// Renders `scene` with a fresh `W × H` renderer of capacities `V`, `T`, `A` and reports the
-/// frame's statistics and the renderer's size.
-fn render_with<
-    S,
-    C,
-    D,
-    P,
-    const W: usize,
-    const H: usize,
-    const V: usize,
-    const T: usize,
-    const A: usize,
-    const L: usize,
-    const LINES: usize,
-    const XV: usize,
-    const XA: usize,
->(
-    scene: &crate::Scene<'_, S, L>,
-    dither: bool,
-    target: &mut D,
-    probe: &mut P,
-) -> Result<BenchFrame, BenchError<D::Error>>
-where
-    S: Scalar,
-    C: crate::TargetColor,
-    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: crate::Probe,
-{
-    // Set in place: `with_dither` would move the renderer, which may take a second copy of it
-    // on the stack.
-    let mut r = crate::Renderer::<S, C, W, H, V, T, A, LINES, XV, XA>::new();
-    r.set_dither(dither);
-    let stats = r
-        .render_probed(scene, target, probe)
-        .map_err(BenchError::Render)?;
-    Ok(BenchFrame {
-        stats,
-        renderer_ram_bytes: core::mem::size_of_val(&r),
-    })
 }
 
 /// [`render_with`] on a 240 × 240 renderer without depth lines drawing in `order`.
@@ -322,6 +283,7 @@ where
             )
         }
         Bench::Torus => render_torus_strip::<S, C, D, P, 1>(spin_deg, dither, target, probe),
+        Bench::Csg => crate::demo_csg::render_csg::<S, C, D, P>(spin_deg, dither, target, probe),
         Bench::ShadowNone
         | Bench::Shadow
         | Bench::ShadowBlob

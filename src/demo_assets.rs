@@ -62,6 +62,47 @@ pub(crate) fn persp<S: Scalar>(fov_deg: f64, near: f64, far: f64) -> Projection<
     }
 }
 
+/// Renders `scene` with a fresh `W × H` renderer of capacities `V`, `T`, `A` and reports the
+/// frame's statistics and the renderer's size.
+pub(crate) fn render_with<
+    S,
+    C,
+    D,
+    P,
+    const W: usize,
+    const H: usize,
+    const V: usize,
+    const T: usize,
+    const A: usize,
+    const L: usize,
+    const LINES: usize,
+    const XV: usize,
+    const XA: usize,
+>(
+    scene: &crate::Scene<'_, S, L>,
+    dither: bool,
+    target: &mut D,
+    probe: &mut P,
+) -> Result<BenchFrame, BenchError<D::Error>>
+where
+    S: Scalar,
+    C: crate::TargetColor,
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+    P: crate::Probe,
+{
+    // Set in place: `with_dither` would move the renderer, which may take a second copy of it
+    // on the stack.
+    let mut r = crate::Renderer::<S, C, W, H, V, T, A, LINES, XV, XA>::new();
+    r.set_dither(dither);
+    let stats = r
+        .render_probed(scene, target, probe)
+        .map_err(BenchError::Render)?;
+    Ok(BenchFrame {
+        stats,
+        renderer_ram_bytes: core::mem::size_of_val(&r),
+    })
+}
+
 /// The textured benchmark's 64 × 64 texture: a two-tone checkerboard of 8 × 8-texel squares
 /// with a dark line along each square's top and left edge (the lines show a perspective
 /// error as bent or broken lines).
@@ -192,6 +233,9 @@ pub enum Bench {
     IcosphereNoDepth,
     /// [`Bench::PointPhong`] in HDR as [`Bench::HdrGouraud`]: tone-mapped per pixel.
     HdrPhong,
+    /// The example CSG part (`examples/csg/part.csg`: a block with a spherical pocket and a
+    /// drilled hole, 210 triangles) baked into flash, Gouraud, one white light.
+    Csg,
 }
 
 impl Bench {
@@ -206,7 +250,7 @@ impl Bench {
     }
 
     /// Every benchmark scene.
-    pub const ALL: [Bench; 31] = [
+    pub const ALL: [Bench; 32] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -238,6 +282,7 @@ impl Bench {
         Bench::IcospherePainter,
         Bench::IcosphereNoDepth,
         Bench::HdrPhong,
+        Bench::Csg,
     ];
 
     /// Its name in reports.
@@ -275,6 +320,7 @@ impl Bench {
             Bench::IcospherePainter => "icosphere_painter",
             Bench::IcosphereNoDepth => "icosphere_nodepth",
             Bench::HdrPhong => "hdr_phong",
+            Bench::Csg => "csg",
         }
     }
 }

@@ -188,6 +188,12 @@ mod config;
 mod cull;
 pub mod demo;
 mod demo_assets;
+mod demo_csg;
+// Written by `bake` (tests/bench_scenes.rs checks that re-baking reproduces it byte for byte):
+// neither formatted nor linted here.
+#[rustfmt::skip]
+#[allow(dead_code, clippy::all)]
+mod demo_csg_mesh;
 mod demo_shadow;
 mod depth_mode;
 mod effects;
@@ -226,6 +232,9 @@ mod volume;
 mod wide;
 
 pub use fixed;
+
+// The baked CSG part (src/demo_csg_mesh.rs) names the crate as its users do.
+extern crate self as scanline3d;
 
 pub use camera::{Camera, CameraError, Projection, MAX_DEPTH_RATIO};
 pub use clip::{BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP};

@@ -128,3 +128,60 @@ fn small_part_capacities_are_exactly_the_frame_s_needs() {
         render_torus_sized::<Q, Rgb565, _, _, W, T, { A - 1 }>(shape.mesh(), &mut t, &mut NoProbe)
     ));
 }
+
+/// The `csg` scene (the example CSG part baked into flash) against its golden images (looked
+/// at), and its renderer's capacities (`demo::CSG_TRIS`, `demo::CSG_ACTIVE`) exactly the most its
+/// frames need over a full turn: a drawn count or active list above them would have failed the
+/// frame with a shortfall.
+#[test]
+fn csg_scene_matches_its_golden_images_and_its_capacities() {
+    use scanline3d::demo::{CSG_ACTIVE, CSG_TRIS};
+    fn most<S: Scalar>() -> (usize, usize) {
+        (0..360)
+            .step_by(5)
+            .map(|spin| frame::<S>(Bench::Csg, spin as f64).1.stats)
+            .fold((0, 0), |(d, a), s| {
+                (d.max(s.drawn as usize), a.max(s.max_active as usize))
+            })
+    }
+    let (q, f32s, f64s) = (most::<Q>(), most::<f32>(), most::<f64>());
+    println!("csg over a turn (drawn, active): I16F16 {q:?}, f32 {f32s:?}, f64 {f64s:?}");
+    let need = (q.0.max(f32s.0).max(f64s.0), q.1.max(f32s.1).max(f64s.1));
+    assert_eq!(need, (CSG_TRIS, CSG_ACTIVE));
+    common::check_golden("csg_I16F16", &frame::<Q>(Bench::Csg, 0.0).0);
+    common::check_golden("csg_f32", &frame::<f32>(Bench::Csg, 0.0).0);
+    common::check_golden("csg_f64", &frame::<f64>(Bench::Csg, 0.0).0);
+}
+
+/// `src/demo_csg_mesh.rs` is exactly what `bake` writes for `examples/csg/part.csg` today, so
+/// the scene cannot drift from the CSG modeller (or the modeller change the part unnoticed).
+/// Needs the `bake` example built (`cargo test` builds it; with `--test bench_scenes` alone,
+/// `cargo build --release --examples` first).
+#[test]
+fn the_baked_csg_part_is_what_bake_writes() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let exe = std::env::current_exe().unwrap();
+    let bake = exe
+        .parent()
+        .unwrap()
+        .parent()
+        .unwrap()
+        .join("examples")
+        .join(format!("bake{}", std::env::consts::EXE_SUFFIX));
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench_scenes");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("demo_csg_mesh.rs");
+    let run = std::process::Command::new(&bake)
+        .args(["--csg", &format!("{root}/examples/csg/part.csg"), "--out"])
+        .arg(&out)
+        .output()
+        .unwrap_or_else(|e| panic!("{}: {e} (build the examples first)", bake.display()));
+    assert!(run.status.success(), "{run:?}");
+    let want = std::fs::read(format!("{root}/src/demo_csg_mesh.rs")).unwrap();
+    let got = std::fs::read(&out).unwrap();
+    assert!(
+        got == want,
+        "src/demo_csg_mesh.rs differs from a fresh `cargo run --release --example bake -- --csg \
+         examples/csg/part.csg --out src/demo_csg_mesh.rs`"
+    );
+}

@@ -24,11 +24,37 @@
 //! `union A B ...`, `intersection A B ...`, `difference A B ...` (two or more names defined on
 //! earlier lines). Any definition may end with transforms, applied left to right:
 //! `translate X Y Z`, `rotate x|y|z DEGREES`, `scale S` or `scale SX SY SZ` (non-zero factors).
-//! The last definition is the result. General quadric half-spaces are not part of this format
-//! yet (they are unbounded; see the notes of issue #25).
+//! The last definition is the result.
+//!
+//! Half-spaces (tests/common/csg_half.rs says how they are meshed):
+//!
+//! ```text
+//! cut  = plane A B C D                   # A x + B y + C z + D ≤ 0
+//! bowl = quadric A B C D E F G H I J     # A x² + B y² + C z² + D xy + E yz + F xz
+//!                                        #   + G x + H y + I z + J ≤ 0
+//! part = intersection block cut bowl     # each half-space meets a bounded operand
+//! ```
+//!
+//! A half-space is unbounded, so it may only be an operand of an `intersection` that has at
+//! least one bounded operand, or a second or later operand of a `difference` (whose first operand
+//! is bounded); in a `union`, as the first operand of a `difference`, or as the result it is
+//! refused with its line. It is meshed over the bounding box of what it meets, so it can take
+//! transforms like any primitive.
 
 use boolmesh::prelude::{compute_boolean, Manifold, OpType};
 use std::collections::HashMap;
+
+#[path = "csg_half.rs"]
+mod half;
+pub use half::HalfSpace;
+
+/// A definition: a closed mesh, or a half-space kept as its equation until it meets a bounded
+/// operand.
+#[derive(Clone, Debug)]
+enum Node {
+    Solid(CsgMesh),
+    Half(HalfSpace),
+}
 
 /// A closed triangle mesh: f64 positions (the model's units), counter-clockwise outward.
 #[derive(Clone, Debug)]
@@ -64,7 +90,7 @@ fn err<T>(line: usize, message: impl Into<String>) -> Result<T, CsgError> {
 /// Parses a CSG text and meshes its last definition.
 pub fn mesh_csg_text(text: &str) -> Result<CsgMesh, CsgError> {
     let mut segments = 24usize;
-    let mut defs: HashMap<String, CsgMesh> = HashMap::new();
+    let mut defs: HashMap<String, Node> = HashMap::new();
     let mut last: Option<(usize, String)> = None;
     for (i, raw) in text.lines().enumerate() {
         let n = i + 1;
@@ -100,7 +126,7 @@ pub fn mesh_csg_text(text: &str) -> Result<CsgMesh, CsgError> {
             .position(|w| matches!(*w, "translate" | "rotate" | "scale"))
             .map_or(rest.len(), |p| p + 1);
         let (op, args, transforms) = (rest[0], &rest[1..split], &rest[split..]);
-        let mut mesh = match op {
+        let mut node = match op {
             "box" | "sphere" | "cylinder" | "cone" => {
                 let want = if op == "box" {
                     3
@@ -116,71 +142,174 @@ pub fn mesh_csg_text(text: &str) -> Result<CsgMesh, CsgError> {
                 if let Some(bad) = v.iter().find(|x| **x <= 0.0) {
                     return err(n, format!("`{op}` needs sizes above zero, found {bad}"));
                 }
-                match op {
+                Node::Solid(match op {
                     "box" => box_mesh(v[0], v[1], v[2]),
                     "sphere" => sphere_mesh(v[0], segments),
                     "cylinder" => cylinder_mesh(v[0], v[1], segments),
                     _ => cone_mesh(v[0], v[1], segments),
+                })
+            }
+            "plane" | "quadric" => {
+                let want = if op == "plane" { 4 } else { 10 };
+                if args.len() != want {
+                    return err(n, format!("`{op}` takes {want} numbers, found {}", args.len()));
                 }
+                let v = numbers(n, args)?;
+                let h = if op == "plane" {
+                    HalfSpace::plane(v[0], v[1], v[2], v[3])
+                } else {
+                    let mut k = [0.0; 10];
+                    k.copy_from_slice(&v);
+                    HalfSpace::quadric(k)
+                };
+                if h.is_constant() {
+                    return err(n, format!("`{op}` has no term in x, y or z"));
+                }
+                Node::Half(h)
             }
             "union" | "intersection" | "difference" => {
                 if args.len() < 2 {
                     return err(n, format!("`{op}` needs two or more names"));
                 }
-                // OpType is neither Copy nor Clone: made afresh for each step.
-                let kind = || match op {
-                    "union" => OpType::Add,
-                    "intersection" => OpType::Intersect,
-                    _ => OpType::Subtract,
-                };
-                let mut acc: Option<Manifold> = None;
+                let mut operands = Vec::new();
                 for a in args {
                     let Some(m) = defs.get(*a) else {
                         return err(n, format!("`{a}` is not defined on an earlier line"));
                     };
-                    let m = manifold(m).map_err(|e| CsgError {
-                        line: n,
-                        message: format!("`{a}`: {e}"),
-                    })?;
-                    acc = Some(match acc {
-                        None => m,
-                        // boolmesh reports an empty result as an error ("empty pos matrix").
-                        Some(p) => compute_boolean(&p, &m, kind()).map_err(|e| CsgError {
-                            line: n,
-                            message: if e.contains("empty") {
-                                format!("`{name}` is empty (`{op}` left nothing: {e})")
-                            } else {
-                                format!("`{op}` failed: {e}")
-                            },
-                        })?,
-                    });
+                    operands.push((*a, m));
                 }
-                let m = acc.expect("two or more operands");
-                from_manifold(&m)
+                Node::Solid(combine(n, name, op, &operands, segments)?)
             }
             other => {
                 return err(
                     n,
-                    format!("unknown operation `{other}` (box, sphere, cylinder, cone, union, intersection, difference)"),
+                    format!("unknown operation `{other}` (box, sphere, cylinder, cone, plane, quadric, union, intersection, difference)"),
                 )
             }
         };
-        apply_transforms(n, transforms, &mut mesh)?;
-        if mesh.triangles.is_empty() {
-            return err(n, format!("`{name}` is empty"));
+        apply_transforms(n, transforms, &mut node)?;
+        if let Node::Solid(mesh) = &node {
+            if mesh.triangles.is_empty() {
+                return err(n, format!("`{name}` is empty"));
+            }
         }
-        defs.insert(name.to_string(), mesh);
+        defs.insert(name.to_string(), node);
         last = Some((n, name.to_string()));
     }
     let Some((n, name)) = last else {
         return err(0, "no definitions");
     };
-    let mut mesh = defs.remove(&name).expect("defined");
+    let mut mesh = match defs.remove(&name).expect("defined") {
+        Node::Solid(m) => m,
+        Node::Half(_) => {
+            return err(
+                n,
+                format!("`{name}` is an unbounded half-space: intersect it with a bounded solid"),
+            )
+        }
+    };
     improve(&mut mesh);
     if let Err(e) = check_closed(&mesh) {
         return err(n, format!("the result is not a closed mesh: {e}"));
     }
     Ok(mesh)
+}
+
+/// `op` over the operands of line `n` (defining `name`). Bounded operands are combined with the
+/// mesh booleans; half-spaces are meshed over the bounding box of the bounded result so far.
+fn combine(
+    n: usize,
+    name: &str,
+    op: &str,
+    operands: &[(&str, &Node)],
+    segments: usize,
+) -> Result<CsgMesh, CsgError> {
+    let unbounded = |a: &str, why: &str| {
+        err(
+            n,
+            format!("`{a}` is an unbounded half-space and cannot be {why} (intersect it with a bounded solid)"),
+        )
+    };
+    // OpType is neither Copy nor Clone: made afresh for each step.
+    let kind = || match op {
+        "union" => OpType::Add,
+        "intersection" => OpType::Intersect,
+        _ => OpType::Subtract,
+    };
+    let boolean = |p: &Manifold, m: &Manifold, k: OpType| {
+        // boolmesh reports an empty result as an error ("empty pos matrix").
+        compute_boolean(p, m, k).map_err(|e| CsgError {
+            line: n,
+            message: if e.contains("empty") {
+                format!("`{name}` is empty (`{op}` left nothing: {e})")
+            } else {
+                format!("`{op}` failed: {e}")
+            },
+        })
+    };
+    let to_manifold = |a: &str, m: &CsgMesh| {
+        manifold(m).map_err(|e| CsgError {
+            line: n,
+            message: format!("`{a}`: {e}"),
+        })
+    };
+    // Bounded operands first (in order), then the half-spaces: an intersection is the same in
+    // any order, and a difference keeps its first operand first.
+    let mut acc: Option<Manifold> = None;
+    for (i, (a, node)) in operands.iter().enumerate() {
+        let Node::Solid(m) = node else {
+            match op {
+                "union" => return unbounded(a, "part of a `union`"),
+                "difference" if i == 0 => {
+                    return unbounded(a, "the first operand of a `difference`")
+                }
+                _ => continue,
+            }
+        };
+        let m = to_manifold(a, m)?;
+        acc = Some(match acc {
+            None => m,
+            Some(p) => boolean(&p, &m, kind())?,
+        });
+    }
+    let Some(mut acc) = acc else {
+        return err(
+            n,
+            format!("`{op}` of half-spaces alone is unbounded: add a bounded operand"),
+        );
+    };
+    for (a, node) in operands {
+        let Node::Half(h) = node else { continue };
+        let h = if op == "difference" {
+            h.complement()
+        } else {
+            h.clone()
+        };
+        let now = from_manifold(&acc);
+        let (lo, hi) = bounds(&now);
+        match h.bounded_mesh(lo, hi, segments) {
+            Ok(None) => {}
+            Ok(Some(m)) => acc = boolean(&acc, &to_manifold(a, &m)?, OpType::Intersect)?,
+            Err(e) if e.contains("nothing") => {
+                return err(n, format!("`{name}` is empty (`{a}`: {e})"))
+            }
+            Err(e) => return err(n, format!("`{a}`: {e}")),
+        }
+    }
+    Ok(from_manifold(&acc))
+}
+
+/// The axis-aligned bounding box of a mesh's vertices.
+fn bounds(m: &CsgMesh) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &m.positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
 }
 
 fn numbers(n: usize, words: &[&str]) -> Result<Vec<f64>, CsgError> {
@@ -193,7 +322,7 @@ fn numbers(n: usize, words: &[&str]) -> Result<Vec<f64>, CsgError> {
         .collect()
 }
 
-fn apply_transforms(n: usize, words: &[&str], mesh: &mut CsgMesh) -> Result<(), CsgError> {
+fn apply_transforms(n: usize, words: &[&str], node: &mut Node) -> Result<(), CsgError> {
     let mut i = 0;
     while i < words.len() {
         let key = words[i];
@@ -209,9 +338,20 @@ fn apply_transforms(n: usize, words: &[&str], mesh: &mut CsgMesh) -> Result<(), 
                     return err(n, "`translate` takes 3 numbers");
                 }
                 let t = numbers(n, args)?;
-                for p in &mut mesh.positions {
-                    for k in 0..3 {
-                        p[k] += t[k];
+                match node {
+                    Node::Solid(mesh) => {
+                        for p in &mut mesh.positions {
+                            for k in 0..3 {
+                                p[k] += t[k];
+                            }
+                        }
+                    }
+                    Node::Half(h) => {
+                        let mut inv = IDENTITY;
+                        for k in 0..3 {
+                            inv[k][3] = -t[k];
+                        }
+                        h.transform_by_inverse(inv);
                     }
                 }
             }
@@ -227,10 +367,20 @@ fn apply_transforms(n: usize, words: &[&str], mesh: &mut CsgMesh) -> Result<(), 
                 };
                 let (s, c) = numbers(n, &args[1..])?[0].to_radians().sin_cos();
                 let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-                for p in &mut mesh.positions {
-                    let (a, b) = (p[u], p[v]);
-                    p[u] = c * a - s * b;
-                    p[v] = s * a + c * b;
+                match node {
+                    Node::Solid(mesh) => {
+                        for p in &mut mesh.positions {
+                            let (a, b) = (p[u], p[v]);
+                            p[u] = c * a - s * b;
+                            p[v] = s * a + c * b;
+                        }
+                    }
+                    Node::Half(h) => {
+                        // The inverse: the rotation by minus the angle.
+                        let mut inv = IDENTITY;
+                        (inv[u][u], inv[u][v], inv[v][u], inv[v][v]) = (c, s, -s, c);
+                        h.transform_by_inverse(inv);
+                    }
                 }
             }
             "scale" => {
@@ -242,15 +392,26 @@ fn apply_transforms(n: usize, words: &[&str], mesh: &mut CsgMesh) -> Result<(), 
                 if f.contains(&0.0) {
                     return err(n, "`scale` by zero flattens the shape");
                 }
-                for p in &mut mesh.positions {
-                    for k in 0..3 {
-                        p[k] *= f[k];
+                match node {
+                    Node::Solid(mesh) => {
+                        for p in &mut mesh.positions {
+                            for k in 0..3 {
+                                p[k] *= f[k];
+                            }
+                        }
+                        // A mirror (odd number of negative factors) turns the winding inside out.
+                        if f.iter().filter(|x| **x < 0.0).count() % 2 == 1 {
+                            for t in &mut mesh.triangles {
+                                t.swap(1, 2);
+                            }
+                        }
                     }
-                }
-                // A mirror (odd number of negative factors) turns the winding inside out.
-                if f.iter().filter(|x| **x < 0.0).count() % 2 == 1 {
-                    for t in &mut mesh.triangles {
-                        t.swap(1, 2);
+                    Node::Half(h) => {
+                        let mut inv = IDENTITY;
+                        for k in 0..3 {
+                            inv[k][k] = 1.0 / f[k];
+                        }
+                        h.transform_by_inverse(inv);
                     }
                 }
             }
@@ -260,6 +421,13 @@ fn apply_transforms(n: usize, words: &[&str], mesh: &mut CsgMesh) -> Result<(), 
     }
     Ok(())
 }
+
+const IDENTITY: [[f64; 4]; 4] = [
+    [1.0, 0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0, 0.0],
+    [0.0, 0.0, 1.0, 0.0],
+    [0.0, 0.0, 0.0, 1.0],
+];
 
 /// Vertices snapped to a 2⁻²⁴ grid before the booleans: nearly coincident inputs (a limitation
 /// boolmesh's own tests document) become exactly coincident.
