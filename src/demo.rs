@@ -7,10 +7,10 @@
 //! (255, 160, 64) on black; Gouraud; 240 × 240.
 
 use crate::camera::{Camera, CameraError, Projection};
-use crate::demo_assets::render_with;
 use crate::demo_assets::Floor;
 pub use crate::demo_assets::{deg, Bench, BenchError, BenchFrame, CHECKER, CHECKER_TEXELS};
 pub(crate) use crate::demo_assets::{look, persp};
+use crate::demo_assets::{render_on, render_with};
 pub use crate::demo_csg::{CSG_ACTIVE, CSG_TRIS};
 pub use crate::demo_shadow::{
     render_shadow_scene, EdgeStyle, ShadowScene, CREASE_ANGLE, WIRE_COLOR,
@@ -125,32 +125,6 @@ where
     render_with::<S, C, D, P, W, W, 512, T, A, 1, 1, 0, 0>(&scene, false, target, probe)
 }
 
-/// [`render_with`] on a 240 × 240 renderer without depth lines drawing in `order`.
-fn render_no_depth<S, C, D, P, const V: usize, const T: usize, const A: usize, const L: usize>(
-    scene: &crate::Scene<'_, S, L>,
-    order: crate::DrawOrder,
-    dither: bool,
-    target: &mut D,
-    probe: &mut P,
-) -> Result<BenchFrame, BenchError<D::Error>>
-where
-    S: Scalar,
-    C: crate::TargetColor,
-    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: crate::Probe,
-{
-    let mut r = crate::NoDepthRenderer::<S, C, 240, 240, V, T, A>::new();
-    r.set_dither(dither);
-    r.set_order(order);
-    let stats = r
-        .render_probed(scene, target, probe)
-        .map_err(BenchError::Render)?;
-    Ok(BenchFrame {
-        stats,
-        renderer_ram_bytes: core::mem::size_of_val(&r),
-    })
-}
-
 /// The triangle capacity of the 240 × 240 torus benchmark frame.
 const TORUS_TRIS: usize = 466;
 /// The active-list capacity of the 240 × 240 torus benchmark frame.
@@ -233,8 +207,8 @@ where
                 None => render_with::<S, C, D, P, 240, 240, { $v }, $t, $a, 1, 1, 0, 0>(
                     &scene, dither, target, probe,
                 ),
-                Some(order) => render_no_depth::<S, C, D, P, { $v }, $t, $a, 1>(
-                    &scene, order, dither, target, probe,
+                Some(order) => render_on::<S, C, D, P, 240, 240, { $v }, $t, $a, 1, 1, 0, 0, 0>(
+                    &scene, dither, order, target, probe,
                 ),
             }
         }};

@@ -90,10 +90,47 @@ where
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
     P: crate::Probe,
 {
+    let order = crate::DrawOrder::default();
+    render_on::<S, C, D, P, W, H, V, T, A, L, LINES, XV, XA, LINES>(
+        scene, dither, order, target, probe,
+    )
+}
+
+/// [`render_with`] with `ZL` depth lines (`LINES`, or 0 for a renderer without them, which
+/// draws in `order`).
+pub(crate) fn render_on<
+    S,
+    C,
+    D,
+    P,
+    const W: usize,
+    const H: usize,
+    const V: usize,
+    const T: usize,
+    const A: usize,
+    const L: usize,
+    const LINES: usize,
+    const XV: usize,
+    const XA: usize,
+    const ZL: usize,
+>(
+    scene: &crate::Scene<'_, S, L>,
+    dither: bool,
+    order: crate::DrawOrder,
+    target: &mut D,
+    probe: &mut P,
+) -> Result<BenchFrame, BenchError<D::Error>>
+where
+    S: Scalar,
+    C: crate::TargetColor,
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+    P: crate::Probe,
+{
     // Set in place: `with_dither` would move the renderer, which may take a second copy of it
     // on the stack.
-    let mut r = crate::Renderer::<S, C, W, H, V, T, A, LINES, XV, XA>::new();
+    let mut r = crate::Renderer::<S, C, W, H, V, T, A, LINES, XV, XA, ZL>::new();
     r.set_dither(dither);
+    r.order = order;
     let stats = r
         .render_probed(scene, target, probe)
         .map_err(BenchError::Render)?;
