@@ -77,11 +77,6 @@ const WHITE14: i64 = 255 << 14;
 /// 2²⁹): as `Fx<I16F16>`'s per-vertex radiance, which saturates at 128.5 × white.
 const HDR_MAX14: i64 = 128 * WHITE14;
 
-/// Where [`shade`]'s specular sums saturate (Q8.14): white, or in HDR [`HDR_MAX14`].
-const fn spec_cap<const TONE: bool>() -> i32 {
-    (if TONE { HDR_MAX14 } else { WHITE14 }) as i32
-}
-
 /// `num/den` in Q2.30 for `0 ≤ num ≤ 1.1·den`, `den ≥ 1`, without division: both are brought
 /// below 2³² together and `1/den` is a normalized reciprocal ([`recip_norm`]).
 fn ratio_q30(num: u64, den: u64) -> u64 {
@@ -96,8 +91,7 @@ fn ratio_q30(num: u64, den: u64) -> u64 {
 /// the display channel, Q8.14 in 0..=255·2¹⁴. Reinhard `x/(1 + x)` and the filmic
 /// `x(2.51x + 0.03)/(x(2.43x + 0.59) + 0.14)` (clamped to 1) as [`crate::ToneCurve`]
 /// defines them, in integers: the filmic polynomials on `v/2¹⁰` (steps of 1/16 channel unit,
-/// constants Q2.14), the quotients by [`ratio_q30`]; within 1/8 of a channel unit of the f64
-/// curves (`tone14_follows_the_curves`).
+/// constants Q2.14).
 fn tone14(v: i64, tone: u8) -> i32 {
     let v = v.clamp(0, HDR_MAX14) as u64;
     let q = if tone == TONE_REINHARD {
@@ -292,9 +286,11 @@ pub(crate) struct ShadeCtx {
     /// Ambient, diffuse, specular (Q8.14).
     k: [i32; 3],
     shininess: u8,
-    /// [`PhongMaterial::tone`] (the spans take [`shade`]'s `TONE` form when it is not
-    /// [`TONE_NONE`]).
-    pub(crate) tone: u8,
+    /// [`PhongMaterial::tone`].
+    tone: u8,
+    /// Where the specular sums saturate (Q8.14): white, or with a tone curve
+    /// [`HDR_MAX14`].
+    spec_cap: i32,
 }
 
 /// The point lights of a span in the forms [`shade`] uses ([`PhongPoints`]), their count
@@ -347,6 +343,11 @@ impl ShadeCtx {
             shininess: m.shininess,
             lv: m.lv,
             tone: m.tone,
+            spec_cap: if m.tone == TONE_NONE {
+                WHITE14
+            } else {
+                HDR_MAX14
+            } as i32,
             ..Default::default()
         };
         for (k, pl) in l.lights.iter().enumerate() {
@@ -420,11 +421,7 @@ fn point_dir(p: &PointCtx, x: [i32; 3], bits: u32) -> Option<([i32; 3], i32)> {
 /// only) at position `x` (read for point lights only: `POINTS`, [`PointsCtx`]). No division: `1/|n|`
 /// is a normalized reciprocal ([`recip_norm`]) of `⌊√(n·n)⌋`; 64-bit products are 32 × 32-bit
 /// ones ([`mul_wide`]).
-///
-/// `TONE`: the lit channel is exposed radiance for [`ShadeCtx::tone`]'s curve (specular sums
-/// saturating at [`HDR_MAX14`]); without it, clamped to white (a constant: a scene without a
-/// tone map pays nothing for it).
-pub(crate) fn shade<const POINTS: bool, const TONE: bool>(
+pub(crate) fn shade<const POINTS: bool>(
     n: [i32; 3],
     x: [i32; 3],
     c: &ShadeCtx,
@@ -462,33 +459,40 @@ pub(crate) fn shade<const POINTS: bool, const TONE: bool>(
                     for ch in 0..3 {
                         // Saturating: the channel is clamped at 255 (the tone curves read
                         // at most 128 × white) anyway.
-                        spec[ch] = (spec[ch] + p * c.full[k][ch]).min(spec_cap::<TONE>());
+                        spec[ch] = (spec[ch] + p * c.full[k][ch]).min(c.spec_cap);
                     }
                 }
             }
         }
         if POINTS {
-            add_points::<TONE>(&mut light, &mut spec, c, pts, x, n, (m, e), nv);
+            add_points(&mut light, &mut spec, c, pts, x, n, (m, e), nv);
         }
+    }
+    if c.tone != TONE_NONE {
+        return toned(c, &light, &spec);
     }
     let mut out = [0i32; 3];
     for ch in 0..3 {
         // material · (Σ), Q8.14, plus the specular sum.
         let v = mul_wide(c.color[ch], light[ch]) + spec[ch] as i64;
-        out[ch] = if TONE {
-            tone14(v, c.tone)
-        } else {
-            v.clamp(0, WHITE14) as i32
-        };
+        out[ch] = v.clamp(0, WHITE14) as i32;
     }
     out
+}
+
+/// [`shade`]'s channels with a tone curve: `material · (Σ) + specular` exposed radiance
+/// mapped by [`tone14`]. Out of line, so that the loops of scenes without a tone map compile as
+/// they did.
+#[inline(never)]
+fn toned(c: &ShadeCtx, light: &[i32; 3], spec: &[i32; 3]) -> [i32; 3] {
+    [0, 1, 2].map(|ch| tone14(mul_wide(c.color[ch], light[ch]) + spec[ch] as i64, c.tone))
 }
 
 /// Adds the point lights' terms to [`shade`]'s sums (`light`: coefficients, `spec`:
 /// channels, Q8.14) for the normal `n` (clamped) with `1/|n| = m·2^-e`, `N̂·V = nv`, at
 /// position `x`: as a directional light's, toward each light and scaled by its attenuation.
 #[allow(clippy::too_many_arguments)]
-fn add_points<const TONE: bool>(
+fn add_points(
     light: &mut [i32; 3],
     spec: &mut [i32; 3],
     c: &ShadeCtx,
@@ -520,7 +524,7 @@ fn add_points<const TONE: bool>(
                 let q = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
                 let q = (mul_wide(q, att) >> 16) as i32;
                 for ch in 0..3 {
-                    spec[ch] = (spec[ch] + q * p.full[ch]).min(spec_cap::<TONE>());
+                    spec[ch] = (spec[ch] + q * p.full[ch]).min(c.spec_cap);
                 }
             }
         }
@@ -592,15 +596,9 @@ fn fill_t<C: TargetColor, const T: u8>(
     let fog = FogSpan::load(pool);
     if fog.is_some() || e.base[1] >= 0 {
         let pts = PointsCtx::load(entry(e.base[1]));
-        if ctx.tone != TONE_NONE {
-            span.fill::<C, T, true, true>(&pts, fog.as_ref(), zs, cs)
-        } else {
-            span.fill::<C, T, true, false>(&pts, fog.as_ref(), zs, cs)
-        }
-    } else if ctx.tone != TONE_NONE {
-        span.fill::<C, T, false, true>(&PointsCtx::NONE, None, zs, cs)
+        span.fill::<C, T, true>(&pts, fog.as_ref(), zs, cs)
     } else {
-        span.fill::<C, T, false, false>(&PointsCtx::NONE, None, zs, cs)
+        span.fill::<C, T, false>(&PointsCtx::NONE, None, zs, cs)
     }
 }
 
@@ -617,7 +615,7 @@ struct Span<'a> {
 impl Span<'_> {
     /// Tests and writes the span's pixels; returns how many it wrote. With `FX`, lit with the
     /// point lights `pts` at the interpolated position, and fogged by `fog`.
-    fn fill<C: TargetColor, const T: u8, const FX: bool, const TONE: bool>(
+    fn fill<C: TargetColor, const T: u8, const FX: bool>(
         &self,
         pts: &PointsCtx,
         fog: Option<&FogSpan>,
@@ -644,10 +642,10 @@ impl Span<'_> {
         let lit = |nv: &[i32; 6], z: i32| {
             let n = [nv[0] >> 16, nv[1] >> 16, nv[2] >> 16];
             if !FX {
-                return channels(shade::<false, TONE>(n, [0; 3], self.ctx, pts), &factors);
+                return channels(shade::<false>(n, [0; 3], self.ctx, pts), &factors);
             }
             let x = [nv[3] >> 16, nv[4] >> 16, nv[5] >> 16];
-            let c = shade::<true, TONE>(n, x, self.ctx, pts);
+            let c = shade::<true>(n, x, self.ctx, pts);
             let c = match fog {
                 // Toward the fog colour (Q8.14) by the factor at this depth.
                 Some(f) => {
@@ -777,7 +775,7 @@ mod tests {
             let a = i as f64 * 0.1;
             let n = unit([a.sin(), (a * 0.7).cos(), 0.5 + (a * 1.3).sin().abs()]);
             // A shorter normal (as interpolation gives) must light the same.
-            let got = shade::<false, false>(
+            let got = shade::<false>(
                 q(n.map(|c| c * 0.8)),
                 [0; 3],
                 &ShadeCtx::new(&lights, &m),
