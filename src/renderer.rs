@@ -607,14 +607,7 @@ impl<
         if row >= vh {
             return;
         }
-        // Without depth lines, set up as the strip pass does (`strip.rs`).
-        let test = if ZL == 0 {
-            DepthTest::Less
-        } else {
-            self.depth_test
-        };
-        let mode = SpanMode::new::<C>(test, self.dither);
-        let painter = ZL == 0 && self.order == DrawOrder::FarToNear;
+        let (mode, painter) = self.setup_mode();
         let verts = &self.verts;
         for rec in &self.tris[..self.heads[row] as usize] {
             // A triangle that ends above the row needs no setup to be skipped: its lowest
@@ -650,6 +643,19 @@ impl<
                 painter_insert(&mut self.active, ord, painter_key(rec, verts));
             }
         }
+    }
+
+    /// How the strip pass (and [`Renderer::seek_row`]) sets up a triangle, and whether it keeps
+    /// the painter's order. Without depth lines every triangle is set up as for `Less` (its fast
+    /// spans then skip the test).
+    pub(crate) fn setup_mode(&self) -> (SpanMode, bool) {
+        let test = if ZL == 0 {
+            DepthTest::Less
+        } else {
+            self.depth_test
+        };
+        let painter = ZL == 0 && self.order == DrawOrder::FarToNear;
+        (SpanMode::new::<C>(test, self.dither), painter)
     }
 
     /// Empties the active list and frees the pool entries of its triangles (the frame's

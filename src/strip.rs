@@ -11,8 +11,8 @@ use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
 
 use crate::color::{rgb565_word, rgb565_words_mut, TargetColor};
-use crate::depth_mode::{draw_row_no_depth, painter_insert, painter_key, DrawOrder};
-use crate::raster::{DepthTest, SpanMode};
+use crate::depth_mode::{draw_row_no_depth, painter_insert, painter_key};
+use crate::raster::SpanMode;
 use crate::scalar::Scalar;
 use crate::textured::{attach_pushed, draw_row_textured, is_textured, TEXTURED};
 
@@ -215,15 +215,7 @@ impl<
         if y0 >= vh {
             return None;
         }
-        // Without depth lines every triangle is set up as for `Less` (its fast spans then
-        // skip the test).
-        let test = if ZL == 0 {
-            DepthTest::Less
-        } else {
-            self.depth_test
-        };
-        let mode = SpanMode::new::<C>(test, self.dither);
-        let painter = ZL == 0 && self.order == DrawOrder::FarToNear;
+        let (mode, painter) = self.setup_mode();
         let Renderer {
             verts,
             xverts,
