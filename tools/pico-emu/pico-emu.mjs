@@ -133,6 +133,7 @@ function main() {
     warn,
     onFrame: (f) => {
       f.spiBusyAtDone = machine.stats.spiBusyCycles;
+      f.coreBusyAtDone = machine.slots.map((s) => s.busy);
       frames.push(f);
     },
   });
@@ -169,9 +170,10 @@ function main() {
     display.end();
   } catch (e) {
     if (!(e instanceof HarnessError || e instanceof DecodeError)) throw e;
-    const pc = machine.rp2040.core.PC;
+    const failedCore = machine.failedCore ?? 0;
+    const pc = machine.core(failedCore).PC;
     failure =
-      `${e.message} (cycle ${machine.cycles}, PC in ${symbolAt(elf.symbols, pc)}; ` +
+      `${e.message} (cycle ${machine.cycles}, core ${failedCore}'s PC in ${symbolAt(elf.symbols, pc)}; ` +
       `${frames.length} frame(s) captured, ${machine.stats.spiBytes} SPI bytes)`;
     if (frames.length === 0) {
       failure +=
@@ -277,6 +279,17 @@ function main() {
       (frames[0].spiBusyAtDone - frames[0].frameStartBusy) /
       (frames[0].doneCycle - frames[0].firstByteCycle);
   }
+  // Per core: cycles spent executing (not asleep in WFE/WFI, not in reset), over the frames after
+  // frame 0 when there are two or more, else since reset.
+  const cores = machine.coreStats().map((c, i) => {
+    const o = { ...c };
+    if (n >= 2) {
+      const busy = frames[n - 1].coreBusyAtDone[i] - frames[0].coreBusyAtDone[i];
+      o.busy_cycles_per_frame = busy / (n - 1);
+      o.busy_fraction = busy / (frames[n - 1].doneCycle - frames[0].doneCycle);
+    }
+    return o;
+  });
   const perBit = machine.stats.spiCyclesPerBit;
   const wallSeconds = Number(process.hrtime.bigint() - wallStart) / 1e9;
   const report = {
@@ -293,6 +306,7 @@ function main() {
     spi_bytes: machine.stats.spiBytes,
     spi_bytes_ignored: machine.stats.bytesIgnored,
     emulated_cycles: emulatedCycles,
+    cores,
     firmware_clk_sys_hz: machine.rp2040.clkSys,
     frames_detail: framesOut,
     display_commands: Object.fromEntries(display.commandCounts),
@@ -349,6 +363,12 @@ function main() {
   console.log(`  fps                ${fmt(report.fps, 2)} (at ${CLOCK_HZ / 1e6} MHz)`);
   console.log(`  spi_busy_fraction  ${fmt(report.spi_busy_fraction, 3)}`);
   console.log(`  spi_cycles_per_byte ${fmt(report.spi_cycles_per_byte)}`);
+  for (const c of cores) {
+    console.log(
+      `  core ${c.core}             ${c.state}; busy ${fmt(c.busy_cycles_per_frame)} cycles per frame` +
+        ` (${c.busy_fraction === undefined ? 'n/a' : (100 * c.busy_fraction).toFixed(1) + ' %'})`,
+    );
+  }
   console.log(`  matches_host       ${matchesHost === null ? 'not compared (--no-host)' : matchesHost}`);
   if (profile) {
     console.log(`  profile (cycles per frame, share; target/pico-emu/profile.json):`);

@@ -1,9 +1,10 @@
 #!/usr/bin/env node
 // Where the Pico firmware's cycles go: runs it in the emulator as pico-emu.mjs does (same machine,
-// same timed SPI and DMA) and charges every emulated cycle to the function the core was in, from
-// the end of frame 0 to the end of frame N. Writes target/pico-emu/profile.json and prints the
-// top functions with their share of a frame. Cycles spent waiting (a busy loop polling the DMA
-// queue) are charged to the function that polls, so a firmware that waits for the SPI shows it.
+// same timed SPI and DMA) and charges each instruction's cycles to the function it is in, per
+// core, from the end of frame 0 to the end of frame N. Writes target/pico-emu/profile.json and
+// prints core 0's top functions with their share of a frame. Cycles spent polling (a busy loop on
+// the DMA queue) are charged to the function that polls, so a firmware that waits for the SPI
+// shows it; cycles a core sleeps (WFE/WFI) or is held in reset are a row of their own, idle.
 //
 //   node tools/pico-emu/profile.mjs [--frames N] [--elf PATH] [--bootrom PATH] [--out DIR] [--top K]
 import fs from 'node:fs';
@@ -96,8 +97,9 @@ function shortName(name) {
 
 /**
  * Runs the firmware `elf` (parsed) with `bootrom` and returns the cycles charged to each
- * function over `frames` frames after frame 0: `{ frames, cycles_per_frame, functions }`, the
- * functions sorted by cycles, each `{ function, cycles_per_frame, share }`.
+ * function over `frames` frames after frame 0: `{ frames, cycles_per_frame, functions, cores }`.
+ * `functions` is core 0's (sorted by cycles, each `{ function, cycles_per_frame, share }`, the
+ * share of all cycles); `cores` has, per core, its busy cycles per frame and its functions.
  */
 export function profileFrames(elf, bootrom, frames) {
   const o = { frames };
@@ -114,32 +116,45 @@ export function profileFrames(elf, bootrom, frames) {
   const limit = 100e6 + 60e6 * (o.frames + 1);
   machine.run({ maxCycles: limit, done: () => done.length >= 1 });
   const fnAt = functionIndex(elf.symbols);
-  const { core } = machine.rp2040;
-  const cycles = new Map();
-  let last = machine.cycles;
-  const from = last;
+  const perCore = [new Map(), new Map()];
+  const from = machine.cycles;
   machine.run({
     maxCycles: limit,
-    done: () => {
-      const now = machine.cycles;
-      const name = fnAt(core.PC);
-      cycles.set(name, (cycles.get(name) || 0) + (now - last));
-      last = now;
-      return done.length >= 1 + o.frames;
+    done: () => done.length >= 1 + o.frames,
+    onStep: (core, pc, cycles) => {
+      const m = perCore[core];
+      const name = fnAt(pc);
+      m.set(name, (m.get(name) || 0) + cycles);
     },
   });
-  const total = last - from;
+  const total = machine.cycles - from;
   const perFrame = total / o.frames;
-  const rows = [...cycles.entries()]
-    .sort((a, b) => b[1] - a[1])
-    .map(([name, c]) => ({ function: shortName(name), cycles_per_frame: Math.round(c / o.frames), share: c / total }));
+  const table = (cycles) => {
+    const busy = [...cycles.values()].reduce((a, b) => a + b, 0);
+    const rows = [...cycles.entries()];
+    if (total > busy) rows.push(['(idle: asleep in WFE/WFI or in reset)', total - busy]);
+    return {
+      busy,
+      rows: rows
+        .sort((a, b) => b[1] - a[1])
+        .map(([name, c]) => ({ function: shortName(name), cycles_per_frame: Math.round(c / o.frames), share: c / total })),
+    };
+  };
+  const tables = perCore.map(table);
   return {
     frames: o.frames,
     cycles_per_frame: Math.round(perFrame),
     note:
-      'Emulated cycles charged to the function the core was in (waiting loops included), mean ' +
-      'over the frames after frame 0; rp2040js timings, no XIP cache or bus contention.',
-    functions: rows,
+      'Emulated cycles of each instruction charged to the function it is in (polling loops ' +
+      'included), per core, mean over the frames after frame 0; a core asleep (WFE/WFI) or in ' +
+      'reset is idle. rp2040js timings, no XIP cache or bus contention.',
+    functions: tables[0].rows,
+    cores: tables.map((t, i) => ({
+      core: i,
+      busy_cycles_per_frame: Math.round(t.busy / o.frames),
+      busy_share: t.busy / total,
+      functions: i === 0 ? undefined : t.rows,
+    })),
   };
 }
 

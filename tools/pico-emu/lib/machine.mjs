@@ -1,16 +1,28 @@
-// The emulated Raspberry Pi Pico: rp2040js 1.4.1's RP2040 with the harness's patches, a
-// deterministic stepping loop driven by the core's cycle count, and a cycle-timed SPI1 whose
-// bytes (with the DC and CS pin levels) go to a callback.
+// The emulated Raspberry Pi Pico: rp2040js 1.4.1's RP2040 with the harness's patches, a second
+// core (lib/cores.mjs, lib/sio.mjs), a deterministic stepping loop driven by the cores' cycle
+// counts, and a cycle-timed SPI1 whose bytes (with the DC and CS pin levels) go to a callback.
 //
 // Time: one clock, rp2040js's SimulationClock, advanced by the harness only, by 8 ns per core
 // cycle (clk_sys = 125 MHz, the firmware's PLL setting). Everything that rp2040js schedules (DMA
 // transfers, timer alarms, the watchdog tick) and everything the harness schedules (SPI shifting)
 // runs from that clock, so a run is exactly repeatable: no wall-clock time is read anywhere.
 //
+// Two cores: each has its own time (the cycle its next instruction starts at). The loop always
+// steps the running core whose time is lower (core 0 on a tie), one whole instruction, then
+// moves the clock to the lower time of the running cores. So every instruction executes with
+// the clock at its own start cycle, as in the one-core loop, and peripherals see the two cores'
+// accesses in time order. A sleeping (WFE/WFI) or reset core is not stepped and does not hold the
+// clock back; when it wakes, its time moves up to the clock. With core 1 asleep or in reset this
+// is exactly the one-core loop: one instruction of core 0, then the clock moves by its cycles.
+//
 // What each patch of rp2040js does, and why, is said where it is made (patch* functions below).
 // rp2040js itself is not modified on disk: the objects are patched after construction.
 
 import { RP2040, GPIOPinState, BasePeripheral } from 'rp2040js';
+import { HarnessError } from './errors.mjs';
+import { installCores, noteWait, hasRp2040RomHeader } from './cores.mjs';
+
+export { HarnessError };
 
 /** clk_sys: the firmware sets the PLLs to 125 MHz (rp2040-hal init_clocks_and_plls). */
 export const CLOCK_HZ = 125_000_000;
@@ -21,9 +33,6 @@ export const CYCLES_PER_US = 125;
 
 export const FLASH_BASE = 0x1000_0000;
 export const FLASH_SIZE = 16 * 1024 * 1024; // rp2040js's flash array (the Pico has 2 MiB)
-
-/** A run that cannot go on: the message says why. */
-export class HarnessError extends Error {}
 
 // DMA request numbers (RP2040 datasheet 2.5.3.1).
 const DREQ_SPI_TX = [16, 18];
@@ -75,6 +84,8 @@ class HarnessLogger {
     this.onFatal = (msg) => {
       throw new HarnessError(msg);
     };
+    /** Called when a core executes SEV (rp2040js only logs it). */
+    this.onSev = () => {};
   }
   note(level, component, message) {
     // Group messages that differ only in their numbers.
@@ -85,6 +96,7 @@ class HarnessLogger {
   }
   debug() {}
   info(component, message) {
+    if (message === 'SEV' && component === 'CortexM0Core') this.onSev();
     this.note('info', component, message);
   }
   warn(component, message) {
@@ -125,6 +137,10 @@ export class Machine {
    * @param {(value:number, dc:boolean, start:number, end:number)=>void} o.onByte
    *        each byte the display receives (CS low, RST high), with its start and end cycle
    * @param {()=>void} [o.onDisplayReset] the display's RST pin went low
+   * @param {boolean} [o.core1Boot] core 1 leaves reset with core 0 and runs the boot ROM's reset
+   *        handler, which parks it in the ROM's launch wait loop. Default: when `bootrom` is the
+   *        RP2040's (its header at 0x10); a stand-in ROM (the unit tests') keeps core 1 in reset
+   *        until the firmware cycles PSM FRCE_OFF.PROC1, as Multicore::spawn does.
    */
   constructor(o) {
     this.rp2040 = new RP2040();
@@ -143,21 +159,68 @@ export class Machine {
       spiFrameBits: new Set(),
       timerReads: 0,
     };
-    /** The last value the firmware read from the timer's low word, and when. */
+    /** The last value the firmware read from the timer's low word, when, and on which core. */
     this.lastTimerRead = null;
     this.breakCode = null;
+    this.breakCore = null;
+    /** The core being stepped (SEV, timer reads); the core a failure happened on. */
+    this.current = 0;
+    this.failedCore = null;
 
     this.rp2040.loadBootrom(o.bootrom);
     this.loadFirmware(o.elf);
     this.patchChipResetBlock();
     this.patchQspiSsPad();
-    this.patchDivider();
     this.patchTimer();
     this.patchSpi();
     this.watchDisplayPins();
-    this.rp2040.onBreak = (code) => {
-      this.breakCode = code;
-    };
+    // Core 1, the per-core SIO (with the exact divider) and PPB, SEV between the cores.
+    this.slots = installCores(this, { core1Boot: o.core1Boot ?? hasRp2040RomHeader(o.bootrom) });
+    this.logger.onSev = () => this.sev();
+  }
+
+  /** Core `index`'s CortexM0Core. */
+  core(index) {
+    return this.slots[index].core;
+  }
+
+  noteBreak(index, code) {
+    this.breakCode = code;
+    this.breakCore = index;
+  }
+
+  /** Drives IRQ line `irq` of core `index`'s NVIC; notes the wake of a core that was sleeping. */
+  setCoreIrq(index, irq, level) {
+    const slot = this.slots[index];
+    const { core } = slot;
+    const was = core.waiting;
+    core.setInterrupt(irq, level);
+    if (was && !core.waiting) this.woke(slot);
+  }
+
+  /** A sleeping core woke up: its next instruction starts no earlier than now. */
+  woke(slot) {
+    slot.waitKind = null;
+    slot.time = Math.max(slot.time, Math.ceil(this.clock.nanos / NS_PER_CYCLE));
+  }
+
+  /**
+   * SEV on the current core: an event for every core (the RP2040 wires each core's TXEV to the
+   * other's RXEV, and SEV also sets the local event register). A core sleeping in WFE wakes and
+   * the event is consumed; any other core (running, or in WFI) keeps it in its event register,
+   * so its next WFE does not sleep. A core held in reset ignores it.
+   */
+  sev() {
+    for (const slot of this.slots) {
+      if (slot.held) continue;
+      const { core } = slot;
+      if (core.waiting && slot.waitKind === 'wfe') {
+        core.waiting = false;
+        this.woke(slot);
+      } else {
+        core.eventRegistered = true;
+      }
+    }
   }
 
   /** Cycles since reset (the clock runs 8 ns per cycle). */
@@ -215,47 +278,6 @@ export class Machine {
   }
 
   /**
-   * The SIO hardware divider: rp2040js computes quotients with JS division (a fraction, which
-   * happens to truncate correctly when stored to a register), gives the wrong result for a
-   * division by zero with a zero dividend, and adds 8 cycles to core.cycles on each operand
-   * write. The chip computes in 8 cycles in parallel with the core, and the software waits for
-   * it with instructions that are counted anyway; the harness's time does not use core.cycles,
-   * so those extra cycles are not counted. Results here are exact integers, and division by
-   * zero gives the datasheet's values (quotient -1 for a non-negative signed dividend, else 1;
-   * 0xffffffff unsigned; remainder = dividend).
-   */
-  patchDivider() {
-    const sio = this.rp2040.sio;
-    sio.updateHardwareDivider = function (signed) {
-      const n = this.divDividend;
-      const d = this.divDivisor;
-      if (signed) {
-        const sn = n | 0;
-        const sd = d | 0;
-        if (sd === 0) {
-          this.divQuotient = sn >= 0 ? 0xffffffff : 1;
-          this.divRemainder = sn >>> 0;
-        } else {
-          // -2^31 / -1 overflows to -2^31 on the chip (and in 32-bit two's complement).
-          this.divQuotient = Math.trunc(sn / sd) >>> 0;
-          this.divRemainder = (sn % sd) >>> 0;
-        }
-      } else {
-        const un = n >>> 0;
-        const ud = d >>> 0;
-        if (ud === 0) {
-          this.divQuotient = 0xffffffff;
-          this.divRemainder = un;
-        } else {
-          this.divQuotient = Math.floor(un / ud) >>> 0;
-          this.divRemainder = un % ud >>> 0;
-        }
-      }
-      this.divCSR = 0b11; // READY | DIRTY
-    };
-  }
-
-  /**
    * TIMER: the microsecond counter is floor(cycles / 125), from the core's cycle count (rp2040js
    * derives it from the same clock, but as a fraction; alarms compared against a fraction can
    * fire up to 1 us early). Reads of the low word are logged: the harness derives the frame time
@@ -273,7 +295,7 @@ export class Machine {
         case TIMERAWL: {
           const us = micros();
           if (offset === TIMELR) timer.latchedTimeHigh = Math.floor(us / 2 ** 32);
-          m.lastTimerRead = { cycle: m.cycles, value: us };
+          m.lastTimerRead = { cycle: m.cycles, value: us, core: m.current };
           m.stats.timerReads++;
           return us >>> 0;
         }
@@ -454,46 +476,95 @@ export class Machine {
   }
 
   /**
-   * Runs until `done()` says so, checked after every instruction. Fails (HarnessError) past
-   * `maxCycles`, at a BKPT/UDF, when the core enters a fault or panic handler (`traps`: address
-   * -> description), when it branches to itself (a `loop {}` such as panic-halt's), or when it
-   * waits for an interrupt that nothing can raise.
+   * Runs until `done()` says so, checked after every instruction (of either core). Fails
+   * (HarnessError; `failedCore` says which core) past `maxCycles`, at a BKPT/UDF, when a core
+   * enters a fault or panic handler (`traps`: address -> description), when it branches to itself
+   * (a `loop {}` such as panic-halt's), or when every core that is not in reset waits for an
+   * interrupt that nothing can raise. `onStep(core, pc, cycles)`, if given, is called after each
+   * instruction with the core's index, the instruction's address and its cycles.
    */
-  run({ maxCycles, done, traps = new Map() }) {
-    const { core } = this.rp2040;
-    const { clock } = this;
+  run({ maxCycles, done, traps = new Map(), onStep = null }) {
+    const { clock, slots } = this;
+    const [s0, s1] = slots;
     const maxNs = maxCycles * NS_PER_CYCLE;
     while (!done()) {
       if (clock.nanos >= maxNs) {
         throw new HarnessError(`cycle limit reached (${maxCycles} cycles)`);
       }
-      if (core.waiting) {
-        // WFI/WFE: skip to the next scheduled event (in whole cycles).
-        if (!clock.nextAlarm) {
-          throw new HarnessError(
-            `the core waits for an interrupt (WFI/WFE at 0x${(core.PC - 2).toString(16)}) and ` +
-              'nothing is scheduled that could raise one',
-          );
-        }
-        const dn = Math.max(clock.nanosToNextAlarm, 0);
-        clock.tick(Math.ceil(dn / NS_PER_CYCLE) * NS_PER_CYCLE || NS_PER_CYCLE);
+      // The running core with the lower time; core 0 on a tie.
+      const r0 = !s0.held && !s0.core.waiting;
+      const r1 = !s1.held && !s1.core.waiting;
+      let slot;
+      if (r0 && (!r1 || s0.time <= s1.time)) slot = s0;
+      else if (r1) slot = s1;
+      else {
+        this.sleepUntilNextEvent();
         continue;
       }
-      const pc = core.PC;
-      const trap = traps.get(pc);
-      if (trap !== undefined) {
-        throw new HarnessError(`the core entered ${trap}`);
-      }
-      const delta = core.executeInstruction();
-      clock.tick(delta * NS_PER_CYCLE);
-      if (core.PC === pc) {
-        throw new HarnessError(`the core is stuck in a branch to itself at 0x${pc.toString(16)}`);
-      }
-      if (this.breakCode !== null) {
-        throw new HarnessError(
-          `the core hit a breakpoint or undefined instruction (code ${this.breakCode}) at 0x${pc.toString(16)}`,
-        );
-      }
+      this.step(slot, traps, onStep);
     }
+  }
+
+  /** Executes one instruction on `slot`'s core and moves the clock on. */
+  step(slot, traps, onStep) {
+    const { core, index } = slot;
+    const { clock } = this;
+    const now = clock.nanos / NS_PER_CYCLE;
+    if (slot.time < now) slot.time = now; // it woke up during the other core's instruction
+    const pc = core.PC;
+    const trap = traps.get(pc);
+    if (trap !== undefined) {
+      this.failedCore = index;
+      throw new HarnessError(`core ${index} entered ${trap}`);
+    }
+    this.current = index;
+    const delta = core.executeInstruction();
+    slot.time += delta;
+    slot.busy += delta;
+    if (core.waiting) noteWait(slot, pc);
+    // The clock moves to the lower time of the running cores (this one if none other runs).
+    let target = slot.time;
+    const other = this.slots[1 - index];
+    if (!other.held && !other.core.waiting && other.time < target) target = other.time;
+    const dn = target * NS_PER_CYCLE - clock.nanos;
+    if (dn > 0) clock.tick(dn);
+    if (onStep) onStep(index, pc, delta);
+    if (core.PC === pc) {
+      this.failedCore = index;
+      throw new HarnessError(`core ${index} is stuck in a branch to itself at 0x${pc.toString(16)}`);
+    }
+    if (this.breakCode !== null) {
+      this.failedCore = this.breakCore;
+      throw new HarnessError(
+        `core ${this.breakCore} hit a breakpoint or undefined instruction (code ${this.breakCode}) at 0x${pc.toString(16)}`,
+      );
+    }
+  }
+
+  /** No core runs: skip to the next scheduled event (in whole cycles), which may wake one. */
+  sleepUntilNextEvent() {
+    const { clock } = this;
+    if (!clock.nextAlarm) {
+      const waiting = this.slots
+        .filter((s) => !s.held)
+        .map((s) => `core ${s.index} (${(s.waitKind ?? 'WFI/WFE').toUpperCase()} at 0x${(s.core.PC - 2).toString(16)})`);
+      this.failedCore = this.slots.find((s) => !s.held)?.index ?? 0;
+      throw new HarnessError(
+        `${waiting.join(' and ')} ${waiting.length > 1 ? 'wait' : 'waits'} for an interrupt ` +
+          'and nothing is scheduled that could raise one',
+      );
+    }
+    const dn = Math.max(clock.nanosToNextAlarm, 0);
+    clock.tick(Math.ceil(dn / NS_PER_CYCLE) * NS_PER_CYCLE || NS_PER_CYCLE);
+  }
+
+  /** Per core: busy cycles, whether it was ever released from reset, and its state now. */
+  coreStats() {
+    return this.slots.map((s) => ({
+      core: s.index,
+      busy_cycles: s.busy,
+      launches: s.launches,
+      state: s.held ? 'reset' : s.core.waiting ? `asleep (${s.waitKind})` : 'running',
+    }));
   }
 }
