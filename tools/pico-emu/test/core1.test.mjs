@@ -268,3 +268,21 @@ test('determinism: two runs give the same cycles, per core, to the cycle', () =>
   const b = launch(rom);
   assert.deepEqual([a.cycles, a.slots[0].busy, a.slots[1].busy], [b.cycles, b.slots[0].busy, b.slots[1].busy]);
 });
+
+test('SEV from core 0 wakes core 1 from WFE, not from WFI (which keeps the event for its next WFE)', () => {
+  // Core 0: nop x 4 ; sev ; 1: nop ; b 1b. Core 1 (the stand-in ROM's reset code): wfe (or wfi) ; b .-2
+  const core0 = [0xbf00, 0xbf00, 0xbf00, 0xbf00, 0xbf40, 0xbf00, 0xe7fd];
+  const run = (sleep) => {
+    const m = machine(standInRom(0x101, [sleep, 0xe7fd]), [seg(0x1000_0000, core0)], true);
+    m.run({ maxCycles: 1000, done: () => m.cycles >= 100 });
+    return m;
+  };
+  const wfe = run(0xbf20);
+  // Asleep from cycle 2, woken by the SEV at cycle 4 (the event is consumed), then b and wfe: asleep.
+  assert.equal(wfe.slots[1].busy, 2 + 2 + 2);
+  assert.equal(wfe.coreStats()[1].state, 'asleep (wfe)');
+  const wfi = run(0xbf30);
+  assert.equal(wfi.slots[1].busy, 2);
+  assert.equal(wfi.coreStats()[1].state, 'asleep (wfi)');
+  assert.equal(wfi.core(1).eventRegistered, true);
+});
