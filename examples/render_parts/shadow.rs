@@ -25,19 +25,7 @@ pub fn plane(s: &str) -> Result<[f64; 4], String> {
 
 /// Renders the shadow scene with the command line's options to `args.out` (atomically).
 pub fn run(args: &Args) -> Result<(), (String, i32)> {
-    if args.size != (240, 240) {
-        return Err((
-            "--scene shadow is drawn at 240x240 (the benchmark scene's renderer): drop --size"
-                .into(),
-            2,
-        ));
-    }
-    if super::tone::on(args) {
-        return Err((
-            "--tone, --exposure and --light-intensity apply to models, not --scene shadow".into(),
-            2,
-        ));
-    }
+    // The flags this scene does not use are refused by `rules::check`.
     if args.outline.is_some() && args.edge_color.is_some() {
         return Err((
             "--outline and --edge-color both set the lines' colour: give one".into(),
@@ -104,6 +92,18 @@ fn frames<S: Scalar, C: TargetColor + Into<Rgb888>>(
         };
         let frame = render_shadow_scene::<S, C, _, _>(&scene, &mut f, &mut NoProbe)
             .map_err(|e| (format!("shadow scene in {}: {e}", S::NAME), 1))?;
+        if let Some((_, s)) = super::rules::nothing_drawn(&[frame.stats]) {
+            return Err((
+                format!(
+                    "shadow scene in {}: nothing drawn in frame {k}: all {} triangle(s) left \
+                     after culling were invalid (out of the number type's range, NaN or \
+                     infinite); no image written",
+                    S::NAME,
+                    s.invalid
+                ),
+                1,
+            ));
+        }
         if k == 0 {
             let s = frame.stats;
             println!(

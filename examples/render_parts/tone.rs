@@ -43,7 +43,7 @@ pub fn exposure(s: &str) -> Result<ExposureArg, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 && v <= MAX_TONE_SCALE => Ok(ExposureArg::Fixed(v)),
         _ => Err(format!(
-            "{s:?}: expected `auto` or a number above 0 and at most {MAX_TONE_SCALE}"
+            "--exposure must be `auto` or a number above 0 and at most {MAX_TONE_SCALE}, got {s}"
         )),
     }
 }
