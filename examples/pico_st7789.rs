@@ -78,6 +78,8 @@ mod firmware {
         triangles: 480,
         active: 64,
         lines: board::STRIP_LINES,
+        attr_vertices: 0,
+        attr_active: 0,
     };
     type Device = renderer_type!(Q, Rgb565, CAPS);
 

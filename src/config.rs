@@ -37,6 +37,8 @@
 //!       triangles: 480,
 //!       active: 64,
 //!       lines: 8,
+//!       attr_vertices: 0,
+//!       attr_active: 0,
 //!   };
 //!   type Board = renderer_type!(Fx<I16F16>, Rgb565, BOARD);
 //!   // A variant: struct update syntax.
@@ -65,7 +67,7 @@ use crate::raster::{ActiveList, FLAT_BIT};
 use crate::renderer::{ram_formula, Needs, Renderer};
 
 /// The size and capacities of a [`Renderer`], by name: what its const generic parameters
-/// `W`, `H`, `VERTS`, `TRIS`, `ACTIVE` and `LINES` are.
+/// `W`, `H`, `VERTS`, `TRIS`, `ACTIVE`, `LINES`, `XV` and `XA` are.
 ///
 /// Build it with a struct expression, so that every figure is named (and each exactly once:
 /// the compiler rejects a missing, unknown or repeated field), and give it to
@@ -79,6 +81,8 @@ use crate::renderer::{ram_formula, Needs, Renderer};
 /// | `triangles` | `TRIS` | 1..=[`MAX_TRIANGLES`](Self::MAX_TRIANGLES) (32 767) | triangles kept for the row pass: [`Needs::triangles`] |
 /// | `active` | `ACTIVE` | 1..=[`MAX_ACTIVE`](Self::MAX_ACTIVE) (32 768) | triangles crossing one row: [`Needs::active`] |
 /// | `lines` | `LINES` | 1.. | rows per strip |
+/// | `attr_vertices` | `XV` | 0..=32 768 | attribute store (textures, Phong): [`Needs::attr_vertices`] |
+/// | `attr_active` | `XA` | 0..=32 768 | attribute pool (textures, Phong): [`Needs::attr_active`] |
 ///
 /// ```
 /// use scanline3d::{Capacities, Needs};
@@ -90,6 +94,8 @@ use crate::renderer::{ram_formula, Needs, Renderer};
 ///     triangles: 480,
 ///     active: 64,
 ///     lines: 1,
+///     attr_vertices: 0,
+///     attr_active: 0,
 /// }
 /// .checked(); // optional: fails the build here, not only where the type is written
 /// // What a frame measured on the host needed (`Renderer::needs`, `Needs::max`):
@@ -113,6 +119,8 @@ use crate::renderer::{ram_formula, Needs, Renderer};
 ///     vertices: 512,
 ///     triangles: 480,
 ///     lines: 1,
+///     attr_vertices: 0,
+///     attr_active: 0,
 /// }; // error[E0063]: missing field `active`
 /// ```
 ///
@@ -127,6 +135,8 @@ use crate::renderer::{ram_formula, Needs, Renderer};
 ///     triangles: 0, // panicked: "triangles must be 1..=32767 (Capacities::MAX_TRIANGLES)"
 ///     active: 64,
 ///     lines: 1,
+///     attr_vertices: 0,
+///     attr_active: 0,
 /// }
 /// .checked();
 /// ```
@@ -145,6 +155,12 @@ pub struct Capacities {
     pub active: usize,
     /// Rows per strip (`LINES`; 1 is the usual choice).
     pub lines: usize,
+    /// The attribute store's vertices (`XV`, [`Needs::attr_vertices`]): 0 for a renderer
+    /// without textures and Phong shading.
+    pub attr_vertices: usize,
+    /// The attribute pool's entries (`XA`, [`Needs::attr_active`]): 0 for a renderer without
+    /// textures and Phong shading.
+    pub attr_active: usize,
 }
 
 impl Capacities {
@@ -167,20 +183,24 @@ impl Capacities {
         __macro::triangles(self.triangles);
         __macro::active(self.active);
         __macro::lines(self.lines);
+        __macro::attr_vertices(self.attr_vertices);
+        __macro::attr_active(self.attr_active);
         self
     }
 
-    /// The three capacities a frame's [`Needs`] are compared with ([`Needs::fits`]), as
-    /// [`Renderer::CAPACITY`] gives them for a renderer type.
+    /// The capacities a frame's [`Needs`] are compared with ([`Needs::fits`]), as
+    /// [`Renderer::CAPACITY`] gives them for a renderer type (for a layered frame, add the
+    /// [`crate::Layers`]' lists with [`Needs::with_layers`]).
     #[must_use]
     pub const fn capacity(&self) -> Needs {
         Needs::new(self.vertices, self.triangles, self.active)
+            .with_stores(self.attr_vertices, self.attr_active)
     }
 
     /// The renderer's RAM in bytes by the documented formula
-    /// ([`ram_formula`]) for pixels of `color_bytes` bytes
+    /// ([`ram_formula`], plus the attribute stores) for pixels of `color_bytes` bytes
     /// (`size_of::<C>()`: 2 for RGB565); the renderer type's [`Renderer::RAM_BYTES`] is the
-    /// exact figure, at most 128 bytes more.
+    /// exact figure, at most 160 bytes more.
     #[must_use]
     pub const fn ram_estimate(&self, color_bytes: usize) -> usize {
         ram_formula(
@@ -191,11 +211,13 @@ impl Capacities {
             self.vertices,
             self.triangles,
             self.active,
-        )
+        ) + self.attr_vertices * crate::renderer::VERTEX_EXTRA_BYTES
+            + self.attr_active * crate::renderer::ACTIVE_EXTRA_BYTES
     }
 }
 
-/// `width: W, height: H, vertices: V, triangles: T, active: A, lines: L`: the arguments
+/// `width: W, height: H, vertices: V, triangles: T, active: A, lines: L` (and
+/// `, attr_vertices: XV, attr_active: XA` when either is not 0): the arguments
 /// [`renderer_type!`](crate::renderer_type) takes after the two types.
 impl fmt::Display for Capacities {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -203,7 +225,15 @@ impl fmt::Display for Capacities {
             f,
             "width: {}, height: {}, vertices: {}, triangles: {}, active: {}, lines: {}",
             self.width, self.height, self.vertices, self.triangles, self.active, self.lines
-        )
+        )?;
+        if self.attr_vertices != 0 || self.attr_active != 0 {
+            write!(
+                f,
+                ", attr_vertices: {}, attr_active: {}",
+                self.attr_vertices, self.attr_active
+            )?;
+        }
+        Ok(())
     }
 }
 
@@ -229,14 +259,18 @@ impl<
         triangles: TRIS,
         active: ACTIVE,
         lines: LINES,
+        attr_vertices: XV,
+        attr_active: XA,
     };
 }
 
 /// The [`Renderer`] type for a number type, a colour type and named capacities.
 ///
 /// `renderer_type!(S, C, width: W, height: H, vertices: V, triangles: T, active: A)` (with an
-/// optional `lines: L`, default 1) is `Renderer<S, C, W, H, V, T, A, L>`. The names may come
-/// in any order; each is required (but `lines`) and may be given once. Or
+/// optional `lines: L`, default 1, and the attribute stores `attr_vertices: XV` and
+/// `attr_active: XA`, default 0) is `Renderer<S, C, W, H, V, T, A, L, XV, XA>`. The names may
+/// come in any order; each is required (but `lines`, `attr_vertices` and `attr_active`) and
+/// may be given once. Or
 /// `renderer_type!(S, C, CAPS)` with `CAPS` a [`Capacities`] constant (any constant
 /// expression of that type). The values are checked against their ranges ([`Capacities`])
 /// where the type is written. It is a type, so it goes where a type goes: a `type` alias, a
@@ -250,6 +284,12 @@ impl<
 ///     active: 16, vertices: 64, triangles: 96, height: 32, width: 48, lines: 4);
 /// let small: Renderer<f32, Rgb565, 48, 32, 64, 96, 16, 4> = Small::const_new(Rgb565::BLACK);
 /// assert_eq!(small.viewport(), (48, 32));
+///
+/// // With the attribute stores, for textured or Phong objects:
+/// type Textured = renderer_type!(f32, Rgb565, width: 48, height: 32, vertices: 64,
+///     triangles: 96, active: 16, attr_vertices: 64, attr_active: 20);
+/// let t: Renderer<f32, Rgb565, 48, 32, 64, 96, 16, 1, 64, 20> = Textured::new();
+/// assert_eq!(Textured::CAPACITY.attr_active, 20);
 /// ```
 ///
 /// Mistakes are compile errors that name the mistake. A name left out:
@@ -275,7 +315,7 @@ impl<
 /// ```compile_fail
 /// # use embedded_graphics::pixelcolor::Rgb565;
 /// // error: renderer_type!: unknown name `verts` (the names are width, height, vertices,
-/// // triangles, active and lines)
+/// // triangles, active, lines, attr_vertices and attr_active)
 /// type R = scanline3d::renderer_type!(f32, Rgb565,
 ///     width: 48, height: 32, verts: 64, triangles: 96, active: 16);
 /// ```
@@ -311,7 +351,7 @@ impl<
 #[macro_export]
 macro_rules! renderer_type {
     ($s:ty, $c:ty, $($name:ident : $value:expr),+ $(,)?) => {
-        $crate::__renderer_type_named!($s, $c, [] [] [] [] [] []; $($name : $value,)+)
+        $crate::__renderer_type_named!($s, $c, [] [] [] [] [] [] [] []; $($name : $value,)+)
     };
     ($s:ty, $c:ty, $caps:expr $(,)?) => {
         $crate::Renderer<
@@ -323,49 +363,65 @@ macro_rules! renderer_type {
             { $crate::__renderer_type::triangles($crate::__renderer_type::caps($caps).triangles) },
             { $crate::__renderer_type::active($crate::__renderer_type::caps($caps).active) },
             { $crate::__renderer_type::lines($crate::__renderer_type::caps($caps).lines) },
+            { $crate::__renderer_type::attr_vertices($crate::__renderer_type::caps($caps).attr_vertices) },
+            { $crate::__renderer_type::attr_active($crate::__renderer_type::caps($caps).attr_active) },
         >
     };
     ($($other:tt)*) => {
         ::core::compile_error!(
             "renderer_type!(S, C, width: W, height: H, vertices: V, triangles: T, active: A \
-             [, lines: L]) or renderer_type!(S, C, CAPACITIES) with a scanline3d::Capacities"
+             [, lines: L] [, attr_vertices: XV] [, attr_active: XA]) or renderer_type!(S, C, \
+             CAPACITIES) with a scanline3d::Capacities"
         )
     };
 }
 
-/// The named form of [`renderer_type!`]: takes the `name: value,` pairs one at a time into six
-/// slots (`[]` while empty) in the order width, height, vertices, triangles, active, lines.
+/// The named form of [`renderer_type!`]: takes the `name: value,` pairs one at a time into eight
+/// slots (`[]` while empty) in the order width, height, vertices, triangles, active, lines,
+/// attr_vertices, attr_active.
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __renderer_type_named {
     // A name into its empty slot.
-    ($s:ty, $c:ty, [] $h:tt $v:tt $t:tt $a:tt $l:tt; width : $x:expr, $($rest:tt)*) => {
-        $crate::__renderer_type_named!($s, $c, [$x] $h $v $t $a $l; $($rest)*)
+    ($s:ty, $c:ty, [] $h:tt $v:tt $t:tt $a:tt $l:tt $xv:tt $xa:tt; width : $x:expr, $($rest:tt)*) => {
+        $crate::__renderer_type_named!($s, $c, [$x] $h $v $t $a $l $xv $xa; $($rest)*)
     };
-    ($s:ty, $c:ty, $w:tt [] $v:tt $t:tt $a:tt $l:tt; height : $x:expr, $($rest:tt)*) => {
-        $crate::__renderer_type_named!($s, $c, $w [$x] $v $t $a $l; $($rest)*)
+    ($s:ty, $c:ty, $w:tt [] $v:tt $t:tt $a:tt $l:tt $xv:tt $xa:tt; height : $x:expr, $($rest:tt)*) => {
+        $crate::__renderer_type_named!($s, $c, $w [$x] $v $t $a $l $xv $xa; $($rest)*)
     };
-    ($s:ty, $c:ty, $w:tt $h:tt [] $t:tt $a:tt $l:tt; vertices : $x:expr, $($rest:tt)*) => {
-        $crate::__renderer_type_named!($s, $c, $w $h [$x] $t $a $l; $($rest)*)
+    ($s:ty, $c:ty, $w:tt $h:tt [] $t:tt $a:tt $l:tt $xv:tt $xa:tt; vertices : $x:expr, $($rest:tt)*) => {
+        $crate::__renderer_type_named!($s, $c, $w $h [$x] $t $a $l $xv $xa; $($rest)*)
     };
-    ($s:ty, $c:ty, $w:tt $h:tt $v:tt [] $a:tt $l:tt; triangles : $x:expr, $($rest:tt)*) => {
-        $crate::__renderer_type_named!($s, $c, $w $h $v [$x] $a $l; $($rest)*)
+    ($s:ty, $c:ty, $w:tt $h:tt $v:tt [] $a:tt $l:tt $xv:tt $xa:tt; triangles : $x:expr, $($rest:tt)*) => {
+        $crate::__renderer_type_named!($s, $c, $w $h $v [$x] $a $l $xv $xa; $($rest)*)
     };
-    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt [] $l:tt; active : $x:expr, $($rest:tt)*) => {
-        $crate::__renderer_type_named!($s, $c, $w $h $v $t [$x] $l; $($rest)*)
+    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt [] $l:tt $xv:tt $xa:tt; active : $x:expr, $($rest:tt)*) => {
+        $crate::__renderer_type_named!($s, $c, $w $h $v $t [$x] $l $xv $xa; $($rest)*)
     };
-    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt $a:tt []; lines : $x:expr, $($rest:tt)*) => {
-        $crate::__renderer_type_named!($s, $c, $w $h $v $t $a [$x]; $($rest)*)
+    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt $a:tt [] $xv:tt $xa:tt; lines : $x:expr, $($rest:tt)*) => {
+        $crate::__renderer_type_named!($s, $c, $w $h $v $t $a [$x] $xv $xa; $($rest)*)
+    };
+    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt $a:tt $l:tt [] $xa:tt; attr_vertices : $x:expr, $($rest:tt)*) => {
+        $crate::__renderer_type_named!($s, $c, $w $h $v $t $a $l [$x] $xa; $($rest)*)
+    };
+    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt $a:tt $l:tt $xv:tt []; attr_active : $x:expr, $($rest:tt)*) => {
+        $crate::__renderer_type_named!($s, $c, $w $h $v $t $a $l $xv [$x]; $($rest)*)
     };
     // A known name whose slot is full: given twice.
-    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt $a:tt $l:tt; $name:ident : $x:expr, $($rest:tt)*) => {
+    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt $a:tt $l:tt $xv:tt $xa:tt; $name:ident : $x:expr, $($rest:tt)*) => {
         $crate::__renderer_type_twice_or_unknown!($name)
     };
-    // Every pair taken; `lines` may be left out.
-    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt $a:tt [];) => {
-        $crate::__renderer_type_named!($s, $c, $w $h $v $t $a [1];)
+    // Every pair taken; `lines` (1), `attr_vertices` and `attr_active` (0) may be left out.
+    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt $a:tt [] $xv:tt $xa:tt;) => {
+        $crate::__renderer_type_named!($s, $c, $w $h $v $t $a [1] $xv $xa;)
     };
-    ($s:ty, $c:ty, [$w:expr] [$h:expr] [$v:expr] [$t:expr] [$a:expr] [$l:expr];) => {
+    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt $a:tt $l:tt [] $xa:tt;) => {
+        $crate::__renderer_type_named!($s, $c, $w $h $v $t $a $l [0] $xa;)
+    };
+    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt $a:tt $l:tt $xv:tt [];) => {
+        $crate::__renderer_type_named!($s, $c, $w $h $v $t $a $l $xv [0];)
+    };
+    ($s:ty, $c:ty, [$w:expr] [$h:expr] [$v:expr] [$t:expr] [$a:expr] [$l:expr] [$xv:expr] [$xa:expr];) => {
         $crate::Renderer<
             $s,
             $c,
@@ -375,21 +431,23 @@ macro_rules! __renderer_type_named {
             { $crate::__renderer_type::triangles($t) },
             { $crate::__renderer_type::active($a) },
             { $crate::__renderer_type::lines($l) },
+            { $crate::__renderer_type::attr_vertices($xv) },
+            { $crate::__renderer_type::attr_active($xa) },
         >
     };
-    ($s:ty, $c:ty, [] $h:tt $v:tt $t:tt $a:tt $l:tt;) => {
+    ($s:ty, $c:ty, [] $h:tt $v:tt $t:tt $a:tt $l:tt $xv:tt $xa:tt;) => {
         ::core::compile_error!("renderer_type!: `width: …` is missing")
     };
-    ($s:ty, $c:ty, $w:tt [] $v:tt $t:tt $a:tt $l:tt;) => {
+    ($s:ty, $c:ty, $w:tt [] $v:tt $t:tt $a:tt $l:tt $xv:tt $xa:tt;) => {
         ::core::compile_error!("renderer_type!: `height: …` is missing")
     };
-    ($s:ty, $c:ty, $w:tt $h:tt [] $t:tt $a:tt $l:tt;) => {
+    ($s:ty, $c:ty, $w:tt $h:tt [] $t:tt $a:tt $l:tt $xv:tt $xa:tt;) => {
         ::core::compile_error!("renderer_type!: `vertices: …` is missing")
     };
-    ($s:ty, $c:ty, $w:tt $h:tt $v:tt [] $a:tt $l:tt;) => {
+    ($s:ty, $c:ty, $w:tt $h:tt $v:tt [] $a:tt $l:tt $xv:tt $xa:tt;) => {
         ::core::compile_error!("renderer_type!: `triangles: …` is missing")
     };
-    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt [] $l:tt;) => {
+    ($s:ty, $c:ty, $w:tt $h:tt $v:tt $t:tt [] $l:tt $xv:tt $xa:tt;) => {
         ::core::compile_error!("renderer_type!: `active: …` is missing")
     };
 }
@@ -416,11 +474,18 @@ macro_rules! __renderer_type_twice_or_unknown {
     (lines) => {
         ::core::compile_error!("renderer_type!: `lines` is given twice")
     };
+    (attr_vertices) => {
+        ::core::compile_error!("renderer_type!: `attr_vertices` is given twice")
+    };
+    (attr_active) => {
+        ::core::compile_error!("renderer_type!: `attr_active` is given twice")
+    };
     ($name:ident) => {
         ::core::compile_error!(::core::concat!(
             "renderer_type!: unknown name `",
             ::core::stringify!($name),
-            "` (the names are width, height, vertices, triangles, active and lines)"
+            "` (the names are width, height, vertices, triangles, active, lines, \
+             attr_vertices and attr_active)"
         ))
     };
 }
@@ -478,6 +543,22 @@ pub mod __macro {
 
     pub const fn lines(x: usize) -> usize {
         assert!(x >= 1, "lines must be at least 1");
+        x
+    }
+
+    pub const fn attr_vertices(x: usize) -> usize {
+        assert!(
+            x <= Capacities::MAX_VERTICES,
+            "attr_vertices must be 0..=32768 (Capacities::MAX_VERTICES)"
+        );
+        x
+    }
+
+    pub const fn attr_active(x: usize) -> usize {
+        assert!(
+            x <= Capacities::MAX_ACTIVE,
+            "attr_active must be 0..=32768 (Capacities::MAX_ACTIVE)"
+        );
         x
     }
 }

@@ -6,7 +6,8 @@ use embedded_graphics_core::primitives::Rectangle;
 
 use crate::stats::Stats;
 
-/// One of the renderer's three compile-time capacities (see [`Needs`]).
+/// One of the compile-time capacities a frame needs (see [`Needs`]): the renderer's, its
+/// attribute stores' and a layered frame's [`crate::Layers`] lists.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Capacity {
@@ -17,6 +18,44 @@ pub enum Capacity {
     Triangles,
     /// `ACTIVE`: triangles crossing one pixel row.
     ActiveTriangles,
+    /// `XV`: the texture and normal attribute store's vertices.
+    AttributeVertices,
+    /// `XA`: the attribute pool's entries (the frame's fog, Phong lights and materials, and
+    /// the textured and Phong triangles of one row).
+    AttributeActive,
+    /// `RA` of [`crate::Layers`]: receiver triangles crossing one row.
+    Receivers,
+    /// `PA` of [`crate::Layers`]: shadow, outline and translucent triangles crossing one row.
+    Overlays,
+}
+
+impl Capacity {
+    /// Every capacity, in the order [`Shortfall::iter`] reports them.
+    pub const ALL: [Capacity; 7] = [
+        Capacity::Vertices,
+        Capacity::Triangles,
+        Capacity::ActiveTriangles,
+        Capacity::AttributeVertices,
+        Capacity::AttributeActive,
+        Capacity::Receivers,
+        Capacity::Overlays,
+    ];
+
+    /// What it counts and the parameter that holds it, e.g. `"vertices (VERTS)"`.
+    #[must_use]
+    pub const fn describe(self) -> &'static str {
+        match self {
+            Capacity::Vertices => "vertices (VERTS)",
+            Capacity::Triangles => "triangles (TRIS)",
+            Capacity::ActiveTriangles => "triangles active on one row (ACTIVE)",
+            Capacity::AttributeVertices => "attribute-store vertices (XV)",
+            Capacity::AttributeActive => "attribute pool entries (XA)",
+            Capacity::Receivers => "receiver triangles on one row (Layers RA)",
+            Capacity::Overlays => {
+                "shadow, outline and translucent triangles on one row (Layers PA)"
+            }
+        }
+    }
 }
 
 /// Why a frame was not (completely) drawn.
@@ -25,17 +64,6 @@ pub enum Capacity {
 pub enum Error<E> {
     /// The draw target returned an error; the frame is drawn up to the failing strip.
     Target(E),
-    /// The scene needs more room than the renderer was given in one capacity. No longer
-    /// returned by the renderer: [`Error::Shortfall`] reports every capacity that is short at
-    /// once.
-    Capacity {
-        /// The capacity.
-        what: Capacity,
-        /// Its compile-time value.
-        capacity: usize,
-        /// What this frame needed (for triangles: at least this many).
-        needed: usize,
-    },
     /// Object `object` asks for Gouraud shading but its mesh has no vertex normals. Nothing
     /// was drawn.
     MissingNormals {
@@ -48,12 +76,14 @@ pub enum Error<E> {
         /// Index of the object in the scene.
         object: usize,
     },
-    /// Object `object` is textured but the renderer's texture attribute stores cannot hold the
-    /// frame: its vertices end at store index `vertices_needed` (the renderer's `XV` must be
-    /// at least that), or (under [`OverflowPolicy::Error`]) up to `active_needed` triangles
-    /// are active on one row, more than the `XA` textured triangles the pool holds (`XA` ≥
-    /// [`crate::Stats::max_active`] suffices; see [`crate::Renderer`], "Textures"). Nothing
-    /// was drawn.
+    /// Object `object` is textured or Phong-shaded (it needs the attribute stores) and the
+    /// renderer's stores cannot hold the frame: its vertices end at store index
+    /// `vertices_needed`, beyond the renderer's `XV`; or (under [`OverflowPolicy::Error`]) the
+    /// frame needs `active_needed` pool entries, more than the renderer's `XA` — the frame's
+    /// fog, Phong lights and materials, and [`crate::Stats::max_active`] triangles (a bound of
+    /// the textured and Phong ones on a row); [`crate::Stats::attr_active`] and
+    /// [`Needs::attr_active`] give that figure. A part that fits has its figure at or below
+    /// its capacity (0 when it was not reached). Nothing was drawn.
     AttributeStore {
         /// Index of the (first) textured object in the scene.
         object: usize,
@@ -79,6 +109,17 @@ pub enum Error<E> {
     /// The scene's fog ([`crate::Scene::fog`]) has `near ≥ far`, or a number that is NaN,
     /// infinite or at a fixed-point rail. Nothing was drawn.
     Fog,
+    /// Light `index` of the scene has a number that is NaN, infinite or at a fixed-point
+    /// rail (where [`crate::Scalar::from_f64`] puts those and out-of-range values): a
+    /// directional light's direction ([`crate::Scene::lights`], `point` false) or a point
+    /// light's position or attenuation ([`crate::Effects::point_lights`], `point` true).
+    /// Nothing was drawn.
+    Light {
+        /// Index of the light in its list.
+        index: usize,
+        /// Whether it is a point light.
+        point: bool,
+    },
     /// The scene's tone map ([`crate::ToneMap`]) has an intensity or exposure that is not a
     /// valid number within `0..=MAX_TONE_SCALE` (exposure above 0). Nothing was drawn.
     /// (`object` is always `None`: Phong objects, once refused here, are tone-mapped per pixel.)
@@ -96,7 +137,7 @@ pub enum Error<E> {
     /// The frame needs more room than the renderer has, in one or more of its capacities:
     /// every capacity that is short, with what the frame needed, is in the [`Shortfall`]
     /// ([`Shortfall::iter`]). Returned under [`OverflowPolicy::Error`] (the default); nothing
-    /// was drawn. This replaces [`Error::Capacity`], which the renderer no longer returns.
+    /// was drawn.
     Shortfall(Shortfall),
     /// The draw target does not contain the viewport: the renderer draws `viewport` pixels at
     /// the target's origin (`W × H` unless changed by [`Renderer::set_viewport`](crate::Renderer::set_viewport)) and the
@@ -125,22 +166,6 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             Error::Target(e) => write!(f, "draw target error: {e}"),
-            Error::Capacity {
-                what,
-                capacity,
-                needed,
-            } => {
-                let (name, what) = match what {
-                    Capacity::Vertices => ("VERTS", "vertices"),
-                    Capacity::Triangles => ("TRIS", "triangles"),
-                    Capacity::ActiveTriangles => ("ACTIVE", "triangles active on one row"),
-                };
-                write!(
-                    f,
-                    "scene needs {needed} {what} but the renderer's {name} capacity is \
-                     {capacity}; nothing was drawn"
-                )
-            }
             Error::MissingNormals { object } => write!(
                 f,
                 "object {object} is Gouraud-shaded but its mesh has no vertex normals; nothing \
@@ -157,12 +182,30 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
                 vertex_capacity,
                 active_needed,
                 active_capacity,
-            } => write!(
-                f,
-                "object {object} is textured: the frame needs XV >= {vertices_needed} and up to \
-                 {active_needed} textured triangles active on a row (the renderer has XV = \
-                 {vertex_capacity}, XA = {active_capacity}); nothing was drawn"
-            ),
+            } => {
+                write!(
+                    f,
+                    "object {object} is textured or Phong-shaded and the attribute stores are \
+                     short:"
+                )?;
+                let xv = vertices_needed > vertex_capacity;
+                let xa = active_needed > active_capacity;
+                if xv || !xa {
+                    write!(
+                        f,
+                        " XV needs {vertices_needed}, has {vertex_capacity} (the vertex-store \
+                         index where its vertices end);"
+                    )?;
+                }
+                if xa || !xv {
+                    write!(
+                        f,
+                        " XA needs {active_needed}, has {active_capacity} (the frame's fog, \
+                         Phong lights and materials, and the triangles active on one row);"
+                    )?;
+                }
+                write!(f, " nothing was drawn")
+            }
             Error::NeedsLayers { object } => write!(
                 f,
                 "object {object} is translucent: draw the scene with render_layered; nothing was drawn"
@@ -171,6 +214,12 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
             Error::Fog => write!(
                 f,
                 "the scene's fog needs finite numbers with near < far; nothing was drawn"
+            ),
+            Error::Light { index, point } => write!(
+                f,
+                "{} {index} has a number that is NaN, infinite or out of the number type's \
+                 range; nothing was drawn",
+                if *point { "point light" } else { "light" }
             ),
             Error::Tone { object: None } => write!(
                 f,
@@ -209,7 +258,7 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
     }
 }
 
-/// What a frame needs of the renderer's three capacities, or (as [`Renderer::CAPACITY`](crate::Renderer::CAPACITY)) what
+/// What a frame needs of each capacity, or (as [`Renderer::CAPACITY`](crate::Renderer::CAPACITY)) what
 /// a renderer has.
 ///
 /// | field | capacity | [`Stats`] field of a frame that fit |
@@ -217,10 +266,16 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
 /// | `vertices` | `VERTS` | [`Stats::vertices`] |
 /// | `triangles` | `TRIS` | [`Stats::drawn`] |
 /// | `active` | `ACTIVE` | [`Stats::max_active`] |
+/// | `attr_vertices` | `XV` | [`Stats::attr_vertices`] |
+/// | `attr_active` | `XA` | [`Stats::attr_active`] |
+/// | `receivers` | `RA` of [`crate::Layers`] | [`Stats::max_receivers`] |
+/// | `overlays` | `PA` of [`crate::Layers`] | [`Stats::max_overlays`] |
 ///
 /// To size a renderer for an animation built in code, measure every frame on the host with a
-/// renderer of generous capacities ([`Renderer::needs`](crate::Renderer::needs)) and keep the largest figures
-/// ([`Needs::max`]); then check the device's renderer with [`Needs::fits`]:
+/// renderer of generous capacities ([`Renderer::needs`](crate::Renderer::needs), or
+/// [`Renderer::needs_layered`](crate::Renderer::needs_layered) for a layered frame, with
+/// `XV = VERTS` and a generous `XA` for textured or Phong objects) and keep the largest
+/// figures ([`Needs::max`]); then check the device's renderer with [`Needs::fits`]:
 ///
 /// ```
 /// # use embedded_graphics::pixelcolor::Rgb565;
@@ -267,27 +322,79 @@ pub struct Needs {
     pub triangles: usize,
     /// Triangles crossing one pixel row at once, at the busiest row (`ACTIVE`).
     pub active: usize,
+    /// The attribute store's vertices (`XV`): where the last textured or Phong object's
+    /// vertices end in the vertex store ([`Stats::attr_vertices`]); 0 without such objects.
+    /// (This and the three figures below are `u16`, as every capacity they count is at most
+    /// 32 768: it keeps [`Error`] small on a microcontroller's stack.)
+    pub attr_vertices: u16,
+    /// The attribute pool's entries (`XA`, [`Stats::attr_active`]); 0 without textured or
+    /// Phong objects.
+    pub attr_active: u16,
+    /// A layered frame's receiver triangles on one row ([`crate::Layers`]' `RA`,
+    /// [`Stats::max_receivers`]).
+    pub receivers: u16,
+    /// A layered frame's shadow, outline and translucent triangles on one row
+    /// ([`crate::Layers`]' `PA`, [`Stats::max_overlays`]).
+    pub overlays: u16,
+}
+
+/// `v` as a `u16`, at most `u16::MAX`.
+const fn narrow(v: usize) -> u16 {
+    if v > u16::MAX as usize {
+        u16::MAX
+    } else {
+        v as u16
+    }
 }
 
 impl Needs {
     /// Needs (or capacities) of `vertices`, `triangles` and `active` triangles.
     #[must_use]
+    /// (no attribute stores, no layers: add them with [`Needs::with_stores`] and
+    /// [`Needs::with_layers`]).
     pub const fn new(vertices: usize, triangles: usize, active: usize) -> Self {
         Needs {
             vertices,
             triangles,
             active,
+            attr_vertices: 0,
+            attr_active: 0,
+            receivers: 0,
+            overlays: 0,
         }
     }
 
+    /// These needs with the attribute stores' figures (`XV`, `XA`).
+    #[must_use]
+    pub const fn with_stores(mut self, attr_vertices: usize, attr_active: usize) -> Self {
+        self.attr_vertices = narrow(attr_vertices);
+        self.attr_active = narrow(attr_active);
+        self
+    }
+
+    /// These needs with a layered frame's list figures ([`crate::Layers`]' `RA` and `PA`):
+    /// e.g. `Device::CAPACITY.with_layers(RA, PA)` for the capacity a layered frame is
+    /// checked against.
+    #[must_use]
+    pub const fn with_layers(mut self, receivers: usize, overlays: usize) -> Self {
+        self.receivers = narrow(receivers);
+        self.overlays = narrow(overlays);
+        self
+    }
+
     /// The needs of a frame that fit, from its statistics ([`Stats::vertices`],
-    /// [`Stats::drawn`], [`Stats::max_active`]).
+    /// [`Stats::drawn`], [`Stats::max_active`], [`Stats::attr_vertices`],
+    /// [`Stats::attr_active`], [`Stats::max_receivers`], [`Stats::max_overlays`]).
     #[must_use]
     pub const fn from_stats(stats: &Stats) -> Self {
         Needs {
             vertices: stats.vertices as usize,
             triangles: stats.drawn as usize,
             active: stats.max_active as usize,
+            attr_vertices: narrow(stats.attr_vertices as usize),
+            attr_active: narrow(stats.attr_active as usize),
+            receivers: narrow(stats.max_receivers as usize),
+            overlays: narrow(stats.max_overlays as usize),
         }
     }
 
@@ -301,19 +408,36 @@ impl Needs {
                 b
             }
         }
+        const fn m16(a: u16, b: u16) -> u16 {
+            if a > b {
+                a
+            } else {
+                b
+            }
+        }
         Needs {
             vertices: m(self.vertices, other.vertices),
             triangles: m(self.triangles, other.triangles),
             active: m(self.active, other.active),
+            attr_vertices: m16(self.attr_vertices, other.attr_vertices),
+            attr_active: m16(self.attr_active, other.attr_active),
+            receivers: m16(self.receivers, other.receivers),
+            overlays: m16(self.overlays, other.overlays),
         }
     }
 
-    /// Whether these needs fit `capacity` (e.g. a renderer's [`Renderer::CAPACITY`](crate::Renderer::CAPACITY)).
+    /// Whether these needs fit `capacity` in every figure (e.g. a renderer's
+    /// [`Renderer::CAPACITY`](crate::Renderer::CAPACITY), which includes its `XV` and `XA`;
+    /// for a layered frame add the [`crate::Layers`]' lists with [`Needs::with_layers`]).
     #[must_use]
     pub const fn fits(&self, capacity: &Needs) -> bool {
         self.vertices <= capacity.vertices
             && self.triangles <= capacity.triangles
             && self.active <= capacity.active
+            && self.attr_vertices <= capacity.attr_vertices
+            && self.attr_active <= capacity.attr_active
+            && self.receivers <= capacity.receivers
+            && self.overlays <= capacity.overlays
     }
 
     /// The figure for one capacity.
@@ -323,6 +447,10 @@ impl Needs {
             Capacity::Vertices => self.vertices,
             Capacity::Triangles => self.triangles,
             Capacity::ActiveTriangles => self.active,
+            Capacity::AttributeVertices => self.attr_vertices as usize,
+            Capacity::AttributeActive => self.attr_active as usize,
+            Capacity::Receivers => self.receivers as usize,
+            Capacity::Overlays => self.overlays as usize,
         }
     }
 }
@@ -337,7 +465,7 @@ impl<E: core::fmt::Debug + core::fmt::Display> core::error::Error for Error<E> {
 }
 
 /// A frame that did not fit the renderer: what it needed against what the renderer has, for
-/// all three capacities at once ([`Error::Shortfall`], or [`Renderer::shortfall`](crate::Renderer::shortfall) under
+/// every capacity at once ([`Error::Shortfall`], or [`Renderer::shortfall`](crate::Renderer::shortfall) under
 /// [`OverflowPolicy::DrawWhatFits`]).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
@@ -367,17 +495,13 @@ impl Shortfall {
         self.needed.get(what) > self.capacity.get(what)
     }
 
-    /// Every capacity that is short: `(capacity, needed, available)`, in the order vertices,
-    /// triangles, active triangles.
+    /// Every capacity that is short: `(capacity, needed, available)`, in the order of
+    /// [`Capacity::ALL`] (vertices, triangles, active triangles, attribute stores, layers).
     pub fn iter(&self) -> impl Iterator<Item = (Capacity, usize, usize)> + '_ {
-        [
-            Capacity::Vertices,
-            Capacity::Triangles,
-            Capacity::ActiveTriangles,
-        ]
-        .into_iter()
-        .filter(|&c| self.is_short(c))
-        .map(|c| (c, self.needed.get(c), self.capacity.get(c)))
+        Capacity::ALL
+            .into_iter()
+            .filter(|&c| self.is_short(c))
+            .map(|c| (c, self.needed.get(c), self.capacity.get(c)))
     }
 }
 
@@ -386,11 +510,7 @@ impl core::fmt::Display for Shortfall {
     /// `at least` before figures that are not exact.
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         for (k, (what, needed, capacity)) in self.iter().enumerate() {
-            let name = match what {
-                Capacity::Vertices => "vertices (VERTS)",
-                Capacity::Triangles => "triangles (TRIS)",
-                Capacity::ActiveTriangles => "triangles active on one row (ACTIVE)",
-            };
+            let name = what.describe();
             let sep = if k > 0 { "; " } else { "" };
             let about = if self.exact { "" } else { "about " };
             write!(f, "{sep}{name}: needs {about}{needed}, has {capacity}")?;

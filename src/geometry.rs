@@ -42,8 +42,6 @@ pub(crate) struct FrameConst<S> {
     first_material: usize,
     /// `1 − near/far` in Q0.24 ([`ObjectSetup::k24`]).
     k24: u32,
-    /// Whether every light is valid (objects are skipped and counted when one is not).
-    lights_ok: bool,
 }
 
 /// The geometry stage's counts over a frame's objects.
@@ -96,7 +94,7 @@ impl<
         self.clear_active();
         self.heads = [0; H];
         self.starts = [0; H];
-        self.next_row = self.vh;
+        self.take_viewport();
         for (i, o) in scene.objects.iter().enumerate() {
             if o.material.shading != Shading::Flat && o.mesh.normals().is_none() {
                 return Err(Error::MissingNormals { object: i });
@@ -148,6 +146,7 @@ impl<
             }
             Projection::Orthographic { .. } => 0,
         };
+        lights_valid(scene)?;
         Ok(FrameConst {
             vp,
             g,
@@ -155,7 +154,6 @@ impl<
             reserved,
             first_material,
             k24,
-            lights_ok: lights_valid(scene)?,
         })
     }
 
@@ -175,8 +173,7 @@ impl<
         // the same for every number type (a float NaN would poison every vertex).
         let ok = |v: &S| v.is_valid();
         let m = &obj.material;
-        if !(c.lights_ok
-            && obj.transform.m.iter().all(|r| r.iter().all(ok))
+        if !(obj.transform.m.iter().all(|r| r.iter().all(ok))
             && [m.ambient, m.diffuse, m.specular].iter().all(ok))
         {
             let n = obj.mesh.indices().len() as u32;
@@ -224,6 +221,9 @@ impl<
         self.object(&setup, &c.vp, c.g, &mut f.stats, &mut f.need, probe);
         if XV > 0 {
             let end = self.verts.len();
+            if obj.material.needs_attribute_stores() {
+                f.stats.attr_vertices = f.stats.attr_vertices.max(end as u32);
+            }
             if obj.material.needs_attribute_stores() && end > XV {
                 return Err(Error::AttributeStore {
                     object: index,
@@ -263,6 +263,16 @@ impl<
             max = max.max(cur);
         }
         stats.max_active = max as u32;
+        let stores = XV > 0
+            && scene
+                .objects
+                .iter()
+                .any(|o| o.material.needs_attribute_stores());
+        stats.attr_active = if stores {
+            (max as usize + reserved) as u32
+        } else {
+            0
+        };
         // The textured triangles' pool: under `OverflowPolicy::Error` the most triangles on a
         // row (a bound of the textured ones among them) must fit it, so that none is left out.
         if XA > 0 && self.overflow == OverflowPolicy::Error && max as usize + reserved > XA {
@@ -273,7 +283,7 @@ impl<
             {
                 return Err(Error::AttributeStore {
                     object,
-                    vertices_needed: self.verts.len(),
+                    vertices_needed: stats.attr_vertices as usize,
                     vertex_capacity: XV,
                     active_needed: max as usize + reserved,
                     active_capacity: XA,
@@ -724,11 +734,11 @@ impl<
     }
 }
 
-/// Whether the scene's lights are all valid (its objects are skipped and counted when one
-/// is not); [`Error::Fog`] for a fog without valid numbers and `near < far`. Out of line: the
+/// [`Error::Light`] for a light with an invalid number, [`Error::Fog`] for a fog without
+/// valid numbers and `near < far`, [`Error::Tone`] for an invalid tone map. Out of line: the
 /// deepest stack of a frame (on a 16 KB part) does not hold its locals.
 #[inline(never)]
-fn lights_valid<S: Scalar, E, const L: usize>(scene: &Scene<'_, S, L>) -> Result<bool, Error<E>> {
+fn lights_valid<S: Scalar, E, const L: usize>(scene: &Scene<'_, S, L>) -> Result<(), Error<E>> {
     if scene.fog().is_some_and(|f| !f.is_valid()) {
         return Err(Error::Fog);
     }
@@ -737,11 +747,22 @@ fn lights_valid<S: Scalar, E, const L: usize>(scene: &Scene<'_, S, L>) -> Result
             return Err(Error::Tone { object: None });
         }
     }
-    Ok(scene
+    // A light is the whole scene's: one that is not a valid number is refused like a fog or
+    // a tone map (it once made every object a counted skip, an empty frame that looked `Ok`).
+    if let Some(index) = scene
         .lights
         .iter()
-        .all(|l| l.direction.iter().all(|v| v.is_valid()))
-        && scene.point_lights().iter().all(|l| l.is_valid()))
+        .position(|l| !l.direction.iter().all(|v| v.is_valid()))
+    {
+        return Err(Error::Light {
+            index,
+            point: false,
+        });
+    }
+    if let Some(index) = scene.point_lights().iter().position(|l| !l.is_valid()) {
+        return Err(Error::Light { index, point: true });
+    }
+    Ok(())
 }
 
 /// The vertex store's record of position `p` transformed by `mvp`: its outcode (guard band

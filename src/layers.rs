@@ -182,7 +182,7 @@ impl<
     {
         probe.frame_start();
         let result = self
-            .check_target(target)
+            .begin_target(target)
             .and_then(|_| self.geometry_layered(scene, layering, layers, probe))
             .and_then(|_| {
                 probe.enter(Stage::Raster);
@@ -211,6 +211,34 @@ impl<
         probe.enter(Stage::Done);
         probe.frame_end();
         result
+    }
+
+    /// Measures what a layered frame of `scene` needs ([`Needs`], with the `layers`' lists:
+    /// [`Needs::receivers`] for `RA`, [`Needs::overlays`] for `PA`, and the vertices the
+    /// shadow polygons, volumes and outlines add): runs the layered frame's geometry stage
+    /// (as [`Renderer::render_layered`] does, whatever the overflow policy) and leaves no
+    /// frame prepared. For sizing a device's renderer and layers on the host, as
+    /// [`Renderer::needs`] for a plain frame; check with
+    /// `worst.fits(&Device::CAPACITY.with_layers(RA, PA))`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Renderer::render_layered`] for a layering that cannot be drawn, and as
+    /// [`Renderer::needs`] when this renderer's stores are too small to measure the frame
+    /// exactly.
+    pub fn needs_layered<const L: usize, const RA: usize, const PA: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        layering: &Layering<'_, S>,
+        layers: &mut Layers<W, LINES, RA, PA>,
+    ) -> Result<Needs, Error<core::convert::Infallible>> {
+        let policy = self.overflow;
+        self.overflow = OverflowPolicy::DrawWhatFits;
+        let result = self.geometry_layered(scene, layering, layers, &mut NoProbe);
+        self.overflow = policy;
+        self.next_row = self.vh;
+        result?;
+        self.measured()
     }
 
     /// The geometry stage of a layered frame: the receivers' objects first, then the other
@@ -309,10 +337,12 @@ impl<
         layers.volume = false;
         let marks = layers.stencil.as_flattened_mut();
         if let Some(v) = &layering.volume {
+            let aspect = self.vw as f64 / self.vh as f64;
             for (k, &i) in layering.casters.iter().enumerate() {
                 let adjacency = v.adjacency[k];
                 let o = &scene.objects[i];
-                self.volume_object(&c, &mut f, o, adjacency, v, marks, probe);
+                let reach = crate::volume::volume_reach(&scene.camera, aspect, o, v.reach);
+                self.volume_object(&c, &mut f, o, adjacency, v, reach, marks, probe);
             }
             layers.volume = true;
             set_blend::<C, W, LINES, RA, PA>(layers, v.color, v.alpha);
@@ -389,23 +419,30 @@ impl<
                 let _ = layers.translucent.push((end(self), o.material.alpha));
             }
         }
-        let stats = self.frame_end(scene, &c, &mut f, usize::MAX)?;
-        // Each list's most triangles on one row, against its capacity.
-        for (list, capacity) in [(0u8, RA), (1, PA), (2, ACTIVE)] {
-            let needed = self.layer_overlap(&layers.bounds, list);
-            if needed > capacity && self.overflow == OverflowPolicy::Error {
-                self.next_row = self.vh;
-                return Err(Error::Layers(LayerError::Capacity {
-                    list,
-                    needed,
-                    capacity,
-                }));
-            }
+        self.frame_end(scene, &c, &mut f, usize::MAX)?;
+        // Each list's most triangles on one row, against its capacity: all three at once.
+        let [receivers, overlays, opaque] =
+            [0u8, 1, 2].map(|list| self.layer_overlap(&layers.bounds, list));
+        self.stats.max_receivers = receivers as u32;
+        self.stats.max_overlays = overlays as u32;
+        self.stats.max_active = opaque as u32;
+        let needed = Needs::from_stats(&self.stats);
+        let capacity = Self::CAPACITY.with_layers(RA, PA);
+        if self.overflow == OverflowPolicy::Error
+            && (receivers > RA || overlays > PA || opaque > ACTIVE)
+        {
+            self.next_row = self.vh;
+            return Err(Error::Shortfall(Shortfall {
+                needed,
+                capacity,
+                exact: true,
+                skipped: 0,
+            }));
         }
         layers.receivers.clear();
         layers.post.clear();
         layers.skipped = 0;
-        Ok(stats)
+        Ok(self.stats)
     }
 
     /// The most triangles of list `list` (0: receivers, 1: shadow, outline and translucent
@@ -715,9 +752,9 @@ fn check_adjacency<S: Scalar, E, const L: usize>(
 ) -> Result<(), Error<E>> {
     for (k, &object) in objects.iter().enumerate() {
         let triangles = scene.objects[object].mesh.indices().len();
-        if adjacency.get(k).map(|a| a.len()) != Some(triangles) {
+        let Some(table) = adjacency.get(k).filter(|a| a.len() == triangles) else {
             return Err(Error::Layers(LayerError::Adjacency { object }));
-        }
+        };
         if triangles > bits {
             return Err(Error::Layers(LayerError::TooManyTriangles {
                 object,
@@ -725,6 +762,10 @@ fn check_adjacency<S: Scalar, E, const L: usize>(
                 capacity: bits,
             }));
         }
+        // Every index in range and every neighbour the mesh's (a table of the right length
+        // with the wrong contents once drew wrong silhouettes, and a bad index panicked).
+        crate::volume::check_adjacency(&scene.objects[object].mesh, table)
+            .map_err(|error| Error::Layers(LayerError::Mesh { object, error }))?;
     }
     Ok(())
 }

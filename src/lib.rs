@@ -50,7 +50,7 @@
 //!
 //! Renderer RAM in bytes ([`Renderer::RAM_BYTES`] gives the exact value):
 //!
-//! `LINES·W·(size_of::<C>() + 2) + 12·VERTS + 6·TRIS + 84·ACTIVE + 4·H` (+ at most 128 bytes of
+//! `LINES·W·(size_of::<C>() + 2) + 12·VERTS + 6·TRIS + 84·ACTIVE + 4·H` (+ at most 160 bytes of
 //! state and padding; a unit test checks the formula against `size_of`).
 //!
 //! The lines hold colour and 16-bit depth; `VERTS` projected vertices of 12 bytes, `TRIS`
@@ -270,7 +270,7 @@ pub use strip::StripCanvas;
 pub use texture::{Texture, TextureError, TextureMode, Texturing, Wrap, MAX_TEXTURE_SIZE};
 pub use textured_shapes::TexturedShape;
 pub use tone::{AutoExposure, Metered, ToneCurve, ToneMap, MAX_TONE_SCALE};
-pub use volume::{mesh_adjacency, mesh_creases, AdjacencyError, NO_NEIGHBOUR};
+pub use volume::{check_adjacency, mesh_adjacency, mesh_creases, AdjacencyError, NO_NEIGHBOUR};
 
 #[doc(inline)]
 pub use embedded_graphics_core::draw_target::DrawTarget;

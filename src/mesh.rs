@@ -54,6 +54,12 @@ pub enum MeshError {
         /// The length needed.
         needed: usize,
     },
+    /// A vertex normal has a coordinate that is NaN, infinite or (fixed point) at a
+    /// saturation rail ([`Scalar::is_valid`]): it would light its triangles with garbage.
+    InvalidNormal {
+        /// The vertex.
+        vertex: usize,
+    },
     /// The texture-coordinate slice is not as long as the positions slice.
     UvCount {
         /// Number of positions.
@@ -111,12 +117,21 @@ impl<'a, S: Scalar> Mesh<'a, S> {
     }
 
     /// Adds unit vertex normals, one per position.
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::NormalCount`] unless there is one per position;
+    /// [`MeshError::InvalidNormal`] for a normal with a coordinate that is not valid in `S`
+    /// (NaN, infinite, or a fixed-point rail).
     pub fn with_normals(mut self, normals: &'a [Vec3<S>]) -> Result<Self, MeshError> {
         if normals.len() != self.positions.len() {
             return Err(MeshError::NormalCount {
                 positions: self.positions.len(),
                 normals: normals.len(),
             });
+        }
+        if let Some(vertex) = normals.iter().position(|n| !n.iter().all(|c| c.is_valid())) {
+            return Err(MeshError::InvalidNormal { vertex });
         }
         self.normals = Some(normals);
         Ok(self)
@@ -211,6 +226,10 @@ impl core::fmt::Display for MeshError {
             MeshError::IndexOutOfRange { triangle, index } => write!(
                 f,
                 "mesh triangle {triangle} refers to vertex {index}, which does not exist"
+            ),
+            MeshError::InvalidNormal { vertex } => write!(
+                f,
+                "normal of vertex {vertex} is NaN, infinite or out of the number type's range"
             ),
             MeshError::BufferTooSmall { needed } => {
                 write!(f, "output buffer too small: {needed} entries needed")

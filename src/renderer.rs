@@ -154,9 +154,13 @@ pub struct Renderer<
     pub(crate) dither: bool,
     /// Next row to rasterize (`vh` when no frame is prepared).
     pub(crate) next_row: usize,
-    /// Viewport actually drawn, `vw ≤ W`, `vh ≤ H` (default `W × H`).
+    /// Viewport actually drawn, `vw ≤ W`, `vh ≤ H` (default `W × H`): the prepared frame's.
     pub(crate) vw: usize,
     pub(crate) vh: usize,
+    /// The viewport [`Renderer::set_viewport`] asked for (1..=`W`, 1..=`H`, so that a u16
+    /// holds it): taken by the next frame's geometry stage, or at once when no frame is being
+    /// drawn.
+    pub(crate) want_viewport: (u16, u16),
     pub(crate) background: C,
     pub(crate) stats: Stats,
     pub(crate) overflow: OverflowPolicy,
@@ -185,9 +189,10 @@ impl<
     /// Exact RAM of this renderer in bytes.
     pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
 
-    /// This renderer's capacities (`VERTS`, `TRIS`, `ACTIVE`), to compare a frame's
+    /// This renderer's capacities (`VERTS`, `TRIS`, `ACTIVE`, `XV`, `XA`; no layer lists:
+    /// add a [`crate::Layers`]' with [`Needs::with_layers`]), to compare a frame's
     /// [`Needs`] with.
-    pub const CAPACITY: Needs = Needs::new(VERTS, TRIS, ACTIVE);
+    pub const CAPACITY: Needs = Needs::new(VERTS, TRIS, ACTIVE).with_stores(XV, XA);
 
     const CHECK: () = {
         assert!(W >= 1 && W <= MAX_SCREEN, "W must be 1..=1024");
@@ -247,6 +252,7 @@ impl<
             next_row: H,
             vw: W,
             vh: H,
+            want_viewport: (W as u16, H as u16),
             background: fill,
             stats: Stats {
                 triangles_in: 0,
@@ -262,6 +268,10 @@ impl<
                 fragments: 0,
                 pixels_written: 0,
                 max_active: 0,
+                attr_vertices: 0,
+                attr_active: 0,
+                max_receivers: 0,
+                max_overlays: 0,
             },
             overflow: OverflowPolicy::Error,
             store_skipped: 0,
@@ -335,15 +345,32 @@ impl<
         let result = self.geometry(scene, &mut NoProbe);
         self.overflow = policy;
         self.next_row = self.vh;
-        let stats = result?;
+        result?;
+        self.measured()
+    }
+
+    /// The needs of the frame just prepared under [`OverflowPolicy::DrawWhatFits`] (for
+    /// [`Renderer::needs`] and [`Renderer::needs_layered`]).
+    pub(crate) fn measured(&self) -> Result<Needs, Error<core::convert::Infallible>> {
         match self.shortfall() {
-            None => Ok(Needs::from_stats(&stats)),
-            Some(s) if s.exact => Ok(s.needed),
+            None => Ok(Needs::from_stats(&self.stats)),
+            Some(s) if s.exact => Ok(Needs {
+                triangles: s.needed.triangles,
+                ..Needs::from_stats(&self.stats)
+            }),
             Some(mut s) => {
                 s.skipped = 0;
                 Err(Error::Shortfall(s))
             }
         }
+    }
+
+    /// For a call that draws a new frame: the viewport [`Renderer::set_viewport`] asked for
+    /// taken (a prepared frame is given up, as the new frame replaces it), then
+    /// [`Renderer::check_target`].
+    pub(crate) fn begin_target<D: Dimensions, E>(&mut self, target: &D) -> Result<(), Error<E>> {
+        self.take_viewport();
+        self.check_target(target)
     }
 
     /// [`Error::TargetTooSmall`] unless `target` contains the viewport at its origin.
@@ -379,16 +406,31 @@ impl<
     /// Draws into a `width × height` viewport at the target's origin instead of the full
     /// `W × H` (clamped to 1..=W and 1..=H): one renderer type for several panel sizes, or a
     /// preview at any size. The projection's aspect ratio follows the viewport.
+    ///
+    /// A frame already prepared ([`Renderer::prepare`]) and not completely drawn keeps the
+    /// viewport it was prepared for — its geometry was projected onto it — and its strips
+    /// still come out; the new viewport applies from the next frame on. Between frames it
+    /// applies at once.
     pub fn set_viewport(&mut self, width: usize, height: usize) {
-        self.vw = width.clamp(1, W);
-        self.vh = height.clamp(1, H);
+        self.want_viewport = (width.clamp(1, W) as u16, height.clamp(1, H) as u16);
+        if self.next_row >= self.vh {
+            self.take_viewport();
+        }
+    }
+
+    /// Makes the viewport [`Renderer::set_viewport`] asked for the one drawn (no frame is
+    /// prepared afterwards).
+    pub(crate) fn take_viewport(&mut self) {
+        self.vw = self.want_viewport.0 as usize;
+        self.vh = self.want_viewport.1 as usize;
         self.next_row = self.vh;
     }
 
-    /// The viewport size (`W × H` unless changed by [`Renderer::set_viewport`]).
+    /// The viewport size (`W × H` unless changed by [`Renderer::set_viewport`]): the one the
+    /// next frame is prepared for.
     #[must_use]
     pub fn viewport(&self) -> (usize, usize) {
-        (self.vw, self.vh)
+        (self.want_viewport.0 as usize, self.want_viewport.1 as usize)
     }
 
     /// Sets the depth test in place.
@@ -442,7 +484,7 @@ impl<
         O: Drawable<Color = C>,
     {
         let mut probe = NoProbe;
-        self.check_target(target)?;
+        self.begin_target(target)?;
         self.geometry(scene, &mut probe)?;
         while self
             .strip(target, &mut probe, |canvas| {
@@ -466,7 +508,7 @@ impl<
     {
         probe.frame_start();
         let result = self
-            .check_target(target)
+            .begin_target(target)
             .and_then(|_| self.geometry(scene, probe))
             .and_then(|_| {
                 probe.enter(Stage::Raster);
@@ -523,7 +565,7 @@ impl<
                 height: vh,
             });
         }
-        self.check_target(target)?;
+        self.begin_target(target)?;
         let background = crate::color::quantize::<C>(first.background);
         for c in &mut self.color[..vh] {
             c[..vw].fill(background);
@@ -768,7 +810,7 @@ mod ram_tests {
     pub(crate) fn check<R>(formula: usize) {
         let real = core::mem::size_of::<R>();
         assert!(
-            real >= formula && real <= formula + 128,
+            real >= formula && real <= formula + 160,
             "size {real}, formula {formula}"
         );
     }

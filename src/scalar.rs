@@ -499,7 +499,12 @@ macro_rules! impl_fx {
             }
             fn sin_cos(self) -> (Self, Self) {
                 // Evaluated in f64 by libm (pure software, so bit-identical on every target)
-                // and rounded once: setup-time only.
+                // and rounded once: setup-time only. A rail (where NaN, ±∞ and out-of-range
+                // inputs land) gives rails, as NaN gives NaN in a float: a rotation by it is
+                // an invalid transform, skipped and counted, not one at an arbitrary angle.
+                if !self.is_valid() {
+                    return (self, self);
+                }
                 let (s, c) = libm::sincos(self.to_f64());
                 (Self::from_f64(s), Self::from_f64(c))
             }

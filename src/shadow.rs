@@ -457,18 +457,6 @@ pub enum LayerError {
     /// The target colour cannot report its channels ([`crate::TargetColor::channels`]), so
     /// nothing can be blended onto it.
     Blending,
-    /// More receiver triangles (`list` 0), shadow, outline and translucent triangles
-    /// (`list` 1) or other opaque triangles (`list` 2) cross one row than the
-    /// [`crate::Layers`] lists (`RA`, `PA`) or the renderer's active list (`ACTIVE`) hold.
-    Capacity {
-        /// 0: receivers (`RA`), 1: shadow, outline and translucent triangles (`PA`), 2: the
-        /// other opaque triangles (`ACTIVE`).
-        list: u8,
-        /// The most triangles of the list on one row.
-        needed: usize,
-        /// Its capacity.
-        capacity: usize,
-    },
     /// Both a planar shadow and shadow volumes: the stencil serves one of them per frame.
     TwoShadows,
     /// Object `object` (a volume caster or an outlined object) has no adjacency table, or one
@@ -476,6 +464,14 @@ pub enum LayerError {
     Adjacency {
         /// Index of the object in the scene.
         object: usize,
+    },
+    /// Object `object` (a volume caster or an outlined object) has a mesh with an index out
+    /// of range, or an adjacency table that is not its mesh's ([`crate::check_adjacency`]).
+    Mesh {
+        /// Index of the object in the scene.
+        object: usize,
+        /// What is wrong.
+        error: crate::AdjacencyError,
     },
     /// Outlined object `object` has no crease table ([`Edges::Crease`]), or one shorter than
     /// its mesh's `3·T` bits ([`crate::mesh_creases`]).
@@ -527,6 +523,7 @@ impl core::fmt::Display for LayerError {
                 f,
                 "object {object} has no adjacency table of its mesh's triangle count"
             ),
+            LayerError::Mesh { object, error } => write!(f, "object {object}: {error}"),
             LayerError::Creases { object } => write!(
                 f,
                 "outlined object {object} has no crease table of 3 bits per triangle (mesh_creases)"
@@ -543,19 +540,6 @@ impl core::fmt::Display for LayerError {
             LayerError::Blending => {
                 write!(f, "the target colour cannot report its channels for blending")
             }
-            LayerError::Capacity {
-                list,
-                needed,
-                capacity,
-            } => write!(
-                f,
-                "{needed} {} triangles cross one row, the layers hold {capacity}",
-                match list {
-                    0 => "receiver",
-                    1 => "shadow, outline and translucent",
-                    _ => "opaque (the renderer's ACTIVE)",
-                }
-            ),
         }
     }
 }

@@ -95,8 +95,25 @@ pub struct Stats {
     pub fragments: u32,
     /// Pixels that passed the depth test and were written to the strip (saturates).
     pub pixels_written: u32,
-    /// The largest number of triangles active on one row.
+    /// The largest number of triangles active on one row. In a layered frame
+    /// ([`Renderer::render_layered`](crate::Renderer::render_layered)), those of the
+    /// renderer's own active list (`ACTIVE`): the opaque triangles that do not receive a
+    /// planar shadow.
     pub max_active: u32,
+    /// Of a frame with textured or Phong objects: the vertex-store index where the last such
+    /// object's vertices end, which the renderer's `XV` must reach (0 without such objects).
+    pub attr_vertices: u32,
+    /// Of a frame with textured or Phong objects: the attribute pool entries the frame
+    /// needs, `XA` — the frame's fog, Phong lights and materials, which take entries for the
+    /// whole frame, plus [`Stats::max_active`] (a bound of the textured and Phong triangles
+    /// on one row). 0 without such objects.
+    pub attr_active: u32,
+    /// Of a layered frame: the most receiver triangles (of a planar shadow) on one row, the
+    /// [`crate::Layers`]' `RA`.
+    pub max_receivers: u32,
+    /// Of a layered frame: the most shadow, outline and translucent triangles on one row,
+    /// the [`crate::Layers`]' `PA`.
+    pub max_overlays: u32,
 }
 
 impl Stats {
@@ -111,7 +128,8 @@ impl Stats {
     }
 
     /// Adds the counts of another pass of the same frame ([`Renderer::render_passes`]):
-    /// `max_active` is the larger of the two, every other field the sum (saturating).
+    /// the `max_*` and `attr_*` figures are the larger of the two, every other field the sum
+    /// (saturating).
     pub(crate) fn add_pass(&mut self, p: &Stats) {
         let add = |a: &mut u32, b: u32| *a = a.saturating_add(b);
         add(&mut self.triangles_in, p.triangles_in);
@@ -127,6 +145,10 @@ impl Stats {
         add(&mut self.fragments, p.fragments);
         add(&mut self.pixels_written, p.pixels_written);
         self.max_active = self.max_active.max(p.max_active);
+        self.attr_vertices = self.attr_vertices.max(p.attr_vertices);
+        self.attr_active = self.attr_active.max(p.attr_active);
+        self.max_receivers = self.max_receivers.max(p.max_receivers);
+        self.max_overlays = self.max_overlays.max(p.max_overlays);
     }
 
     /// Counts one triangle-row's fragments and written pixels (saturating).

@@ -57,6 +57,79 @@ impl<C: PixelColor, const W: usize> DrawTarget for StripCanvas<'_, C, W> {
         }
         Ok(())
     }
+
+    /// Clipped to the strip first: a rectangle of any size (a stroke two billion pixels wide)
+    /// costs only the pixels it has on the strip's rows.
+    fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Self::Error> {
+        if let Some((rows, cols)) = self.clip(area) {
+            for line in &mut self.lines[rows] {
+                line[cols.clone()].fill(color);
+            }
+        }
+        Ok(())
+    }
+
+    /// Clipped to the strip first: the colours of the rows above the strip are skipped with
+    /// `nth`, the rows below are never read, and an area that misses the strip reads none.
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = C>,
+    {
+        let Some((rows, cols)) = self.clip(area) else {
+            return Ok(());
+        };
+        // Offsets within `area`, in u64: the area may be up to 2³² px on a side.
+        let (ax, ay) = (i64::from(area.top_left.x), i64::from(area.top_left.y));
+        let width = u64::from(area.size.width);
+        let mut colors = colors.into_iter();
+        // The colour index `colors` is at.
+        let mut at = 0u64;
+        for r in rows {
+            let y = (self.y0 + r) as i64;
+            let row_start = (y - ay) as u64 * width;
+            let first = row_start + (cols.start as i64 - ax) as u64;
+            // Skip to the row's first visible colour (usize steps: a skip longer than
+            // usize::MAX on a 32-bit core is done in pieces).
+            let mut skip = first - at;
+            while skip > 0 {
+                let step = skip.min(usize::MAX as u64);
+                if step > 0 && colors.nth(step as usize - 1).is_none() {
+                    return Ok(());
+                }
+                skip -= step;
+            }
+            at = first;
+            for x in cols.clone() {
+                let Some(c) = colors.next() else {
+                    return Ok(());
+                };
+                self.lines[r][x] = c;
+                at += 1;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<C, const W: usize> StripCanvas<'_, C, W> {
+    /// The strip's lines and columns `area` covers, or `None` if it covers none of them.
+    fn clip(&self, area: &Rectangle) -> Option<(core::ops::Range<usize>, core::ops::Range<usize>)> {
+        let (x0, y0) = (i64::from(area.top_left.x), i64::from(area.top_left.y));
+        let (x1, y1) = (
+            x0 + i64::from(area.size.width),
+            y0 + i64::from(area.size.height),
+        );
+        let (sy0, sy1) = (self.y0 as i64, (self.y0 + self.lines.len()) as i64);
+        let (cx0, cx1) = (x0.max(0), x1.min(W as i64));
+        let (cy0, cy1) = (y0.max(sy0), y1.min(sy1));
+        if cx0 >= cx1 || cy0 >= cy1 {
+            return None;
+        }
+        Some((
+            (cy0 - sy0) as usize..(cy1 - sy0) as usize,
+            cx0 as usize..cx1 as usize,
+        ))
+    }
 }
 
 impl<

@@ -67,7 +67,11 @@ impl<S: Scalar, const V: usize, const T: usize> TexturedShape<S, V, T> {
             Err(ShapeError::Capacity { .. }) | Ok(_) => {}
             Err(e) => return Err(e),
         }
-        let vertices = (nu + 1).checked_mul(nv + 1);
+        // Checked: `nu + 1` itself overflows for `nu = usize::MAX` (reported as `None`).
+        let vertices = nu
+            .checked_add(1)
+            .zip(nv.checked_add(1))
+            .and_then(|(a, b)| a.checked_mul(b));
         let triangles = nu.checked_mul(nv).and_then(|n| n.checked_mul(2));
         let shape = Shape::with_capacity_for(vertices, triangles)?;
         let mut s = TexturedShape {

@@ -22,7 +22,7 @@ use crate::color::TargetColor;
 use crate::geometry::{snapped, vertex_record_keep, Frame, FrameConst, INVALID, PROJECTED};
 use crate::kernel::records::{facing, Facing, ScreenVertex, TriRecord};
 use crate::math::{cross, dot, normalize, scale, sub, Mat4, Vec3};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, MeshError};
 use crate::project::{pack_flat_channels, COORD_LIMIT};
 use crate::raster::FLAT_BIT;
 use crate::renderer::{Probe, Renderer};
@@ -69,6 +69,22 @@ pub enum AdjacencyError {
     },
     /// The crease angle is not within 0..=180 degrees.
     Angle,
+    /// An adjacency table that is not its mesh's: the neighbour it gives across edge `edge`
+    /// of triangle `triangle` is not a triangle of the mesh, does not share that edge (its
+    /// ends, run the other way), or does not name `triangle` back.
+    Mismatch {
+        /// The triangle.
+        triangle: usize,
+        /// Its edge.
+        edge: usize,
+    },
+    /// Triangle `triangle` of the mesh refers to vertex `index`, which does not exist.
+    IndexOutOfRange {
+        /// The triangle.
+        triangle: usize,
+        /// The bad index.
+        index: u16,
+    },
 }
 
 impl core::fmt::Display for AdjacencyError {
@@ -92,6 +108,15 @@ impl core::fmt::Display for AdjacencyError {
                 write!(f, "the crease table needs {bytes} bytes (3 bits per triangle)")
             }
             AdjacencyError::Angle => write!(f, "the crease angle is not within 0 to 180 degrees"),
+            AdjacencyError::Mismatch { triangle, edge } => write!(
+                f,
+                "the adjacency table is not the mesh's: the neighbour across edge {edge} of \
+                 triangle {triangle} does not share that edge (build it with mesh_adjacency)"
+            ),
+            AdjacencyError::IndexOutOfRange { triangle, index } => write!(
+                f,
+                "mesh triangle {triangle} refers to vertex {index}, which does not exist"
+            ),
         }
     }
 }
@@ -116,6 +141,9 @@ pub fn mesh_adjacency<S: Scalar>(
 ) -> Result<usize, AdjacencyError> {
     let (tris, pos) = (mesh.indices(), mesh.positions());
     let n = tris.len();
+    if let Err(MeshError::IndexOutOfRange { triangle, index }) = mesh.validate() {
+        return Err(AdjacencyError::IndexOutOfRange { triangle, index });
+    }
     // Vertices are the same corner when their positions are equal (a mesh with split normals
     // or texture seams has several records per corner).
     let same = |a: u16, b: u16| a == b || pos[a as usize] == pos[b as usize];
@@ -158,6 +186,52 @@ pub fn mesh_adjacency<S: Scalar>(
     Ok(out.iter().flatten().filter(|&&v| v == NO_NEIGHBOUR).count())
 }
 
+/// Checks that `table` is an adjacency table of `mesh` (as [`mesh_adjacency`] makes one): every
+/// index of the mesh in range, and each neighbour the table names a triangle of the mesh that
+/// runs along the same edge the other way and names the first back. An open edge
+/// ([`NO_NEIGHBOUR`]) is taken as given (proving it open would cost a search of the mesh).
+/// Run by every layered frame on its volume casters' and outlined objects' tables: a few
+/// comparisons per edge.
+///
+/// # Errors
+///
+/// [`AdjacencyError::IndexOutOfRange`], [`AdjacencyError::BufferTooSmall`] (a table shorter
+/// than the mesh's triangles) or [`AdjacencyError::Mismatch`].
+pub fn check_adjacency<S: Scalar>(
+    mesh: &Mesh<'_, S>,
+    table: &[[u16; 3]],
+) -> Result<(), AdjacencyError> {
+    let (tris, pos) = (mesh.indices(), mesh.positions());
+    let n = tris.len();
+    if let Err(MeshError::IndexOutOfRange { triangle, index }) = mesh.validate() {
+        return Err(AdjacencyError::IndexOutOfRange { triangle, index });
+    }
+    let table = table
+        .get(..n)
+        .ok_or(AdjacencyError::BufferTooSmall { needed: n })?;
+    let same = |a: u16, b: u16| a == b || pos[a as usize] == pos[b as usize];
+    for (t, adj) in table.iter().enumerate() {
+        for (e, &u) in adj.iter().enumerate() {
+            if u == NO_NEIGHBOUR {
+                continue;
+            }
+            let (a, b) = (tris[t][e], tris[t][(e + 1) % 3]);
+            let back = |f: usize| {
+                let other = tris[u as usize];
+                let (c, d) = (other[f], other[(f + 1) % 3]);
+                table[u as usize][f] == t as u16 && same(c, b) && same(d, a)
+            };
+            if (u as usize) >= n || u as usize == t || !(0..3).any(back) {
+                return Err(AdjacencyError::Mismatch {
+                    triangle: t,
+                    edge: e,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Which edges of a mesh are creases, into `out` (bit `3·t + e` of the bytes, least
 /// significant first, for edge `e` of triangle `t`, numbered as in [`mesh_adjacency`]): an
 /// edge whose two faces meet at more than `angle_deg` degrees (between their normals: 0 for a
@@ -172,7 +246,8 @@ pub fn mesh_adjacency<S: Scalar>(
 ///
 /// [`AdjacencyError::BufferTooSmall`] when `adjacency` is shorter than the mesh's triangles,
 /// [`AdjacencyError::CreaseTableTooSmall`] when `out` holds fewer than `3·T` bits, and
-/// [`AdjacencyError::Angle`] for an angle outside 0..=180 degrees.
+/// [`AdjacencyError::Angle`] for an angle outside 0..=180 degrees, and the errors of
+/// [`check_adjacency`] for a table that is not the mesh's.
 pub fn mesh_creases<S: Scalar>(
     mesh: &Mesh<'_, S>,
     adjacency: &[[u16; 3]],
@@ -184,9 +259,8 @@ pub fn mesh_creases<S: Scalar>(
     if !(0.0..=180.0).contains(&angle_deg) {
         return Err(AdjacencyError::Angle);
     }
-    let adjacency = adjacency
-        .get(..n)
-        .ok_or(AdjacencyError::BufferTooSmall { needed: n })?;
+    check_adjacency(mesh, adjacency)?;
+    let adjacency = &adjacency[..n];
     let bytes = (3 * n).div_ceil(8);
     let out = out
         .get_mut(..bytes)
@@ -340,6 +414,62 @@ fn into_object<S: Scalar>(m: &Mat4<S>, toward: Toward<S>) -> Option<(Toward<S>, 
     Some((moved, det < 0.0))
 }
 
+/// How far `obj`'s shadow volume is extruded: `reach`, or less where less still passes every
+/// point the camera can see (the volume is then closed beyond every visible receiver, so the
+/// image is the same), so that a reach far beyond the scene (30 000 units) does not carry the
+/// far cap out of the number type's range (Q16.16 clip coordinates saturate near 32 768).
+///
+/// Every visible point lies within `R` of the eye (the far plane's corner distance, `vw/vh`
+/// the aspect), and a caster vertex `w` shadows only points along one ray from it, so a reach
+/// of `|w − eye| + R` suffices; bounded over the object by its transformed centre and radius.
+/// In f64, once per caster, and only when `reach > R` (no scan of the mesh otherwise).
+pub(crate) fn volume_reach<S: Scalar>(
+    camera: &crate::Camera<S>,
+    aspect: f64,
+    obj: &Object<'_, S>,
+    reach: S,
+) -> S {
+    let r = reach.to_f64();
+    let sq = |v: f64| v * v;
+    let view = match camera.projection {
+        crate::Projection::Perspective { fov_y, far, .. } => {
+            let t = libm::tan(0.5 * fov_y.to_f64());
+            far.to_f64() * libm::sqrt(1.0 + sq(t) * (1.0 + sq(aspect)))
+        }
+        crate::Projection::Orthographic { height, near, far } => {
+            let h = 0.5 * height.to_f64();
+            let z = near.to_f64().abs().max(far.to_f64().abs());
+            libm::sqrt(sq(z) + sq(h) * (1.0 + sq(aspect)))
+        }
+    };
+    if r <= view || !view.is_finite() {
+        return reach;
+    }
+    let m = &obj.transform.m;
+    // The largest column norm of the linear part bounds how far it moves a unit vector.
+    let stretch = (0..3)
+        .map(|c| libm::sqrt((0..3).map(|k| sq(m[k][c].to_f64())).sum::<f64>()))
+        .fold(0.0, f64::max);
+    let radius = obj
+        .mesh
+        .positions()
+        .iter()
+        .map(|p| libm::sqrt(p.iter().map(|v| sq(v.to_f64())).sum::<f64>()))
+        .fold(0.0, f64::max);
+    let centre = libm::sqrt(
+        (0..3)
+            .map(|k| sq(m[k][3].to_f64() - camera.eye[k].to_f64()))
+            .sum(),
+    );
+    // A margin over the rounding of the bound into `S`.
+    let bound = (centre + stretch * radius + view) * (1.0 + 1e-3) + 1e-3;
+    if bound.is_finite() && bound < r {
+        S::from_f64(bound)
+    } else {
+        reach
+    }
+}
+
 /// Marks in `marks` (bit `t` per triangle `t`) the faces of `mesh` turned toward `toward`
 /// (object space; `flip` for a mirroring transform). One cross and one dot product per face.
 fn mark_faces<S: Scalar>(mesh: &Mesh<'_, S>, toward: Toward<S>, flip: bool, marks: &mut [u8]) {
@@ -380,8 +510,8 @@ impl<
         const ZL: usize,
     > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
 {
-    /// The shadow volume of `obj` from `v`'s light, extruded by its reach (checked valid and
-    /// positive): its vertices (each mesh vertex and its extruded copy, side by side) and its
+    /// The shadow volume of `obj` from `v`'s light, extruded by `reach` (checked valid and
+    /// positive; [`volume_reach`] of `v.reach`): its vertices (each mesh vertex and its extruded copy, side by side) and its
     /// triangles, stored turned toward the eye. `marks` holds a bit per triangle (checked).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn volume_object<P: Probe>(
@@ -391,10 +521,11 @@ impl<
         obj: &Object<'_, S>,
         adjacency: &[[u16; 3]],
         v: &VolumeShadow<'_, S>,
+        reach: S,
         marks: &mut [u8],
         probe: &mut P,
     ) {
-        let (light, reach) = (&v.light, v.reach);
+        let light = &v.light;
         let mesh = obj.mesh;
         let (positions, tris) = (mesh.positions(), mesh.indices());
         let toward = match *light {

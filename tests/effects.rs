@@ -454,17 +454,24 @@ fn bad_fog_and_bad_point_lights_are_reported() {
         assert_eq!(e, Error::Fog);
         assert!(e.to_string().contains("near < far"), "{e}");
     }
-    // A point light with a NaN: every object is skipped and counted, as for a directional
-    // light.
+    // A point light with a NaN: refused, as a fog (it once made every object a counted skip,
+    // an empty frame that came back `Ok`).
     let bad = [PointLight::new([f32::NAN, 1.0, 0.0], [255; 3])];
     let effects = Effects {
         point_lights: &bad,
         fog: None,
         tone: None,
     };
-    let stats = r.render(&scene.with_effects(&effects), &mut frame).unwrap();
-    assert_eq!(stats.invalid, 2);
-    assert_eq!(stats.drawn, 0);
+    let e = r
+        .render(&scene.with_effects(&effects), &mut frame)
+        .unwrap_err();
+    assert_eq!(
+        e,
+        Error::Light {
+            index: 0,
+            point: true
+        }
+    );
 }
 
 /// The point-light and fog benchmark frames in each number type, against golden images

@@ -25,7 +25,7 @@ use embedded_graphics::prelude::{DrawTarget, OriginDimensions, Pixel, Point, Poi
 use embedded_graphics::primitives::Rectangle;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::{Capacity, Error};
+use scanline3d::{Capacity, Error, TexturedShape};
 
 type Q = Fx<I16F16>;
 
@@ -46,6 +46,8 @@ const CAPS: Capacities = Capacities {
     triangles: 240,
     active: 48,
     lines: 1,
+    attr_vertices: 0,
+    attr_active: 0,
 };
 
 /// The firmware's renderer type.
@@ -617,4 +619,216 @@ fn mistakes_are_reported_before_anything_is_drawn() {
     device
         .render(&scene(&objects, 0, lights(0)), &mut f)
         .unwrap();
+}
+
+// ---------------------------------------------------------------------------------------------
+// A layered, fogged, textured orbit, sized exactly (issue #40): the sizing recipe of the
+// README for every kind of frame. `Renderer::needs_layered` measures the vertices the shadow
+// polygons add, the attribute stores (`XV`, `XA`: the fog takes a pool entry for the whole
+// frame) and the `Layers` lists (`RA`, `PA`); a renderer and layers with exactly those
+// figures draw every frame, and one less in any of the seven fails a frame with an error that
+// names it.
+
+/// An 8 × 8 RGB565 checker in flash.
+static CHECKER: [u16; 64] = {
+    let mut t = [0u16; 64];
+    let mut i = 0;
+    while i < 64 {
+        t[i] = if (i / 8 + i % 8) % 2 == 0 {
+            0xffff
+        } else {
+            0x3186
+        };
+        i += 1;
+    }
+    t
+};
+static CHECKER_TEXTURE: scanline3d::Texture = match scanline3d::Texture::new(&CHECKER, 8, 8) {
+    Ok(t) => t,
+    Err(_) => panic!("an 8 × 8 texture"),
+};
+
+/// The layered device's capacities: exactly the largest needs over the orbit (the test
+/// `the_layered_orbit_is_sized_exactly` measures them and fails, naming the new figures, if
+/// they change).
+const LAYERED: Capacities = Capacities {
+    width: W,
+    height: H,
+    vertices: LAYERED_NEEDS[0],
+    triangles: LAYERED_NEEDS[1],
+    active: LAYERED_NEEDS[2],
+    lines: 1,
+    attr_vertices: LAYERED_NEEDS[3],
+    attr_active: LAYERED_NEEDS[4],
+};
+/// Vertices, triangles, active, XV, XA, RA, PA.
+const LAYERED_NEEDS: [usize; 7] = [611, 345, 30, 359, 70, 20, 39];
+
+/// The objects of the layered orbit's frame `frame`: the ground (the shadow's receiver), the
+/// flat torus (its caster) and a textured cube.
+fn layered_objects<'a>(
+    world: &'a World,
+    cube: &'a TexturedShape<Q, 24, 12>,
+    frame: usize,
+) -> [Object<'a, Q>; 3] {
+    let [ground, torus, _] = world.objects(frame);
+    let spin = Q::lit(0.3) * Q::from_i32(frame as i32);
+    [
+        ground,
+        torus,
+        Object {
+            mesh: cube.mesh(),
+            transform: Mat4::translate([Q::lit(-1.2), Q::lit(0.45), Q::lit(0.6)])
+                * Mat4::rotate_y(spin),
+            material: Material::matte([255, 255, 255], Q::lit(0.3), Q::lit(0.7))
+                .textured(&CHECKER_TEXTURE),
+        },
+    ]
+}
+
+/// Draws every frame of the layered orbit with a renderer and layers of the given
+/// capacities; the first error, as text, or `Ok`.
+fn layered_orbit<
+    const V: usize,
+    const T: usize,
+    const A: usize,
+    const XV: usize,
+    const XA: usize,
+    const RA: usize,
+    const PA: usize,
+>() -> Result<(), String> {
+    let world = World::new();
+    let cube = TexturedShape::<Q, 24, 12>::cube(0.35).unwrap();
+    let effects = scanline3d::Effects {
+        point_lights: &[],
+        fog: Some(scanline3d::Fog::linear(
+            Q::lit(3.0),
+            Q::lit(9.0),
+            [16, 24, 48],
+        )),
+        tone: None,
+    };
+    let mut renderer = Box::new(Renderer::<Q, Rgb565, W, H, V, T, A, 1, XV, XA>::new());
+    let mut layers = Box::new(scanline3d::Layers::<W, 1, RA, PA>::new());
+    let mut frame = Frame::new(W, H, Rgb565::BLACK);
+    for k in 0..FRAMES {
+        let objects = layered_objects(&world, &cube, k);
+        let scene = scene(&objects, k, lights(k)).with_effects(&effects);
+        let layering = scanline3d::Layering::projected(
+            &[0],
+            &[1],
+            scanline3d::PlanarShadow::new(
+                [Q::ZERO, Q::ONE, Q::ZERO, Q::ZERO],
+                scanline3d::ShadowLight::Directional(sun().direction),
+                140,
+            ),
+        );
+        renderer
+            .render_layered(&scene, &layering, &mut layers, &mut frame)
+            .map_err(|e| format!("frame {k}: {e}"))?;
+    }
+    Ok(())
+}
+
+#[test]
+fn the_layered_orbit_is_sized_exactly() {
+    // Measured with generous capacities, attribute stores and lists.
+    let world = World::new();
+    let cube = TexturedShape::<Q, 24, 12>::cube(0.35).unwrap();
+    let effects = scanline3d::Effects {
+        point_lights: &[],
+        fog: Some(scanline3d::Fog::linear(
+            Q::lit(3.0),
+            Q::lit(9.0),
+            [16, 24, 48],
+        )),
+        tone: None,
+    };
+    type Big = renderer_type!(Q, Rgb565, width: W, height: H, vertices: 4096,
+        triangles: 4096, active: 512, attr_vertices: 4096, attr_active: 512);
+    let mut measure = Box::new(Big::new());
+    let mut layers = Box::new(scanline3d::Layers::<W, 1, 512, 512>::new());
+    let mut worst = Needs::default();
+    for k in 0..FRAMES {
+        let objects = layered_objects(&world, &cube, k);
+        let scene = scene(&objects, k, lights(k)).with_effects(&effects);
+        let layering = scanline3d::Layering::projected(
+            &[0],
+            &[1],
+            scanline3d::PlanarShadow::new(
+                [Q::ZERO, Q::ONE, Q::ZERO, Q::ZERO],
+                scanline3d::ShadowLight::Directional(sun().direction),
+                140,
+            ),
+        );
+        worst = worst.max(
+            measure
+                .needs_layered(&scene, &layering, &mut layers)
+                .unwrap(),
+        );
+    }
+    let [v, t, a, xv, xa, ra, pa] = LAYERED_NEEDS;
+    let measured = [
+        worst.vertices,
+        worst.triangles,
+        worst.active,
+        worst.attr_vertices as usize,
+        worst.attr_active as usize,
+        worst.receivers as usize,
+        worst.overlays as usize,
+    ];
+    assert_eq!(
+        measured, LAYERED_NEEDS,
+        "the orbit's needs changed: {worst:?}"
+    );
+    assert_eq!(worst, LAYERED.capacity().with_layers(ra, pa));
+    type Exact = renderer_type!(Q, Rgb565, LAYERED);
+    assert!(worst.fits(&Exact::CAPACITY.with_layers(ra, pa)));
+    // Exactly sized: every frame draws.
+    const N: [usize; 7] = LAYERED_NEEDS;
+    layered_orbit::<{ N[0] }, { N[1] }, { N[2] }, { N[3] }, { N[4] }, { N[5] }, { N[6] }>()
+        .unwrap();
+    // One less in any capacity: a frame fails, and the error names what was short.
+    let short = [
+        (
+            layered_orbit::<{ N[0] - 1 }, { N[1] }, { N[2] }, { N[3] }, { N[4] }, { N[5] }, { N[6] }>(
+            ),
+            "VERTS",
+        ),
+        (
+            layered_orbit::<{ N[0] }, { N[1] - 1 }, { N[2] }, { N[3] }, { N[4] }, { N[5] }, { N[6] }>(
+            ),
+            "TRIS",
+        ),
+        (
+            layered_orbit::<{ N[0] }, { N[1] }, { N[2] - 1 }, { N[3] }, { N[4] }, { N[5] }, { N[6] }>(
+            ),
+            "ACTIVE",
+        ),
+        (
+            layered_orbit::<{ N[0] }, { N[1] }, { N[2] }, { N[3] - 1 }, { N[4] }, { N[5] }, { N[6] }>(
+            ),
+            "XV needs",
+        ),
+        (
+            layered_orbit::<{ N[0] }, { N[1] }, { N[2] }, { N[3] }, { N[4] - 1 }, { N[5] }, { N[6] }>(
+            ),
+            "XA needs",
+        ),
+        (
+            layered_orbit::<{ N[0] }, { N[1] }, { N[2] }, { N[3] }, { N[4] }, { N[5] - 1 }, { N[6] }>(
+            ),
+            "RA",
+        ),
+        (
+            layered_orbit::<{ N[0] }, { N[1] }, { N[2] }, { N[3] }, { N[4] }, { N[5] }, { N[6] - 1 }>(
+            ),
+            "PA",
+        ),
+    ];
+    for (result, name) in short {
+        let e = result.expect_err(name);
+        assert!(e.contains(name), "{name}: {e}");
+    }
+    let _ = (v, t, a, xv, xa);
 }

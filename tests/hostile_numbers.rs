@@ -133,15 +133,10 @@ where
             "{} position {bad}: {s:?}",
             S::NAME
         );
-        // Transform, light direction, material coefficients: main drew the object in Q16.16
-        // with the NaN read as 0, and in f32/f64 drew it with a lost light (ambient only) or
-        // a NaN colour; now every triangle of the object is skipped and counted, in every type.
-        for poison in [
-            Poison::Transform,
-            Poison::Light,
-            Poison::Ambient,
-            Poison::Diffuse,
-        ] {
+        // Transform, material coefficients: main drew the object in Q16.16 with the NaN read
+        // as 0, and in f32/f64 drew it with a lost light (ambient only) or a NaN colour; now
+        // every triangle of the object is skipped and counted, in every type.
+        for poison in [Poison::Transform, Poison::Ambient, Poison::Diffuse] {
             let (s, lit) = fan::<S, C>(poison, bad, cam()).unwrap();
             assert_eq!(
                 (s.triangles_in, s.invalid, s.drawn, s.pixels_written, lit),
@@ -150,6 +145,11 @@ where
                 S::NAME
             );
         }
+        // A light direction: the scene's, not one object's. It too made every object a counted
+        // skip (an empty frame that came back `Ok`); now the frame is refused, as for a fog or
+        // a tone map with a NaN, in every type.
+        let e = fan::<S, C>(Poison::Light, bad, cam()).unwrap_err();
+        assert!(e.contains("light 0"), "{} light {bad}: {e}", S::NAME);
     }
 }
 
@@ -518,16 +518,12 @@ fn errors_implement_display_and_error() {
     assert!(error_text(&m).contains("triangle 3") && error_text(&m).contains('9'));
     let g = scanline3d::overlay::GlyphError::TooManyChars { capacity: 4 };
     assert!(error_text(&g).contains('4'));
-    let c: Error<core::convert::Infallible> = Error::Capacity {
-        what: scanline3d::Capacity::ActiveTriangles,
-        capacity: 32,
-        needed: 66,
+    let c: Error<core::convert::Infallible> = Error::Light {
+        index: 1,
+        point: true,
     };
     let t = error_text(&c);
-    assert!(
-        t.contains("ACTIVE") && t.contains("32") && t.contains("66"),
-        "{t}"
-    );
+    assert!(t.contains("point light 1") && t.contains("NaN"), "{t}");
     let cam: Error<core::convert::Infallible> = Error::Camera(CameraError::EyeAtTarget);
     assert!(core::error::Error::source(&cam).is_some());
     assert!(error_text(&cam).contains("eye equals target"));

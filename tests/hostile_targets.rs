@@ -635,17 +635,25 @@ fn build<S: Scalar>(case: Case) -> Spec<S> {
             }
             spec(s, fan_invalid())
         }
-        // A scene light's direction: every object is skipped.
+        // A scene light's direction: the frame is refused (every object was skipped and
+        // counted, an empty frame that came back `Ok`).
         Case::LightDirection(bad) => {
             let mut s = two();
             s.lights[1] = Light::white(v3([0.0, bad, 1.0]));
             spec(
                 s,
-                blank(&[
-                    ("triangles_in", 16, 16),
-                    ("invalid", 16, 16),
-                    ("pixels_written", 0, 0),
-                ]),
+                fails(
+                    |e| {
+                        matches!(
+                            e,
+                            Error::Light {
+                                index: 1,
+                                point: false
+                            }
+                        )
+                    },
+                    "Light { index: 1, point: false }",
+                ),
             )
         }
         Case::Camera(edit) => camera_case(edit),
@@ -821,18 +829,17 @@ fn build<S: Scalar>(case: Case) -> Spec<S> {
                 with_palette(frame(&[("drawn", 6, 6)], (300, 1000)), palette),
             )
         }
-        // NaN vertex normals: no direction, so no diffuse light, as a zero normal.
+        // NaN vertex normals: refused when the mesh is built (they were drawn as zero normals,
+        // ambient only, and not counted); the cube is drawn with its own normals.
         Case::NanNormals => {
-            let mut s = cube_only();
-            s.parts[0].normals = Some(vec![v3([f64::NAN; 3]); 24]);
-            let palette = ambient_only(&s);
-            spec(
-                s,
-                with_palette(
-                    frame(&[("invalid", 0, 0), ("drawn", 6, 6)], (300, 1000)),
-                    palette,
-                ),
-            )
+            let s = cube_only();
+            let nan = vec![v3::<S>([f64::NAN; 3]); 24];
+            let e = Mesh::new(&s.parts[0].pos, &s.parts[0].idx)
+                .unwrap()
+                .with_normals(&nan)
+                .unwrap_err();
+            assert_eq!(e, scanline3d::MeshError::InvalidNormal { vertex: 0 });
+            spec(s, frame(&[("invalid", 0, 0), ("drawn", 6, 6)], (300, 1000)))
         }
         Case::Specular(shading, shininess, k) => {
             let mut s = two();

@@ -57,6 +57,8 @@ const BOARD: Capacities = Capacities {
     triangles: 480,
     active: 64,
     lines: 8,
+    attr_vertices: 0,
+    attr_active: 0,
 };
 
 /// A `Capacities` constant, or a struct expression (with `..` from another), gives the same
@@ -115,6 +117,8 @@ fn display_is_the_macros_arguments() {
         triangles: 4,
         active: 5,
         lines: 6,
+        attr_vertices: 0,
+        attr_active: 0,
     };
     assert_eq!(
         small.to_string(),
@@ -136,6 +140,8 @@ fn a_named_renderer_renders_like_the_positional_one() {
         triangles: 12,
         active: 12,
         lines: 1,
+        attr_vertices: 0,
+        attr_active: 0,
     };
     type Small = renderer_type!(Q, Rgb565, SMALL);
     static NAMED: Mutex<Small> = Mutex::new(Small::const_new(Rgb565::BLACK));
@@ -186,6 +192,8 @@ fn the_limits_are_the_renderers() {
         triangles: Capacities::MAX_TRIANGLES,
         active: Capacities::MAX_ACTIVE,
         lines: 1,
+        attr_vertices: 0,
+        attr_active: 0,
     }
     .checked();
     type Max = renderer_type!(f32, BinaryColor, MAX);
@@ -226,6 +234,8 @@ fn checked_names_the_field_out_of_range() {
         triangles: 8,
         active: 8,
         lines: 1,
+        attr_vertices: 0,
+        attr_active: 0,
     };
     assert_eq!(base.checked(), base);
     type Set = fn(&mut Capacities, usize);
@@ -264,13 +274,13 @@ fn checked_names_the_field_out_of_range() {
 }
 
 /// `ram_estimate` is the documented formula: the exact `RAM_BYTES` of the type the same
-/// capacities give is at most 128 bytes more.
+/// capacities give is at most 160 bytes more.
 #[test]
 fn ram_estimate_is_within_the_formulas_slack() {
     fn check(caps: Capacities, color_bytes: usize, exact: usize) {
         let est = caps.ram_estimate(color_bytes);
         assert!(
-            exact >= est && exact <= est + 128,
+            exact >= est && exact <= est + 160,
             "{caps}: {exact} vs {est}"
         );
     }
@@ -283,6 +293,8 @@ fn ram_estimate_is_within_the_formulas_slack() {
         triangles: 300,
         active: 20,
         lines: 4,
+        attr_vertices: 0,
+        attr_active: 0,
     };
     type Wide = renderer_type!(f32, Rgb888, WIDE);
     check(WIDE, 4, Wide::RAM_BYTES);

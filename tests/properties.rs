@@ -100,8 +100,13 @@ fn render_world<S: Scalar>(w: &World) {
     } else {
         Shading::Gouraud
     };
+    // Normals that are not valid numbers are refused when the mesh is built.
+    let Ok(mesh) = Mesh::new(&pos, &w.idx).unwrap().with_normals(&nor) else {
+        assert!(nor.iter().flatten().any(|c| !c.is_valid()));
+        return;
+    };
     let objects = [Object {
-        mesh: Mesh::new(&pos, &w.idx).unwrap().with_normals(&nor).unwrap(),
+        mesh,
         transform: Mat4::rotate_y(S::from_f64(0.3)),
         material: m,
     }];
