@@ -764,7 +764,7 @@ fn check_adjacency<S: Scalar, E, const L: usize>(
         }
         // Every index in range and every neighbour the mesh's (a table of the right length
         // with the wrong contents once drew wrong silhouettes, and a bad index panicked).
-        crate::volume::check_adjacency(&scene.objects[object].mesh, table)
+        crate::adjacency::check_adjacency(&scene.objects[object].mesh, table)
             .map_err(|error| Error::Layers(LayerError::Mesh { object, error }))?;
     }
     Ok(())

@@ -179,6 +179,7 @@
 // scene → geometry (camera, math, clip, project, shade; the cull kernel) → bin → strip (setup,
 // span, with the raster formats) → the target. Architecture-specific code lives in `kernel`
 // only (see "Cortex-M kernels" above).
+mod adjacency;
 mod attrs;
 mod bin;
 mod camera;
@@ -237,6 +238,7 @@ pub use fixed;
 // The baked CSG part (src/demo_csg_mesh.rs) names the crate as its users do.
 extern crate self as scanline3d;
 
+pub use adjacency::{check_adjacency, mesh_adjacency, mesh_creases, AdjacencyError, NO_NEIGHBOUR};
 pub use camera::{Camera, CameraError, Projection, MAX_DEPTH_RATIO};
 pub use clip::{BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP};
 pub use color::{luma, quantize, scale_channels, TargetColor, TriangleId, BAYER};
@@ -270,7 +272,6 @@ pub use strip::StripCanvas;
 pub use texture::{Texture, TextureError, TextureMode, Texturing, Wrap, MAX_TEXTURE_SIZE};
 pub use textured_shapes::TexturedShape;
 pub use tone::{AutoExposure, Metered, ToneCurve, ToneMap, MAX_TONE_SCALE};
-pub use volume::{check_adjacency, mesh_adjacency, mesh_creases, AdjacencyError, NO_NEIGHBOUR};
 
 #[doc(inline)]
 pub use embedded_graphics_core::draw_target::DrawTarget;
