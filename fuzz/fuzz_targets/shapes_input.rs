@@ -1,5 +1,5 @@
-//! Decodes fuzzer bytes into a shape constructor call (cube, torus, icosphere, terrain or plane) with
-//! any parameters — NaN, infinities, huge and tiny lengths, counts up to `usize::MAX` — and runs
+//! Decodes fuzzer bytes into a shape constructor call (cube, torus, icosphere, terrain or plane,
+//! and the textured cube, torus, icosphere and terrain of `TexturedShape`) with any parameters — NaN, infinities, huge and tiny lengths, counts up to `usize::MAX` — and runs
 //! it with `Fx<I16F16>`, `Fx<I12F20>`, `f32` and `f64`. Shared by the fuzz target
 //! (`fuzz_targets/shapes.rs`) and the host test `tests/hostile_shapes.rs`, which replays the
 //! committed corpus (`fuzz/corpus/shapes`).
@@ -12,7 +12,7 @@
 use scanline3d::fixed::types::{I12F20, I16F16};
 use scanline3d::prelude::*;
 use scanline3d::ParamValue;
-use scanline3d::{Shape, ShapeError};
+use scanline3d::{Shape, ShapeError, TexturedShape};
 
 const V: usize = 289;
 const T: usize = 512;
@@ -97,9 +97,29 @@ enum Call {
     Plane(f64, f64, usize, usize),
 }
 
-fn decode(data: &[u8]) -> Call {
+/// A call and whether it is `TexturedShape`'s (the plane has no textured variant).
+fn decode(data: &[u8]) -> (Call, bool) {
     let mut b = Bytes(data);
     let selector = b.u8();
+    // 5, 13, 21, ...: the textured shapes, added after the seed corpus was written (no seed
+    // of the plain shapes has such a selector); the next byte picks the shape, whose
+    // parameters decode as the plain one's.
+    if selector % 8 == 5 {
+        let call = match b.u8() % 4 {
+            0 => Call::Cube(b.real()),
+            1 => Call::Torus(b.real(), b.real(), b.count(), b.count()),
+            2 => Call::Icosphere(
+                b.real(),
+                u32::from(b.u8()) | (u32::from(b.u8() & 0x80) << 24),
+            ),
+            _ => Call::Terrain(b.real(), b.count(), b.real()),
+        };
+        return (call, true);
+    }
+    (decode_plain(selector, &mut b), false)
+}
+
+fn decode_plain(selector: u8, b: &mut Bytes) -> Call {
     // 4, 12, 20, ...: the plane, added after the seed corpus was written (whose selectors are
     // 0..=3 and 251); every other selector decodes as before.
     if selector % 8 == 4 {
@@ -256,9 +276,127 @@ fn check<S: Scalar>(call: Call) {
     }
 }
 
+/// The textured constructor's needs, exactly, when they differ from the plain shape's: the
+/// torus splits its seams, `(nu + 1)·(nv + 1)` vertices (`u128` holds them: both factors are
+/// at most 2⁶⁴; their product saturates, still beyond `usize`).
+fn textured_needed(call: Call) -> (u128, u128) {
+    match call {
+        Call::Torus(_, _, nu, nv) => (
+            (nu as u128 + 1).saturating_mul(nv as u128 + 1),
+            needed(call).1,
+        ),
+        _ => needed(call),
+    }
+}
+
+/// `TexturedShape`'s constructor: `Ok` with one texture coordinate per vertex (and a mesh that
+/// carries them), or the plain constructor's errors with the textured vertex counts (the
+/// icosphere's seam copies are not known in advance: its vertex count is only bounded below).
+fn check_textured<S: Scalar>(call: Call) {
+    let r = match call {
+        Call::Cube(h) => TexturedShape::<S, V, T>::cube(h),
+        Call::Torus(br, r, nu, nv) => TexturedShape::<S, V, T>::torus(br, r, nu, nv),
+        Call::Icosphere(rad, s) => TexturedShape::<S, V, T>::icosphere(rad, s),
+        Call::Terrain(size, c, a) => TexturedShape::<S, V, T>::terrain(size, c, a),
+        Call::Plane(..) => unreachable!("the plane has no textured variant"),
+    };
+    let (nv, nt) = textured_needed(call);
+    let ico = matches!(call, Call::Icosphere(..));
+    match r {
+        Ok(s) => {
+            let shape = &s.shape;
+            let nvs = shape.positions.len() as u128;
+            if ico {
+                assert!(nvs >= nv, "{call:?}");
+                assert_eq!(shape.indices.len() as u128, nt, "{call:?}");
+            } else {
+                assert_eq!((nvs, shape.indices.len() as u128), (nv, nt), "{call:?}");
+            }
+            assert_eq!(shape.normals.len(), shape.positions.len(), "{call:?}");
+            assert_eq!(s.uvs.len(), shape.positions.len(), "{call:?}");
+            for t in &shape.indices {
+                assert!(
+                    t.iter().all(|&i| usize::from(i) < shape.positions.len()),
+                    "{call:?}"
+                );
+            }
+            for p in shape.positions.iter().chain(shape.normals.iter()) {
+                assert!(
+                    p.iter().all(|v| v.is_valid()),
+                    "{call:?} gave {p:?} in {}",
+                    S::NAME
+                );
+            }
+            for uv in &s.uvs {
+                assert!(
+                    uv.iter().all(|v| v.is_valid()),
+                    "{call:?} gave texture coordinates {uv:?} in {}",
+                    S::NAME
+                );
+            }
+            assert!(
+                s.mesh().uvs().is_some(),
+                "{call:?}: the mesh lost its texture coordinates in {}",
+                S::NAME
+            );
+        }
+        Err(ShapeError::BadParameter { name, value, .. }) => {
+            assert!(
+                is_bad(call, name, value),
+                "{call:?}: {name} = {value} is not bad"
+            );
+        }
+        Err(ShapeError::OutOfRange {
+            extent,
+            number_type,
+            rounds_to_zero,
+        }) => {
+            assert_eq!(number_type, S::NAME);
+            let (hi, lo) = (S::from_f64(extent), S::from_f64(-extent));
+            if rounds_to_zero {
+                assert!(hi <= S::ZERO, "{call:?}: extent {extent} in {number_type}");
+            } else {
+                assert!(!(hi.is_valid() && lo.is_valid()), "{call:?}: {extent} fits");
+            }
+        }
+        Err(ShapeError::Capacity {
+            vertices,
+            triangles,
+            vertex_capacity,
+            triangle_capacity,
+        }) => {
+            assert_eq!((vertex_capacity, triangle_capacity), (V, T));
+            assert_eq!(triangles, usize_of(nt), "{call:?}");
+            if ico {
+                // Either the plain icosphere does not fit, or its seam copies do not.
+                let v = vertices.map_or(u128::MAX, |v| v as u128);
+                assert!(v >= nv, "{call:?}: {vertices:?}");
+                assert!(
+                    v > V as u128 || nt > T as u128,
+                    "{call:?} fits but was refused"
+                );
+            } else {
+                assert_eq!(vertices, usize_of(nv), "{call:?}");
+                assert!(
+                    nv > V as u128 || nt > T as u128,
+                    "{call:?} fits but was refused"
+                );
+            }
+        }
+        Err(e) => panic!("{call:?}: unknown error {e:?}"),
+    }
+}
+
 /// Runs the constructor call encoded in `data` with every number type.
 pub fn shapes_all(data: &[u8]) {
-    let call = decode(data);
+    let (call, textured) = decode(data);
+    if textured {
+        check_textured::<Fx<I16F16>>(call);
+        check_textured::<Fx<I12F20>>(call);
+        check_textured::<f32>(call);
+        check_textured::<f64>(call);
+        return;
+    }
     check::<Fx<I16F16>>(call);
     check::<Fx<I12F20>>(call);
     check::<f32>(call);
