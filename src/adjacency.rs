@@ -10,6 +10,7 @@ pub const NO_NEIGHBOUR: u16 = u16::MAX;
 
 /// Why [`mesh_adjacency`] could not build a table.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum AdjacencyError {
     /// The output holds fewer entries than the mesh's triangles.

@@ -47,6 +47,7 @@ pub struct Camera<S> {
 /// Values are the parameter as the number type holds it, converted to `f64` (exact for every
 /// [`Scalar`]). Equality compares them bit for bit, so an error carrying NaN equals itself.
 #[derive(Copy, Clone, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum CameraError {
     /// `eye` equals `target` (in the number type): no view direction.

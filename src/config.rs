@@ -141,6 +141,7 @@ use crate::renderer::{ram_formula, Needs, Renderer};
 /// .checked();
 /// ```
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Capacities {
     /// Screen width in pixels (`W`).
     pub width: usize,

@@ -13,6 +13,7 @@ pub fn deg<S: Scalar>(d: f64) -> S {
 
 /// What one benchmark frame produced.
 #[derive(Copy, Clone, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct BenchFrame {
     /// The frame's statistics.
     pub stats: crate::Stats,
@@ -22,6 +23,7 @@ pub struct BenchFrame {
 
 /// Why a benchmark frame failed.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum BenchError<E> {
     /// Building the scene failed (a shape or camera).

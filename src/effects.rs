@@ -9,7 +9,8 @@ use crate::attrs::{ActiveExtra, FOG};
 use crate::camera::{Camera, Projection};
 use crate::math::{dot, normalize, sub, Vec3};
 use crate::scalar::{mul_wide, recip_norm, Scalar};
-use crate::shade::PreparedLight;
+use crate::shade::{add_light, finish, Material, PreparedLight};
+use crate::tone::ToneMap;
 
 /// What a scene adds to its directional lights: point lights and fog, borrowed by
 /// [`crate::Scene::effects`] (one pointer in the scene: a scene without them pays nothing
@@ -296,6 +297,34 @@ impl FogSpan {
         let x = (w - self.start as i64).clamp(0, i32::MAX as i64) as i32;
         let (m, e) = self.inv;
         (mul_wide(x, m) >> (e - 16)).clamp(0, 1 << 16) as i32
+    }
+}
+
+/// [`lit_color`](crate::shade::lit_color) with point lights too, at world point `p`
+/// ([`PointLight::at`]), and the scene's tone map. Here, with the effects it combines, so that
+/// the shading of a material imports no effect (no shade ↔ effects ↔ tone cycle).
+pub(crate) fn lit_color_points<S: Scalar>(
+    m: &Material<S>,
+    lights: &[PreparedLight<S>],
+    points: &[PointLight<S>],
+    n: Vec3<S>,
+    p: Vec3<S>,
+    to_eye: Vec3<S>,
+    tone: Option<&ToneMap<S>>,
+) -> [u16; 3] {
+    // With a tone map the lights' sums start at zero: the ambient term is not scaled by the
+    // lights' intensity.
+    let start = if tone.is_some() { S::ZERO } else { m.ambient };
+    let mut sums = ([start; 3], [S::ZERO; 3]);
+    for l in lights {
+        add_light(&mut sums, m, l, n, to_eye);
+    }
+    for pl in points {
+        add_light(&mut sums, m, &pl.at(p), n, to_eye);
+    }
+    match tone {
+        Some(t) => t.map(m, sums.0, sums.1),
+        None => finish(m, sums),
     }
 }
 

@@ -9,6 +9,7 @@ use crate::stats::Stats;
 /// One of the compile-time capacities a frame needs (see [`Needs`]): the renderer's, its
 /// attribute stores' and a layered frame's [`crate::Layers`] lists.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum Capacity {
     /// `VERTS`: mesh vertices of all objects plus vertices made by clipping.
@@ -60,6 +61,7 @@ impl Capacity {
 
 /// Why a frame was not (completely) drawn.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum Error<E> {
     /// The draw target returned an error; the frame is drawn up to the failing strip.
@@ -312,6 +314,7 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
 /// let s = scanline3d::Stats { drawn: 1, ..Default::default() };
 /// ```
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub struct Needs {
     /// Vertices (`VERTS`): mesh vertices of every object, vertices made by clipping, and one
@@ -468,6 +471,7 @@ impl<E: core::fmt::Debug + core::fmt::Display> core::error::Error for Error<E> {
 /// every capacity at once ([`Error::Shortfall`], or [`Renderer::shortfall`](crate::Renderer::shortfall) under
 /// [`OverflowPolicy::DrawWhatFits`]).
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub struct Shortfall {
     /// What the frame needed (see `exact`).
@@ -525,6 +529,7 @@ impl core::fmt::Display for Shortfall {
 /// What the renderer does with a frame that does not fit its capacities
 /// ([`Renderer::with_overflow`](crate::Renderer::with_overflow)).
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum OverflowPolicy {
     /// The frame fails with [`Error::Shortfall`] before anything is drawn (the default): on a
@@ -542,6 +547,7 @@ pub enum OverflowPolicy {
 
 /// [`Renderer::render_strip_be`](crate::Renderer::render_strip_be)'s error: the buffer cannot hold one row of the viewport.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct StripBufferTooSmall {
     /// Bytes one row needs.
     pub needed: usize,

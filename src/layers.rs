@@ -21,13 +21,12 @@ use crate::renderer::*;
 use crate::scalar::Scalar;
 use crate::scene::{Object, Scene};
 use crate::shade::Material;
-use crate::shadow::{blob_disc, Edges, LayerError, Layering, ShadowLight, ShadowMethod, BLOB_FAN};
+use crate::shadow::{
+    blob_disc, Edges, LayerError, Layering, ShadowLight, ShadowMethod, BLOB_FAN, MAX_TRANSLUCENT,
+};
 use crate::strip::draw_list_row;
 use crate::textured::{attach_pushed, is_textured};
 use crate::volume::{volume_sign, Lines, Pick};
-
-/// The most translucent objects one layered frame draws.
-pub const MAX_TRANSLUCENT: usize = 16;
 
 /// [`Layers`] post-list entry kinds.
 const SHADOW: u8 = 1;
@@ -682,11 +681,11 @@ impl<
         let textured = XV > 0 && XA > 0 && is_textured(rec, &self.xverts);
         let m = if textured { SpanMode::default() } else { mode };
         macro_rules! push {
-            ($list:expr) => {{
+            ($list:expr, $n:ident) => {{
                 let before = $list.len();
                 $list.push_with(|a| a.setup::<C>(rec, verts, row as i32, h, m))
                     && (!textured
-                        || attach_pushed::<C, _>(
+                        || attach_pushed::<C, $n>(
                             &mut $list,
                             before,
                             &mut self.xactive,
@@ -697,9 +696,9 @@ impl<
             }};
         }
         if v < layers.bounds[0] as usize {
-            push!(layers.receivers)
+            push!(layers.receivers, RA)
         } else {
-            push!(self.active)
+            push!(self.active, ACTIVE)
         }
     }
 }

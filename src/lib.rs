@@ -248,7 +248,7 @@ pub use config::Capacities;
 pub use cull::{facing, signed_area2, Facing};
 pub use depth_mode::DrawOrder;
 pub use effects::{Effects, Fog, PointLight, MAX_PHONG_POINT_LIGHTS};
-pub use layers::{Layers, MAX_TRANSLUCENT};
+pub use layers::Layers;
 pub use math::{add, cross, dot, length, normalize, scale, sub, Mat4, Vec3};
 pub use mesh::{face_normal, vertex_normals, Mesh, MeshError, UV_LIMIT};
 pub use no_depth::NoDepthRenderer;
@@ -265,7 +265,7 @@ pub use scene::{Object, Scene};
 pub use shade::{Light, Material, Shading};
 pub use shadow::{
     Edges, LayerError, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow,
-    BLOB_RINGS, BLOB_SIDES,
+    BLOB_RINGS, BLOB_SIDES, MAX_TRANSLUCENT,
 };
 pub use shapes::{ParamValue, Shape, ShapeError};
 pub use strip::StripCanvas;

@@ -28,6 +28,7 @@ fn any_invalid<S: Scalar>(positions: &[Vec3<S>]) -> bool {
 
 /// Why a mesh could not be built.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum MeshError {
     /// More than 65 536 positions: `u16` indices cannot address them.

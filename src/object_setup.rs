@@ -125,7 +125,7 @@ impl<S: Scalar, const L: usize> ObjectSetup<'_, '_, S, L> {
         } else {
             [S::ZERO; 3]
         };
-        let lit = crate::shade::lit_color_points(
+        let lit = crate::effects::lit_color_points(
             m,
             self.lights,
             self.scene.point_lights(),

@@ -33,6 +33,7 @@ pub const MAX_GLYPH: u32 = 16;
 
 /// Why a [`Glyphs`] set could not be built.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum GlyphError {
     /// The font's characters are wider or taller than [`MAX_GLYPH`] pixels.

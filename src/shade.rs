@@ -352,39 +352,12 @@ pub(crate) fn lit_color<S: Scalar>(
     finish(m, sums)
 }
 
-/// [`lit_color`] with point lights too, at world point `p` ([`crate::PointLight::at`]), and
-/// the scene's tone map.
-pub(crate) fn lit_color_points<S: Scalar>(
-    m: &Material<S>,
-    lights: &[PreparedLight<S>],
-    points: &[crate::PointLight<S>],
-    n: Vec3<S>,
-    p: Vec3<S>,
-    to_eye: Vec3<S>,
-    tone: Option<&crate::ToneMap<S>>,
-) -> [u16; 3] {
-    // With a tone map the lights' sums start at zero: the ambient term is not scaled by the
-    // lights' intensity.
-    let start = if tone.is_some() { S::ZERO } else { m.ambient };
-    let mut sums = ([start; 3], [S::ZERO; 3]);
-    for l in lights {
-        add_light(&mut sums, m, l, n, to_eye);
-    }
-    for pl in points {
-        add_light(&mut sums, m, &pl.at(p), n, to_eye);
-    }
-    match tone {
-        Some(t) => t.map(m, sums.0, sums.1),
-        None => finish(m, sums),
-    }
-}
-
 /// The (diffuse coefficient, specular) sums of [`lit_color`].
-type Sums<S> = ([S; 3], [S; 3]);
+pub(crate) type Sums<S> = ([S; 3], [S; 3]);
 
 /// Adds light `l`'s diffuse and specular terms for unit normal `n` to `sums`.
 #[inline(always)]
-fn add_light<S: Scalar>(
+pub(crate) fn add_light<S: Scalar>(
     sums: &mut Sums<S>,
     m: &Material<S>,
     l: &PreparedLight<S>,
@@ -409,7 +382,7 @@ fn add_light<S: Scalar>(
 
 /// The lit colour from the sums of [`add_light`], 8.8 per channel.
 #[inline(always)]
-fn finish<S: Scalar>(m: &Material<S>, (diffuse, spec): Sums<S>) -> [u16; 3] {
+pub(crate) fn finish<S: Scalar>(m: &Material<S>, (diffuse, spec): Sums<S>) -> [u16; 3] {
     let mut out = [0u16; 3];
     for c in 0..3 {
         out[c] = channel_8_8(diffuse[c].mul_int(m.color[c] as i32) + spec[c]);

@@ -428,8 +428,12 @@ impl<'a, S> Layering<'a, S> {
     }
 }
 
+/// The most translucent objects one layered frame draws (the [`crate::Layers`]' table of them).
+pub const MAX_TRANSLUCENT: usize = 16;
+
 /// Why a layered frame was refused (inside [`crate::Error::Layers`]). Nothing was drawn.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum LayerError {
     /// A receiver or caster index is not an object of the scene.
@@ -452,7 +456,7 @@ pub enum LayerError {
         /// Index of the object in the scene.
         object: usize,
     },
-    /// More translucent objects than [`crate::MAX_TRANSLUCENT`].
+    /// More translucent objects than [`MAX_TRANSLUCENT`].
     TooManyTranslucent,
     /// The target colour cannot report its channels ([`crate::TargetColor::channels`]), so
     /// nothing can be blended onto it.
@@ -514,7 +518,7 @@ impl core::fmt::Display for LayerError {
             LayerError::TooManyTranslucent => write!(
                 f,
                 "more than {} translucent objects",
-                crate::MAX_TRANSLUCENT
+                MAX_TRANSLUCENT
             ),
             LayerError::TwoShadows => {
                 write!(f, "a planar shadow and shadow volumes in one frame")

@@ -49,6 +49,7 @@ pub struct Shape<S, const V: usize, const T: usize> {
 /// Why a shape could not be built: a bad parameter, a shape the number type cannot hold, or too
 /// little storage.
 #[derive(Copy, Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum ShapeError {
     /// A parameter is outside the range the constructor accepts, whatever the number type and
@@ -90,6 +91,7 @@ pub enum ShapeError {
 
 /// The value of a rejected parameter ([`ShapeError::BadParameter`]).
 #[derive(Copy, Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum ParamValue {
     /// A length or amplitude, exactly as given (NaN and infinities included).

@@ -4,6 +4,7 @@ use crate::kernel::records::CullCounts;
 
 /// A pipeline stage, as reported to a [`Probe`].
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum Stage {
     /// Per-vertex transform, outcodes and projection.
@@ -64,6 +65,7 @@ impl Probe for NoProbe {
 ///
 /// `#[non_exhaustive]`: more counts may be added; start from `Stats::default()`.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub struct Stats {
     /// Triangles in the scene's meshes.

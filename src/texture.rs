@@ -23,6 +23,7 @@ pub enum Wrap {
 
 /// Why a texture could not be made.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum TextureError {
     /// Width or height is not a power of two in 1..=[`MAX_TEXTURE_SIZE`].
