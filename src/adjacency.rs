@@ -1,9 +1,78 @@
 //! Mesh adjacency: each triangle's neighbours across its edges ([`mesh_adjacency`]), the check
-//! that a table is its mesh's ([`check_adjacency`], run by every layered frame), and the crease
-//! edges ([`mesh_creases`]) — what shadow volumes and outlines read.
+//! that a table is its mesh's ([`check_adjacency`]), a table bound to its mesh once checked
+//! ([`Adjacency`], what shadow volumes and outlines read), and the crease edges
+//! ([`mesh_creases`]).
 
+use crate::math::Vec3;
 use crate::mesh::{Mesh, MeshError};
 use crate::scalar::Scalar;
+
+/// An adjacency table checked against its mesh ([`check_adjacency`]) once, when it is made, and
+/// bound to that mesh's slices: what [`crate::VolumeShadow`] and [`crate::Outline`] take. A
+/// layered frame checks only that each object's mesh is the one its table was checked against
+/// (the same index and position slices, two pointer comparisons), so a table costs nothing per
+/// frame. The table and the mesh's slices stay borrowed while it exists, so neither can change
+/// under it.
+///
+/// ```
+/// use scanline3d::{mesh_adjacency, Adjacency, Shape};
+///
+/// let cube = Shape::<f32, 24, 12>::cube(1.0).unwrap();
+/// let mut table = [[0u16; 3]; 12];
+/// mesh_adjacency(&cube.mesh(), &mut table).unwrap(); // a mesh's setup: O(T²)
+/// let adjacency = Adjacency::new(&cube.mesh(), &table).unwrap(); // O(T), once
+/// assert!(adjacency.is_for(&cube.mesh()));
+/// // A table that is not the mesh's is refused:
+/// assert!(Adjacency::new(&cube.mesh(), &[[7, 7, 7]; 12]).is_err());
+/// ```
+#[derive(Copy, Clone, Debug)]
+pub struct Adjacency<'a, S> {
+    table: &'a [[u16; 3]],
+    indices: &'a [[u16; 3]],
+    positions: &'a [Vec3<S>],
+}
+
+impl<'a, S: Scalar> Adjacency<'a, S> {
+    /// `table` checked against `mesh` ([`check_adjacency`]: every index of the mesh in range,
+    /// every neighbour a triangle along the same edge that names the first back).
+    ///
+    /// # Errors
+    ///
+    /// As [`check_adjacency`].
+    pub fn new(mesh: &Mesh<'a, S>, table: &'a [[u16; 3]]) -> Result<Self, AdjacencyError> {
+        check_adjacency(mesh, table)?;
+        Ok(Adjacency {
+            table: &table[..mesh.indices().len()],
+            indices: mesh.indices(),
+            positions: mesh.positions(),
+        })
+    }
+
+    /// The table: one entry per triangle of the mesh.
+    #[must_use]
+    pub fn table(&self) -> &'a [[u16; 3]] {
+        self.table
+    }
+
+    /// Whether `mesh` is the mesh the table was checked against: the same index and position
+    /// slices (addresses and lengths).
+    #[must_use]
+    pub fn is_for(&self, mesh: &Mesh<'_, S>) -> bool {
+        core::ptr::eq(self.indices, mesh.indices())
+            && core::ptr::eq(self.positions, mesh.positions())
+    }
+}
+
+/// Tables are equal when they are the same table of the same mesh (the same slices).
+impl<S> PartialEq for Adjacency<'_, S> {
+    fn eq(&self, o: &Self) -> bool {
+        core::ptr::eq(self.table, o.table)
+            && core::ptr::eq(self.indices, o.indices)
+            && core::ptr::eq(self.positions, o.positions)
+    }
+}
+
+impl<S> Eq for Adjacency<'_, S> {}
 
 /// An [`mesh_adjacency`] entry: no neighbour across this edge (an open edge).
 pub const NO_NEIGHBOUR: u16 = u16::MAX;
@@ -166,8 +235,7 @@ pub fn mesh_adjacency<S: Scalar>(
 /// index of the mesh in range, and each neighbour the table names a triangle of the mesh that
 /// runs along the same edge the other way and names the first back. An open edge
 /// ([`NO_NEIGHBOUR`]) is taken as given (proving it open would cost a search of the mesh).
-/// Run by every layered frame on its volume casters' and outlined objects' tables: a few
-/// comparisons per edge.
+/// [`Adjacency::new`] runs it once per table; a few comparisons per edge.
 ///
 /// # Errors
 ///

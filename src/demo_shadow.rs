@@ -216,13 +216,25 @@ where
             crate::mesh_creases(&cube.mesh(), &cube_adj, a, &mut cube_creases).map_err(bad)?;
         }
     }
-    let every: [&[[u16; 3]]; 3] = [&ground_adj, &torus_adj, &cube_adj];
+    // Each table checked against its mesh once (Adjacency::new): the frame then only checks
+    // that each object's mesh is that mesh.
+    let checked = if o.volume || o.outline.is_some() {
+        let bad = |_| BenchError::Scene;
+        Some([
+            crate::Adjacency::new(&ground.mesh(), &ground_adj).map_err(bad)?,
+            crate::Adjacency::new(&torus.mesh(), &torus_adj).map_err(bad)?,
+            crate::Adjacency::new(&cube.mesh(), &cube_adj).map_err(bad)?,
+        ])
+    } else {
+        None
+    };
+    let every = checked.as_ref().map_or(&[][..], |c| &c[..]);
     let creases: [&[u8]; 3] = [&ground_creases, &torus_creases, &cube_creases];
     // The casters' (and the outlined models') tables; a wireframe outlines the ground too.
     let (adjacency, creases, outlined) = if o.wireframe {
-        (&every[..], &creases[..], &[0, 1, 2][..])
+        (every, &creases[..], &[0, 1, 2][..])
     } else {
-        (&every[1..], &creases[1..], &[1, 2][..])
+        (every.get(1..).unwrap_or(&[]), &creases[1..], &[1, 2][..])
     };
     let mut layering = match o.shadow {
         Some(method) => Layering::projected(

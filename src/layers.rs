@@ -338,7 +338,7 @@ impl<
         if let Some(v) = &layering.volume {
             let aspect = self.vw as f64 / self.vh as f64;
             for (k, &i) in layering.casters.iter().enumerate() {
-                let adjacency = v.adjacency[k];
+                let adjacency = v.adjacency[k].table();
                 let o = &scene.objects[i];
                 let reach = crate::volume::volume_reach(&scene.camera, aspect, o, v.reach);
                 self.volume_object(&c, &mut f, o, adjacency, v, reach, marks, probe);
@@ -400,7 +400,7 @@ impl<
                     Edges::All => Pick::All,
                 };
                 let lines = Lines {
-                    adjacency: o.adjacency[k],
+                    adjacency: o.adjacency[k].table(),
                     pick,
                     see_through: o.see_through,
                     color: o.color,
@@ -741,19 +741,21 @@ fn set_blend<
     }
 }
 
-/// Checks each object of `objects` has an adjacency table (`adjacency`, in the same order) of
-/// its mesh's triangle count, and at most `bits` triangles.
+/// Checks each object of `objects` has an adjacency table (`adjacency`, in the same order)
+/// checked against its mesh ([`crate::Adjacency::is_for`]: two pointer comparisons, the table
+/// itself was checked when it was made), and at most `bits` triangles.
 fn check_adjacency<S: Scalar, E, const L: usize>(
     scene: &Scene<'_, S, L>,
     objects: &[usize],
-    adjacency: &[&[[u16; 3]]],
+    adjacency: &[crate::Adjacency<'_, S>],
     bits: usize,
 ) -> Result<(), Error<E>> {
     for (k, &object) in objects.iter().enumerate() {
-        let triangles = scene.objects[object].mesh.indices().len();
-        let Some(table) = adjacency.get(k).filter(|a| a.len() == triangles) else {
+        let mesh = &scene.objects[object].mesh;
+        if !adjacency.get(k).is_some_and(|a| a.is_for(mesh)) {
             return Err(Error::Layers(LayerError::Adjacency { object }));
-        };
+        }
+        let triangles = mesh.indices().len();
         if triangles > bits {
             return Err(Error::Layers(LayerError::TooManyTriangles {
                 object,
@@ -761,10 +763,6 @@ fn check_adjacency<S: Scalar, E, const L: usize>(
                 capacity: bits,
             }));
         }
-        // Every index in range and every neighbour the mesh's (a table of the right length
-        // with the wrong contents once drew wrong silhouettes, and a bad index panicked).
-        crate::adjacency::check_adjacency(&scene.objects[object].mesh, table)
-            .map_err(|error| Error::Layers(LayerError::Mesh { object, error }))?;
     }
     Ok(())
 }
@@ -773,7 +771,7 @@ fn check_adjacency<S: Scalar, E, const L: usize>(
 /// 3 bits per triangle.
 fn check_creases<S: Scalar, E, const L: usize>(
     scene: &Scene<'_, S, L>,
-    o: &crate::Outline<'_>,
+    o: &crate::Outline<'_, S>,
 ) -> Result<(), Error<E>> {
     if let Edges::Crease(tables) = o.edges {
         for (k, &object) in o.objects.iter().enumerate() {

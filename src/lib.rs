@@ -238,7 +238,9 @@ pub use fixed;
 // The baked CSG part (src/demo_csg_mesh.rs) names the crate as its users do.
 extern crate self as scanline3d;
 
-pub use adjacency::{check_adjacency, mesh_adjacency, mesh_creases, AdjacencyError, NO_NEIGHBOUR};
+pub use adjacency::{
+    check_adjacency, mesh_adjacency, mesh_creases, Adjacency, AdjacencyError, NO_NEIGHBOUR,
+};
 pub use camera::{Camera, CameraError, Projection, MAX_DEPTH_RATIO};
 pub use clip::{BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP};
 pub use color::{luma, quantize, scale_channels, TargetColor, TriangleId, BAYER};

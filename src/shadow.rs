@@ -279,8 +279,8 @@ pub struct VolumeShadow<'a, S> {
     /// shadow should reach (for a point light, from each caster vertex along the light's ray).
     pub reach: S,
     /// One adjacency table per caster, in the order of [`Layering::casters`]
-    /// ([`crate::mesh_adjacency`] of its mesh).
-    pub adjacency: &'a [&'a [[u16; 3]]],
+    /// ([`crate::mesh_adjacency`] of its mesh, checked once by [`crate::Adjacency::new`]).
+    pub adjacency: &'a [crate::Adjacency<'a, S>],
     /// The shadow's colour, 8 bits per channel.
     pub color: [u8; 3],
     /// The shadow's opacity, 0..=255.
@@ -314,11 +314,12 @@ pub enum Edges<'a> {
 /// [`crate::Material::unlit`] in the background colour (they fill the depth lines and hide what
 /// is behind them, but show only their edges).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub struct Outline<'a> {
+pub struct Outline<'a, S> {
     /// The outlined objects (indices into [`crate::Scene::objects`]).
     pub objects: &'a [usize],
-    /// One adjacency table per outlined object, in the order of `objects`.
-    pub adjacency: &'a [&'a [[u16; 3]]],
+    /// One adjacency table per outlined object, in the order of `objects` (checked once by
+    /// [`crate::Adjacency::new`]).
+    pub adjacency: &'a [crate::Adjacency<'a, S>],
     /// The lines' colour, 8 bits per channel.
     pub color: [u8; 3],
     /// Which edges are drawn.
@@ -327,12 +328,12 @@ pub struct Outline<'a> {
     pub see_through: bool,
 }
 
-impl<'a> Outline<'a> {
+impl<'a, S> Outline<'a, S> {
     /// The silhouettes of `objects` in `color`, depth-tested.
     #[must_use]
     pub const fn silhouette(
         objects: &'a [usize],
-        adjacency: &'a [&'a [[u16; 3]]],
+        adjacency: &'a [crate::Adjacency<'a, S>],
         color: [u8; 3],
     ) -> Self {
         Outline {
@@ -374,7 +375,7 @@ pub struct Layering<'a, S> {
     /// Shadow volumes of the casters (not with a planar `shadow`: one stencil serves one).
     pub volume: Option<VolumeShadow<'a, S>>,
     /// Outlines.
-    pub outline: Option<Outline<'a>>,
+    pub outline: Option<Outline<'a, S>>,
 }
 
 impl<'a, S> Layering<'a, S> {
@@ -420,7 +421,7 @@ impl<'a, S> Layering<'a, S> {
 
     /// This layering with `outline`.
     #[must_use]
-    pub fn with_outline(self, outline: Outline<'a>) -> Self {
+    pub fn with_outline(self, outline: Outline<'a, S>) -> Self {
         Layering {
             outline: Some(outline),
             ..self
@@ -464,18 +465,11 @@ pub enum LayerError {
     /// Both a planar shadow and shadow volumes: the stencil serves one of them per frame.
     TwoShadows,
     /// Object `object` (a volume caster or an outlined object) has no adjacency table, or one
-    /// whose length is not its mesh's triangle count.
+    /// checked against another mesh ([`crate::Adjacency::is_for`]: not the same index and
+    /// position slices).
     Adjacency {
         /// Index of the object in the scene.
         object: usize,
-    },
-    /// Object `object` (a volume caster or an outlined object) has a mesh with an index out
-    /// of range, or an adjacency table that is not its mesh's ([`crate::check_adjacency`]).
-    Mesh {
-        /// Index of the object in the scene.
-        object: usize,
-        /// What is wrong.
-        error: crate::AdjacencyError,
     },
     /// Outlined object `object` has no crease table ([`Edges::Crease`]), or one shorter than
     /// its mesh's `3·T` bits ([`crate::mesh_creases`]).
@@ -525,9 +519,8 @@ impl core::fmt::Display for LayerError {
             }
             LayerError::Adjacency { object } => write!(
                 f,
-                "object {object} has no adjacency table of its mesh's triangle count"
+                "object {object} has no adjacency table checked against its mesh (Adjacency::new)"
             ),
-            LayerError::Mesh { object, error } => write!(f, "object {object}: {error}"),
             LayerError::Creases { object } => write!(
                 f,
                 "outlined object {object} has no crease table of 3 bits per triangle (mesh_creases)"

@@ -9,8 +9,8 @@ use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use scanline3d::prelude::*;
 use scanline3d::{
-    mesh_adjacency, mesh_creases, AdjacencyError, Edges, Error, LayerError, Layering, Layers,
-    Outline, Shape,
+    mesh_adjacency, mesh_creases, Adjacency, AdjacencyError, Edges, Error, LayerError, Layering,
+    Layers, Outline, Shape,
 };
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;
@@ -51,7 +51,7 @@ fn draw<S: Scalar>(
     .with_background(BACKGROUND);
     let mut adjacency = vec![[0u16; 3]; mesh.indices().len()];
     mesh_adjacency(&mesh, &mut adjacency).unwrap();
-    let adj: [&[[u16; 3]]; 1] = [&adjacency];
+    let adj = [Adjacency::new(&mesh, &adjacency).unwrap()];
     let layering = Layering::<S>::none().with_outline(
         Outline::silhouette(&[0], &adj, INK)
             .with_edges(edges)
@@ -282,7 +282,7 @@ fn missing_or_short_crease_tables_are_named() {
     );
     let mut adjacency = [[0u16; 3]; 12];
     mesh_adjacency(&cube.mesh(), &mut adjacency).unwrap();
-    let adj: [&[[u16; 3]]; 1] = [&adjacency];
+    let adj = [Adjacency::new(&cube.mesh(), &adjacency).unwrap()];
     let short = [0u8; 4];
     let short: [&[u8]; 1] = [&short];
     let run = |edges| {

@@ -9,8 +9,8 @@ use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use scanline3d::prelude::*;
 use scanline3d::{
-    mesh_adjacency, Error, LayerError, Layering, Layers, Outline, PlanarShadow, ShadowLight,
-    VolumeShadow,
+    mesh_adjacency, Adjacency, AdjacencyError, Error, LayerError, Layering, Layers, Outline,
+    PlanarShadow, ShadowLight, VolumeShadow,
 };
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;
@@ -100,7 +100,7 @@ fn draw<S: Scalar>(w: &World<S>, camera: Camera<S>, light: [f64; 3], how: How) -
     ];
     let l = light.map(S::from_f64);
     let scene = Scene::new(&objects, camera, [Light::white(l)]).with_background([0, 0, 60]);
-    let adjacency: [&[[u16; 3]]; 1] = [&w.adjacency];
+    let adjacency = [Adjacency::new(&objects[1].mesh, &w.adjacency).unwrap()];
     let layering = match how {
         How::Planar => Layering::projected(
             &[0],
@@ -334,7 +334,7 @@ fn outlined<S: Scalar>(cover: bool) -> Frame<Rgb888> {
     let scene = Scene::new(&objects, cam, [Light::white([S::ZERO, S::ZERO, S::ONE])]);
     let mut adjacency = [[0u16; 3]; 2];
     mesh_adjacency(&objects[0].mesh, &mut adjacency).unwrap();
-    let adj: [&[[u16; 3]]; 1] = [&adjacency];
+    let adj = [Adjacency::new(&objects[0].mesh, &adjacency).unwrap()];
     let layering = Layering::<S>::none().with_outline(Outline::silhouette(&[0], &adj, INK));
     let mut r = Renderer::<S, Rgb888, { N as usize }, { N as usize }, 64, 64, 16>::new();
     let mut layers = Layers::<{ N as usize }, 1, 4, 16>::new();
@@ -401,8 +401,15 @@ fn bad_volume_and_outline_layerings_are_named_errors() {
         camera([3.0, 3.0, 3.0], [0.0, 0.0, 0.0]),
         [Light::white([0.0, 1.0, 0.0])],
     );
-    let good: [&[[u16; 3]]; 1] = [&w.adjacency];
-    let short: [&[[u16; 3]]; 1] = [&w.adjacency[1..]];
+    let good = [Adjacency::new(&objects[0].mesh, &w.adjacency).unwrap()];
+    // A table too short for its mesh is refused when it is checked; one checked against
+    // another mesh (equal in content, other slices) by the frame.
+    assert_eq!(
+        Adjacency::new(&objects[0].mesh, &w.adjacency[1..]),
+        Err(AdjacencyError::BufferTooSmall { needed: 12 })
+    );
+    let copy = w.caster.clone();
+    let short = [Adjacency::new(&Mesh::new(&copy, &w.caster_tris).unwrap(), &w.adjacency).unwrap()];
     let volume = |adjacency, reach| VolumeShadow {
         light: ShadowLight::Directional([0.0, 1.0, 0.0]),
         reach,
@@ -515,7 +522,7 @@ fn every_pixel_once<S: Scalar>() {
         cam,
         [Light::white([-0.5, 1.0, 0.3].map(S::from_f64))],
     );
-    let adjacency: [&[[u16; 3]]; 1] = [&w.adjacency];
+    let adjacency = [Adjacency::new(&objects[1].mesh, &w.adjacency).unwrap()];
     let layering = Layering::volumes(
         &[1],
         VolumeShadow {

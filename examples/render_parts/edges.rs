@@ -6,8 +6,8 @@
 use clap::ValueEnum;
 use scanline3d::hash::NullTarget;
 use scanline3d::{
-    mesh_adjacency, mesh_creases, Edges, Layering, Layers, Mesh, Outline, Scalar, Scene, Stats,
-    TargetColor,
+    mesh_adjacency, mesh_creases, Adjacency, Edges, Layering, Layers, Mesh, Outline, Scalar, Scene,
+    Stats, TargetColor,
 };
 
 use super::{Args, Big, ShadingArg, MAX_W};
@@ -134,7 +134,9 @@ impl EdgeFrames {
         D: embedded_graphics::draw_target::DrawTarget<Color = C>,
         D::Error: core::fmt::Debug + core::fmt::Display,
     {
-        let adjacency: [&[[u16; 3]]; 1] = [&self.adjacency];
+        // Checked against the frame's mesh (the host preview builds its mesh per frame).
+        let adjacency = [Adjacency::new(&scene.objects[0].mesh, &self.adjacency)
+            .map_err(|e| format!("the edges' table: {e}"))?];
         let creases: [&[u8]; 1] = [&self.creases];
         let edges = match self.edges {
             EdgesArg::Silhouette | EdgesArg::None => Edges::Silhouette,

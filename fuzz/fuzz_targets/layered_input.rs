@@ -26,9 +26,9 @@ use scanline3d::fixed::types::I16F16;
 use scanline3d::hash::HashTarget;
 use scanline3d::prelude::*;
 use scanline3d::{
-    check_adjacency, mesh_adjacency, mesh_creases, Edges, Layering, Layers, Outline, PlanarShadow,
-    ShadowLight, Stats, Texture, TextureMode, TexturedShape, ToneCurve, ToneMap, VolumeShadow,
-    Wrap, NO_NEIGHBOUR,
+    check_adjacency, mesh_adjacency, mesh_creases, Adjacency, Edges, Layering, Layers, Outline,
+    PlanarShadow, ShadowLight, Stats, Texture, TextureMode, TexturedShape, ToneCurve, ToneMap,
+    VolumeShadow, Wrap, NO_NEIGHBOUR,
 };
 
 // The renderer's and the layers' capacities.
@@ -456,9 +456,19 @@ fn layered<S: Scalar>(data: &[u8], avoid_known: bool) -> String {
             p.attenuation = [S::ONE, S::ZERO, S::ZERO];
         }
     }
+    // KNOWN DEFECT (effects.rs `FogSpan::factor`: "attempt to multiply with overflow" in its
+    // orthographic branch when a Phong pixel is fogged under an orthographic camera whose far
+    // distance is huge, e.g. f32, height 6, near 0.5, far 1e15): until it is fixed,
+    // `avoid_known` leaves the fog out of such frames with Phong or textured objects. Inputs
+    // in fuzz/regressions/layered/open_fog_ortho_far, replayed by an ignored test.
+    let fog_on = ef & 4 != 0
+        && !(avoid_known
+            && opts & 1 != 0
+            && !(far.abs() <= 1e9)
+            && parts.iter().any(|p| p.material.needs_attribute_stores()));
     let effects = Effects {
         point_lights: &points,
-        fog: (ef & 4 != 0).then_some(fog),
+        fog: fog_on.then_some(fog),
         tone: (ef & 8 != 0).then_some(tone),
     };
 
@@ -567,10 +577,13 @@ fn layered<S: Scalar>(data: &[u8], avoid_known: bool) -> String {
     }
     // A table per volume caster and per outlined object (one fewer when `lists` says so:
     // an object without its table).
-    let pick = |list: &[usize]| -> Vec<&[[u16; 3]]> {
-        let mut v: Vec<&[[u16; 3]]> = list
+    // Each table is checked against its object's mesh once (`Adjacency::new`); a table it
+    // refuses (garbage, too short, a bad index) is left out, so the frame finds an object
+    // without a table.
+    let pick = |list: &[usize]| -> Vec<Adjacency<'_, S>> {
+        let mut v: Vec<Adjacency<'_, S>> = list
             .iter()
-            .map(|&i| adjacency.get(i).map_or(&[][..], |t| &t[..]))
+            .filter_map(|&i| Adjacency::new(meshes.get(i)?, adjacency.get(i)?).ok())
             .collect();
         if lists & 0x40 != 0 {
             v.pop();
