@@ -464,7 +464,7 @@ fn layered<S: Scalar>(data: &[u8], avoid_known: bool) -> String {
     let fog_on = ef & 4 != 0
         && !(avoid_known
             && opts & 1 != 0
-            && !(far.abs() <= 1e9)
+            && far.abs().partial_cmp(&1e9) != Some(core::cmp::Ordering::Less)
             && parts.iter().any(|p| p.material.needs_attribute_stores()));
     let effects = Effects {
         point_lights: &points,
@@ -514,10 +514,21 @@ fn layered<S: Scalar>(data: &[u8], avoid_known: bool) -> String {
         .iter()
         .map(|&i| table(adj_modes[i], i, seed, &proper, &tris))
         .collect();
-    for (i, m) in meshes.iter().enumerate() {
-        // Any table, right or wrong: an error is fine, a panic is not.
-        let _ = check_adjacency(m, &adjacency[i]);
-    }
+    // Each object's table checked once (`Adjacency::new`, documented as `check_adjacency`:
+    // they agree on any table, right or wrong; an error is fine, a panic is not).
+    let checked: Vec<Option<Adjacency<'_, S>>> = meshes
+        .iter()
+        .zip(&adjacency)
+        .map(|(m, t)| {
+            let a = Adjacency::new(m, t);
+            assert_eq!(
+                a.is_ok(),
+                check_adjacency(m, t).is_ok(),
+                "Adjacency::new and check_adjacency disagree"
+            );
+            a.ok()
+        })
+        .collect();
     let creases: Vec<Vec<u8>> = ids
         .iter()
         .map(|&i| {
@@ -575,15 +586,21 @@ fn layered<S: Scalar>(data: &[u8], avoid_known: bool) -> String {
         5 => casters.clear(),
         _ => {}
     }
-    // A table per volume caster and per outlined object (one fewer when `lists` says so:
-    // an object without its table).
-    // Each table is checked against its object's mesh once (`Adjacency::new`); a table it
-    // refuses (garbage, too short, a bad index) is left out, so the frame finds an object
-    // without a table.
+    // A checked table per volume caster and per outlined object: its own, or where its own
+    // was refused (or the mode asks for another mesh's), the next object's that was accepted
+    // (checked against another mesh); one fewer when `lists` says so (an object without its
+    // table), or where none was accepted.
     let pick = |list: &[usize]| -> Vec<Adjacency<'_, S>> {
         let mut v: Vec<Adjacency<'_, S>> = list
             .iter()
-            .filter_map(|&i| Adjacency::new(meshes.get(i)?, adjacency.get(i)?).ok())
+            .filter_map(|&i| {
+                let n = checked.len();
+                let other = (1..=n).find_map(|k| checked[(i + k) % n]);
+                match checked.get(i).copied().flatten() {
+                    Some(own) if adj_modes.get(i).is_none_or(|m| m % 8 != 6) => Some(own),
+                    _ => other,
+                }
+            })
             .collect();
         if lists & 0x40 != 0 {
             v.pop();
