@@ -191,7 +191,9 @@ pub(crate) struct FogSpan {
     /// 16.8 depth unit, with 32 more fraction bits); 0 for an orthographic camera.
     kq: i64,
     /// Orthographic: `(far − near)` in Q16.16 per depth unit of 16.8 with 24 fraction bits
-    /// (`(far − near)·2²⁴/(65535·2⁸)`); 0 for a perspective camera.
+    /// (`(far − near)·2²⁴/(65535·2⁸)`), at most 2³⁸ (a depth unit times it stays within i64;
+    /// beyond that, about 4·10⁶ world units, the view depth is past Q16.16 anyway); 0 for a
+    /// perspective camera.
     ortho: i64,
     /// The fog's start, Q16.16 view depth.
     start: i32,
@@ -218,7 +220,8 @@ impl FogSpan {
         } else {
             (
                 0,
-                libm::round((far - near) * 65536.0 * (1u64 << 24) as f64 / D) as i64,
+                libm::round((far - near) * 65536.0 * (1u64 << 24) as f64 / D)
+                    .min((1u64 << 38) as f64) as i64,
             )
         };
         let range = (q16(fog.far.to_f64()) - q16(fog.near.to_f64())).max(1.0);

@@ -336,11 +336,11 @@ impl<
         layers.volume = false;
         let marks = layers.stencil.as_flattened_mut();
         if let Some(v) = &layering.volume {
-            let aspect = self.vw as f64 / self.vh as f64;
             for (k, &i) in layering.casters.iter().enumerate() {
                 let adjacency = v.adjacency[k].table();
                 let o = &scene.objects[i];
-                let reach = crate::volume::volume_reach(&scene.camera, aspect, o, v.reach);
+                let reach =
+                    crate::volume::volume_reach(&scene.camera, (self.vw, self.vh), o, v.reach);
                 self.volume_object(&c, &mut f, o, adjacency, v, reach, marks, probe);
             }
             layers.volume = true;

@@ -413,7 +413,10 @@ fn point_dir(p: &PointCtx, x: [i32; 3], bits: u32) -> Option<([i32; 3], i32)> {
     let q = (mul_wide(c2, d) >> 16).min(i32::MAX as i64) as i32;
     let den = c0 as i64 + (mul_wide(c1, d) >> 16) + (mul_wide(q, d) >> 16);
     let (am, ae) = recip_norm(den.max(1 << 16) as u64);
-    Some((dir, (am >> (ae - 32)).min(1 << 16)))
+    // 2³²/den: `den` is at least 2¹⁶ (ae ≥ 46), and past 2⁴⁷ or so (a light far away with a
+    // large attenuation) the shift passes 31 and the attenuation is 0.
+    let att = am.checked_shr(ae - 32).unwrap_or(0);
+    Some((dir, att.min(1 << 16)))
 }
 
 /// The lit colour (Q8.14 per channel, clamped to 0..=255) of a point with the interpolated

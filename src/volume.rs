@@ -144,10 +144,20 @@ fn into_object<S: Scalar>(m: &Mat4<S>, toward: Toward<S>) -> Option<(Toward<S>, 
 /// In f64, once per caster, and only when `reach > R` (no scan of the mesh otherwise).
 pub(crate) fn volume_reach<S: Scalar>(
     camera: &crate::Camera<S>,
-    aspect: f64,
+    (vw, vh): (usize, usize),
     obj: &Object<'_, S>,
     reach: S,
 ) -> S {
+    // Every visible point is within the far distance along the view axis and R ≥ far: a reach
+    // up to `far` needs nothing more (one comparison in S, no f64 work: the usual case).
+    let far = match camera.projection {
+        crate::Projection::Perspective { far, .. }
+        | crate::Projection::Orthographic { far, .. } => far,
+    };
+    if reach <= far {
+        return reach;
+    }
+    let aspect = vw as f64 / vh.max(1) as f64;
     let r = reach.to_f64();
     let sq = |v: f64| v * v;
     let view = match camera.projection {

@@ -57,39 +57,3 @@ fn committed_layered_fuzz_inputs_render_without_panicking() {
         "expected the committed seed corpus, found {n} inputs"
     );
 }
-
-/// KNOWN DEFECT, open: a Phong (or fast Phong) object lit by a point light whose attenuation
-/// `c + l·d + q·d²` is large at its pixels panics in debug ("attempt to shift right with
-/// overflow" at src/phong.rs, `point_dir`, `am >> (ae - 32)`), in every number type, from
-/// `render` and `render_layered` alike; e.g. a Phong cube at the origin and
-/// `PointLight::new([1000, 1, 0], white).attenuation(1, 1, 1)`. Found by the `layered` fuzz
-/// target; the fuzz targets avoid it until it is fixed (`avoid_known` in layered_input.rs).
-/// When it is fixed: move the inputs up to fuzz/regressions/layered, drop `avoid_known`, and
-/// remove this test.
-#[test]
-#[ignore = "open defect: Phong point-light attenuation overflows a shift (src/phong.rs point_dir)"]
-fn open_defect_phong_point_light_attenuation() {
-    let n = replay(
-        &["regressions/layered/open_phong_point_attenuation"],
-        layered_input::layered_all_unfiltered,
-    );
-    assert!(n >= 1);
-}
-
-/// KNOWN DEFECT, open: fog on a Phong object under an orthographic camera with a huge far
-/// distance panics in debug ("attempt to multiply with overflow" at src/effects.rs,
-/// `FogSpan::factor`, `d * self.ortho`), in f32 and f64, from `render` and `render_layered`
-/// alike; e.g. f32, `Projection::Orthographic { height: 6, near: 0.5, far: 1e15 }` (1e12 is
-/// fine), `Fog::linear(4, 9, ..)`, a Phong cube in view. Found by the `layered` fuzz target;
-/// the fuzz targets avoid it until it is fixed (`avoid_known` in layered_input.rs). When it
-/// is fixed: move the inputs up to fuzz/regressions/layered, drop that part of `avoid_known`,
-/// and remove this test.
-#[test]
-#[ignore = "open defect: orthographic fog overflows a multiply (src/effects.rs FogSpan::factor)"]
-fn open_defect_fog_orthographic_huge_far() {
-    let n = replay(
-        &["regressions/layered/open_fog_ortho_far"],
-        layered_input::layered_all_unfiltered,
-    );
-    assert!(n >= 1);
-}

@@ -380,7 +380,7 @@ fn table(
 
 /// Decodes and draws the frame with number type `S`; returns what each call gave (`Err` and its
 /// error, or `Ok` and the frame's counts), or why no frame was drawn.
-fn layered<S: Scalar>(data: &[u8], avoid_known: bool) -> String {
+fn layered<S: Scalar>(data: &[u8]) -> String {
     let mut b = Bytes(data);
     let opts = b.u8();
     let (vw, vh) = (usize::from(b.u8()), usize::from(b.u8()));
@@ -444,28 +444,10 @@ fn layered<S: Scalar>(data: &[u8], avoid_known: bool) -> String {
     let tone = ToneMap::new(curve)
         .with_exposure(S::from_f64(b.real()))
         .with_intensity(S::from_f64(b.real()));
-    // KNOWN DEFECT (phong.rs `point_dir`: "attempt to shift right with overflow" when a
-    // point light's attenuation `c + l·d + q·d²` is large at a Phong pixel, e.g. a light 1000
-    // units away with attenuation (1, 1, 1)): until it is fixed, `avoid_known` leaves Phong
-    // scenes' point lights unattenuated, so that the fuzzer looks for other defects. The
-    // inputs that show it are in fuzz/regressions/layered/open_phong_point_attenuation,
-    // replayed without this by an ignored test of tests/fuzz_regressions.rs.
-    let mut points = points;
-    if avoid_known && parts.iter().any(|p| p.material.shading.is_phong()) {
-        for p in &mut points {
-            p.attenuation = [S::ONE, S::ZERO, S::ZERO];
-        }
-    }
-    // KNOWN DEFECT (effects.rs `FogSpan::factor`: "attempt to multiply with overflow" in its
-    // orthographic branch when a Phong pixel is fogged under an orthographic camera whose far
-    // distance is huge, e.g. f32, height 6, near 0.5, far 1e15): until it is fixed,
-    // `avoid_known` leaves the fog out of such frames with Phong or textured objects. Inputs
-    // in fuzz/regressions/layered/open_fog_ortho_far, replayed by an ignored test.
-    let fog_on = ef & 4 != 0
-        && !(avoid_known
-            && opts & 1 != 0
-            && far.abs().partial_cmp(&1e9) != Some(core::cmp::Ordering::Less)
-            && parts.iter().any(|p| p.material.needs_attribute_stores()));
+    // Two panics this target found, fixed in the library (phong.rs `point_dir`: a point
+    // light's large attenuation at a Phong pixel; effects.rs `FogSpan::factor`: orthographic
+    // fog with a huge far distance); their inputs are in fuzz/regressions/layered.
+    let fog_on = ef & 4 != 0;
     let effects = Effects {
         point_lights: &points,
         fog: fog_on.then_some(fog),
@@ -752,16 +734,8 @@ pub fn layered_all(data: &[u8]) {
 /// [`layered_all`], saying what each number type's frames gave.
 pub fn outcomes(data: &[u8]) -> [String; 3] {
     [
-        layered::<Fx<I16F16>>(data, true),
-        layered::<f32>(data, true),
-        layered::<f64>(data, true),
+        layered::<Fx<I16F16>>(data),
+        layered::<f32>(data),
+        layered::<f64>(data),
     ]
-}
-
-/// [`layered_all`] without avoiding the known defects (see `avoid_known`): for the inputs that
-/// show them.
-pub fn layered_all_unfiltered(data: &[u8]) {
-    layered::<Fx<I16F16>>(data, false);
-    layered::<f32>(data, false);
-    layered::<f64>(data, false);
 }
