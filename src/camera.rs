@@ -458,6 +458,14 @@ impl<S: Scalar> Projection<S> {
     pub fn is_perspective(&self) -> bool {
         matches!(self, Projection::Perspective { .. })
     }
+
+    /// The near and far distances, of either kind of projection.
+    pub(crate) fn near_far(&self) -> (S, S) {
+        match *self {
+            Projection::Perspective { near, far, .. }
+            | Projection::Orthographic { near, far, .. } => (near, far),
+        }
+    }
 }
 
 #[cfg(test)]

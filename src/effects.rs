@@ -170,9 +170,7 @@ pub(crate) fn mix_8_8(c: [u16; 3], fog: [u8; 3], f: i32) -> [u16; 3] {
 /// position less the eye's, as `i16`): the most for which a point twice the camera's far
 /// distance from the eye fits (0..=14).
 pub(crate) fn position_bits<S: Scalar>(camera: &Camera<S>) -> u32 {
-    let far = match camera.projection {
-        Projection::Perspective { far, .. } | Projection::Orthographic { far, .. } => far.to_f64(),
-    };
+    let far = camera.projection.near_far().1.to_f64();
     let mut e = 14;
     while e > 0 && 2.0 * far * (1u32 << e) as f64 > 32767.0 {
         e -= 1;
@@ -207,10 +205,8 @@ impl FogSpan {
     pub(crate) fn new<S: Scalar>(fog: &Fog<S>, camera: &Camera<S>) -> Self {
         let q16 = |v: f64| libm::round(v * 65536.0).clamp(i32::MIN as f64, i32::MAX as f64);
         const D: f64 = 65535.0 * 256.0;
-        let (near, far) = match camera.projection {
-            Projection::Perspective { near, far, .. }
-            | Projection::Orthographic { near, far, .. } => (near.to_f64(), far.to_f64()),
-        };
+        let (near, far) = camera.projection.near_far();
+        let (near, far) = (near.to_f64(), far.to_f64());
         let persp = matches!(camera.projection, Projection::Perspective { .. });
         let (kq, ortho) = if persp {
             (

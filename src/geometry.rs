@@ -263,29 +263,29 @@ impl<
             max = max.max(cur);
         }
         stats.max_active = max as u32;
-        let stores = XV > 0
-            && scene
-                .objects
-                .iter()
-                .any(|o| o.material.needs_attribute_stores());
-        stats.attr_active = if stores {
-            (max as usize + reserved) as u32
-        } else {
-            0
-        };
-        // The textured triangles' pool: under `OverflowPolicy::Error` the most triangles on a
-        // row (a bound of the textured ones among them) must fit it, so that none is left out.
-        if XA > 0 && self.overflow == OverflowPolicy::Error && max as usize + reserved > XA {
-            if let Some(object) = scene
+        // The attribute pool's entries the frame needs: its fog, Phong lights and materials,
+        // and the most triangles on a row (a bound of the textured and Phong ones among them).
+        let pool = max as usize + reserved;
+        // The first object that needs the attribute stores (a frame with one on a renderer
+        // without stores was refused by `frame_begin`).
+        let stores = if XV > 0 {
+            scene
                 .objects
                 .iter()
                 .position(|o| o.material.needs_attribute_stores())
-            {
+        } else {
+            None
+        };
+        stats.attr_active = if stores.is_some() { pool as u32 } else { 0 };
+        // Under `OverflowPolicy::Error` the pool must hold that bound, so that no textured
+        // triangle is left out.
+        if let Some(object) = stores {
+            if XA > 0 && self.overflow == OverflowPolicy::Error && pool > XA {
                 return Err(Error::AttributeStore {
                     object,
                     vertices_needed: stats.attr_vertices as usize,
                     vertex_capacity: XV,
-                    active_needed: max as usize + reserved,
+                    active_needed: pool,
                     active_capacity: XA,
                 });
             }

@@ -150,10 +150,7 @@ pub(crate) fn volume_reach<S: Scalar>(
 ) -> S {
     // Every visible point is within the far distance along the view axis and R ≥ far: a reach
     // up to `far` needs nothing more (one comparison in S, no f64 work: the usual case).
-    let far = match camera.projection {
-        crate::Projection::Perspective { far, .. }
-        | crate::Projection::Orthographic { far, .. } => far,
-    };
+    let far = camera.projection.near_far().1;
     if reach <= far {
         return reach;
     }

@@ -686,6 +686,33 @@ fn layered_objects<'a>(
     ]
 }
 
+/// The layered orbit's fog (no point lights, no tone map).
+fn orbit_effects() -> scanline3d::Effects<'static, Q> {
+    scanline3d::Effects {
+        point_lights: &[],
+        fog: Some(scanline3d::Fog::linear(
+            Q::lit(3.0),
+            Q::lit(9.0),
+            [16, 24, 48],
+        )),
+        tone: None,
+    }
+}
+
+/// The layered orbit's layering: the torus (object 1) shadows the ground (object 0) along the
+/// sun.
+fn orbit_layering() -> scanline3d::Layering<'static, Q> {
+    scanline3d::Layering::projected(
+        &[0],
+        &[1],
+        scanline3d::PlanarShadow::new(
+            [Q::ZERO, Q::ONE, Q::ZERO, Q::ZERO],
+            scanline3d::ShadowLight::Directional(sun().direction),
+            140,
+        ),
+    )
+}
+
 /// Draws every frame of the layered orbit with a renderer and layers of the given
 /// capacities; the first error, as text, or `Ok`.
 fn layered_orbit<
@@ -699,30 +726,14 @@ fn layered_orbit<
 >() -> Result<(), String> {
     let world = World::new();
     let cube = TexturedShape::<Q, 24, 12>::cube(0.35).unwrap();
-    let effects = scanline3d::Effects {
-        point_lights: &[],
-        fog: Some(scanline3d::Fog::linear(
-            Q::lit(3.0),
-            Q::lit(9.0),
-            [16, 24, 48],
-        )),
-        tone: None,
-    };
+    let effects = orbit_effects();
     let mut renderer = Box::new(Renderer::<Q, Rgb565, W, H, V, T, A, 1, XV, XA>::new());
     let mut layers = Box::new(scanline3d::Layers::<W, 1, RA, PA>::new());
     let mut frame = Frame::new(W, H, Rgb565::BLACK);
     for k in 0..FRAMES {
         let objects = layered_objects(&world, &cube, k);
         let scene = scene(&objects, k, lights(k)).with_effects(&effects);
-        let layering = scanline3d::Layering::projected(
-            &[0],
-            &[1],
-            scanline3d::PlanarShadow::new(
-                [Q::ZERO, Q::ONE, Q::ZERO, Q::ZERO],
-                scanline3d::ShadowLight::Directional(sun().direction),
-                140,
-            ),
-        );
+        let layering = orbit_layering();
         renderer
             .render_layered(&scene, &layering, &mut layers, &mut frame)
             .map_err(|e| format!("frame {k}: {e}"))?;
@@ -735,15 +746,7 @@ fn the_layered_orbit_is_sized_exactly() {
     // Measured with generous capacities, attribute stores and lists.
     let world = World::new();
     let cube = TexturedShape::<Q, 24, 12>::cube(0.35).unwrap();
-    let effects = scanline3d::Effects {
-        point_lights: &[],
-        fog: Some(scanline3d::Fog::linear(
-            Q::lit(3.0),
-            Q::lit(9.0),
-            [16, 24, 48],
-        )),
-        tone: None,
-    };
+    let effects = orbit_effects();
     type Big = renderer_type!(Q, Rgb565, width: W, height: H, vertices: 4096,
         triangles: 4096, active: 512, attr_vertices: 4096, attr_active: 512);
     let mut measure = Box::new(Big::new());
@@ -752,15 +755,7 @@ fn the_layered_orbit_is_sized_exactly() {
     for k in 0..FRAMES {
         let objects = layered_objects(&world, &cube, k);
         let scene = scene(&objects, k, lights(k)).with_effects(&effects);
-        let layering = scanline3d::Layering::projected(
-            &[0],
-            &[1],
-            scanline3d::PlanarShadow::new(
-                [Q::ZERO, Q::ONE, Q::ZERO, Q::ZERO],
-                scanline3d::ShadowLight::Directional(sun().direction),
-                140,
-            ),
-        );
+        let layering = orbit_layering();
         worst = worst.max(
             measure
                 .needs_layered(&scene, &layering, &mut layers)
