@@ -8,7 +8,7 @@
 //!
 //! `render` writes `DIR/NAME.bin` for every frame in [`FRAMES`]: each scene of
 //! [`demo::Bench`] at spin 0 in `Fx<I16F16>` (`render_bench`, undithered), the dithered torus,
-//! and two Pico firmware frames (`demo::board`, as `examples/board_frames.rs` renders them);
+//! and two Pico firmware frames (`demo::board`, as `tools/src/bin/board_frames.rs` renders them);
 //! 240 × 240 RGB565 big-endian, row-major, written atomically. `compare` prints, per frame, the
 //! pixels that differ and the largest difference per channel in RGB565 steps (red and blue
 //! 0..31, green 0..63).
@@ -22,9 +22,9 @@ use std::process::ExitCode;
 use embedded_graphics::pixelcolor::raw::ToBytes;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use scanline3d::demo::{self, board, Bench};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::{Fx, NoProbe};
+use scanline3d_support::demo::{self, board, Bench};
 
 type Q = Fx<I16F16>;
 

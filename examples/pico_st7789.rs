@@ -4,7 +4,7 @@
 //!
 //! How a frame goes out: mipidsi initialises the panel and sets the address window through this
 //! file's SPI interface (`firmware::PanelBus`, which implements mipidsi's `Interface`); then the
-//! renderer draws 8-line strips (`scanline3d::demo::board`) into a ring of strip buffers in SRAM
+//! renderer draws 8-line strips (`scanline3d_support::demo::board`) into a ring of strip buffers in SRAM
 //! while DMA channel 0 sends the finished ones to the panel, with the SPI in 16-bit frames so each
 //! native RGB565 word goes out high byte first, as the ST7789 expects, with no byte swapping. The
 //! DMA's completion interrupt starts the next finished strip, so the SPI keeps sending while the
@@ -47,10 +47,10 @@ mod firmware {
     use rp_pico::hal::fugit::RateExtU32;
     use rp_pico::hal::pac::interrupt;
     use rp_pico::hal::{self, gpio, pac, Clock};
-    use scanline3d::demo::board;
     use scanline3d::fixed::types::I16F16;
-    use scanline3d::overlay::Glyphs;
     use scanline3d::{renderer_type, Capacities, Fx};
+    use scanline3d_support::demo::board;
+    use scanline3d_support::overlay::Glyphs;
 
     // Wiring of the Waveshare Pico-LCD-1.3 (SPI1). Another board: change these lines.
     type ClkPin = gpio::Pin<gpio::bank0::Gpio10, gpio::FunctionSpi, gpio::PullNone>;
@@ -67,7 +67,7 @@ mod firmware {
     type Q = Fx<I16F16>;
 
     /// The renderer's size and capacities, by name: the panel; the default torus's needs over
-    /// a full turn (`scanline3d::demo::TORUS_CAPACITY`: 512 vertices, 466 triangles, 61 active)
+    /// a full turn (`scanline3d_support::demo::TORUS_CAPACITY`: 512 vertices, 466 triangles, 61 active)
     /// with a margin; strips of `board::STRIP_LINES` rows. The host tool that renders the
     /// reference frames uses `board::BoardRenderer`: `Device` must be that type, and the
     /// compiler checks it is (`board::draw_strip` takes a `BoardRenderer`).

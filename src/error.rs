@@ -284,7 +284,11 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
 /// # use scanline3d::prelude::*;
 /// # use scanline3d::Needs;
 /// # type Q = Fx<scanline3d::fixed::types::I16F16>;
-/// let torus = scanline3d::demo::torus::<Q>().unwrap();
+/// let torus = Shape::<Q, 512, 1024>::torus(1.0, 0.4, 32, 16).unwrap();
+/// let perspective =
+///     Projection::Perspective { fov_y: Q::lit(0.785), near: Q::lit(0.1), far: Q::lit(10.0) };
+/// let eye = [Q::ZERO, Q::lit(1.2), Q::lit(3.0)];
+/// let camera = Camera::look_at(eye, [Q::ZERO; 3], [Q::ZERO, Q::ONE, Q::ZERO], perspective).unwrap();
 /// // The host's measuring renderer: the device's size, large capacities (in a `Box` or a
 /// // `static`, see `Renderer::const_new`, when they are large).
 /// let mut measure = Box::new(Renderer::<Q, Rgb565, 240, 240, 2048, 2048, 256>::new());
@@ -293,9 +297,9 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
 ///     let objects = [Object {
 ///         mesh: torus.mesh(),
 ///         transform: Mat4::rotate_y(Q::lit(0.5 * frame as f64)),
-///         material: scanline3d::demo::torus_material(),
+///         material: Material::matte([255, 160, 64], Q::lit(0.15), Q::lit(0.85)),
 ///     }];
-///     let scene = Scene::new(&objects, scanline3d::demo::camera().unwrap(), scanline3d::demo::lights());
+///     let scene = Scene::new(&objects, camera, [Light::white([-Q::ONE, Q::ONE, Q::ONE])]);
 ///     worst = worst.max(measure.needs(&scene).unwrap());
 /// }
 /// type Device = Renderer<Q, Rgb565, 240, 240, 512, 480, 64>;

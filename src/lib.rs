@@ -58,7 +58,7 @@
 //! and `ACTIVE` triangles being scanned of 84 bytes are the capacities a scene needs; `4·H` is
 //! the per-row bucket starts and the active-count sweep. A flat-shaded triangle takes one more
 //! vertex (a copy of a corner that carries the face colour). For the default torus scene at
-//! 240 × 240 RGB565, `cargo run --release --example render` prints the value for the
+//! 240 × 240 RGB565, `cargo run --release -p scanline3d-tools --bin render` prints the value for the
 //! capacities that frame needs — under 16 KB, against 230 KB for a 240 × 240 RGB565
 //! framebuffer plus a 16-bit depth buffer.
 //!
@@ -172,10 +172,9 @@
 // that more plainly than zipped iterators.
 #![allow(clippy::needless_range_loop)]
 
-// Every module is private; what users name is re-exported below (tiny-skia's layout). Four
-// tool modules stay public as namespaces: `demo` (the built-in scenes of the examples and
-// benchmarks), `hash` (hashing and null draw targets), `metrics` (error metrics between two
-// renderings) and `overlay` (text composed into strips). The stages, in pipeline order:
+// Every module is private; what users name is re-exported below (tiny-skia's layout). The
+// built-in scenes, hashes, metrics and overlays live in the repository's support crate
+// (support/), not here. The stages, in pipeline order:
 // scene → geometry (camera, math, clip, project, shade; the cull kernel) → bin → strip (setup,
 // span, with the raster formats) → the target. Architecture-specific code lives in `kernel`
 // only (see "Cortex-M kernels" above).
@@ -187,30 +186,18 @@ mod clip;
 mod color;
 mod config;
 mod cull;
-pub mod demo;
-mod demo_assets;
-mod demo_csg;
-// Written by `bake` (tests/bench_scenes.rs checks that re-baking reproduces it byte for byte):
-// neither formatted nor linted here.
-#[rustfmt::skip]
-#[allow(dead_code, clippy::all)]
-mod demo_csg_mesh;
-mod demo_shadow;
 mod depth_mode;
 mod effects;
 mod error;
 mod geometry;
 mod geometry_attrs;
-pub mod hash;
 mod kernel;
 mod layer_rows;
 mod layers;
 mod math;
 mod mesh;
-pub mod metrics;
 mod no_depth;
 mod object_setup;
-pub mod overlay;
 mod phong;
 mod project;
 mod raster;
@@ -235,7 +222,7 @@ mod wide;
 
 pub use fixed;
 
-// The baked CSG part (src/demo_csg_mesh.rs) names the crate as its users do.
+// The baked CSG part (support/src/demo_csg_mesh.rs) names the crate as its users do.
 extern crate self as scanline3d;
 
 pub use adjacency::{
@@ -282,8 +269,10 @@ pub use embedded_graphics_core::draw_target::DrawTarget;
 /// vertex colour packing, the normalized reciprocal). Not API: no stability promise.
 #[doc(hidden)]
 pub mod internals {
+    pub use crate::no_depth::set_order_any;
     pub use crate::project::{pack_channels, Viewport};
     pub use crate::renderer::{ram_formula, ACTIVE_BYTES, TRIANGLE_BYTES, VERTEX_BYTES};
+    pub use crate::shadow::plane_basis;
     pub use crate::wide::recip_norm;
 }
 

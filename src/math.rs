@@ -147,7 +147,7 @@ impl<S: Scalar> Mat4<S> {
     /// [`Mat4::rotate_y`] of the angle whose sine and cosine are `s` and `c` (for a caller that
     /// keeps them in a table).
     #[must_use]
-    pub(crate) fn rotate_y_sin_cos(s: S, c: S) -> Self {
+    pub fn rotate_y_sin_cos(s: S, c: S) -> Self {
         let mut r = Self::identity();
         r.m[0][0] = c;
         r.m[0][2] = s;

@@ -63,3 +63,26 @@ impl<
         self
     }
 }
+
+/// Sets the draw order of any renderer (the support crate's generic benchmark driver, which
+/// builds renderers with and without depth lines from one function; a renderer with depth
+/// lines ignores the order). Not API: [`Renderer::set_order`] is, on [`NoDepthRenderer`].
+#[doc(hidden)]
+pub fn set_order_any<
+    S: Scalar,
+    C: TargetColor,
+    const W: usize,
+    const H: usize,
+    const VERTS: usize,
+    const TRIS: usize,
+    const ACTIVE: usize,
+    const LINES: usize,
+    const XV: usize,
+    const XA: usize,
+    const ZL: usize,
+>(
+    r: &mut Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>,
+    order: DrawOrder,
+) {
+    r.order = order;
+}

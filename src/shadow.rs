@@ -212,7 +212,7 @@ impl<S: Scalar> PlanarShadow<S> {
 
 /// A right-handed orthonormal basis `(u, n, w)` of plane `a·x + b·y + c·z + d = 0`: `n` its unit
 /// normal, `u` and `w` in it (`(x, y, z)` for the level plane `0, 1, 0, d`).
-pub(crate) fn plane_basis(p: [f64; 4]) -> ([f64; 3], [f64; 3], [f64; 3]) {
+pub fn plane_basis(p: [f64; 4]) -> ([f64; 3], [f64; 3], [f64; 3]) {
     let len = libm::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).max(1e-300);
     let n = [p[0] / len, p[1] / len, p[2] / len];
     let cross = |a: [f64; 3], b: [f64; 3]| {

@@ -7,9 +7,9 @@
 mod common;
 
 use common::compare::compare;
-use scanline3d::demo::Bench;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::{Fx, Scalar};
+use scanline3d_support::demo::Bench;
 
 fn check<S: Scalar>() {
     for b in Bench::ALL {
@@ -104,9 +104,9 @@ fn f32_within_one_lsb_of_f64_on_same_geometry() {
 fn strip_by_strip_comparison_in_o_width_memory() {
     use common::Frame;
     use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
-    use scanline3d::demo;
-    use scanline3d::metrics::{Metrics, StripCapture};
     use scanline3d::{Renderer, Scene};
+    use scanline3d_support::demo;
+    use scanline3d_support::metrics::{Metrics, StripCapture};
     type Q = Fx<I16F16>;
     let sq = demo::torus::<Q>().unwrap();
     let sf = demo::torus::<f64>().unwrap();

@@ -7,10 +7,10 @@ use common::{at, screen_camera, unlit, Frame};
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics::prelude::*;
-use scanline3d::demo::deg;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
 use scanline3d::{Capacity, Error, Stats};
+use scanline3d_support::demo::deg;
 
 type Q = Fx<I16F16>;
 type Small<S> = Renderer<S, Rgb565, 32, 32, 64, 64, 16>;
@@ -215,12 +215,12 @@ fn camera_inside_a_closed_mesh() {
 
 #[test]
 fn capacity_errors_name_the_capacity_and_draw_nothing() {
-    let torus = scanline3d::demo::torus::<Q>().unwrap();
-    let objects = [scanline3d::demo::torus_object(&torus)];
+    let torus = scanline3d_support::demo::torus::<Q>().unwrap();
+    let objects = [scanline3d_support::demo::torus_object(&torus)];
     let scene = Scene::new(
         &objects,
-        scanline3d::demo::camera().unwrap(),
-        scanline3d::demo::lights(),
+        scanline3d_support::demo::camera().unwrap(),
+        scanline3d_support::demo::lights(),
     );
     // Too few vertices: the one error names every capacity that is short.
     let mut r: Box<Renderer<Q, Rgb565, 64, 64, 100, 2000, 200>> = Box::default();

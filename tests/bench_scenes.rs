@@ -5,15 +5,15 @@ mod common;
 
 use common::Frame;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
-use scanline3d::demo::{render_bench, Bench};
 use scanline3d::fixed::types::I16F16;
-use scanline3d::hash::HashTarget;
 use scanline3d::prelude::*;
 use scanline3d::NoProbe;
+use scanline3d_support::demo::{render_bench, Bench};
+use scanline3d_support::hash::HashTarget;
 
 type Q = Fx<I16F16>;
 
-fn frame<S: Scalar>(b: Bench, spin: f64) -> (Frame<Rgb565>, scanline3d::demo::BenchFrame) {
+fn frame<S: Scalar>(b: Bench, spin: f64) -> (Frame<Rgb565>, scanline3d_support::demo::BenchFrame) {
     let mut f = Frame::new(240, 240, Rgb565::BLACK);
     let r = render_bench::<S, Rgb565, _, _>(b, spin, false, &mut f, &mut NoProbe)
         .unwrap_or_else(|e| panic!("{b:?} {} at {spin}°: {e:?}", S::NAME));
@@ -79,7 +79,7 @@ fn a_taller_strip_gives_the_same_torus() {
     for spin in [0.0, 37.0] {
         let (f, one) = frame::<Q>(Bench::Torus, spin);
         let mut g = Frame::new(240, 240, Rgb565::BLACK);
-        let eight = scanline3d::demo::render_torus_strip::<Q, Rgb565, _, _, 8>(
+        let eight = scanline3d_support::demo::render_torus_strip::<Q, Rgb565, _, _, 8>(
             spin,
             false,
             &mut g,
@@ -101,12 +101,12 @@ fn a_taller_strip_gives_the_same_torus() {
 /// its stack has no room for more, and one less of either fails the frame.
 #[test]
 fn small_part_capacities_are_exactly_the_frame_s_needs() {
-    use scanline3d::demo::{render_torus_sized, SMALL_PART_TORUS};
     use scanline3d::Error;
+    use scanline3d_support::demo::{render_torus_sized, SMALL_PART_TORUS};
     const W: usize = SMALL_PART_TORUS.0;
     const T: usize = SMALL_PART_TORUS.1;
     const A: usize = SMALL_PART_TORUS.2;
-    let shape = scanline3d::demo::torus::<Q>().unwrap();
+    let shape = scanline3d_support::demo::torus::<Q>().unwrap();
     let mut t = HashTarget::<Rgb565>::new(W as u32, W as u32);
     let f =
         render_torus_sized::<Q, Rgb565, _, _, W, T, A>(shape.mesh(), &mut t, &mut NoProbe).unwrap();
@@ -114,10 +114,12 @@ fn small_part_capacities_are_exactly_the_frame_s_needs() {
         (f.stats.drawn as usize, f.stats.max_active as usize),
         (T, A)
     );
-    let short = |r: Result<_, scanline3d::demo::BenchError<_>>| {
+    let short = |r: Result<_, scanline3d_support::demo::BenchError<_>>| {
         matches!(
             r,
-            Err(scanline3d::demo::BenchError::Render(Error::Shortfall(_)))
+            Err(scanline3d_support::demo::BenchError::Render(
+                Error::Shortfall(_)
+            ))
         )
     };
     let mut t = HashTarget::<Rgb565>::new(W as u32, W as u32);
@@ -135,7 +137,7 @@ fn small_part_capacities_are_exactly_the_frame_s_needs() {
 /// frame with a shortfall.
 #[test]
 fn csg_scene_matches_its_golden_images_and_its_capacities() {
-    use scanline3d::demo::{CSG_ACTIVE, CSG_TRIS};
+    use scanline3d_support::demo::{CSG_ACTIVE, CSG_TRIS};
     fn most<S: Scalar>() -> (usize, usize) {
         (0..360)
             .step_by(5)
@@ -151,37 +153,4 @@ fn csg_scene_matches_its_golden_images_and_its_capacities() {
     common::check_golden("csg_I16F16", &frame::<Q>(Bench::Csg, 0.0).0);
     common::check_golden("csg_f32", &frame::<f32>(Bench::Csg, 0.0).0);
     common::check_golden("csg_f64", &frame::<f64>(Bench::Csg, 0.0).0);
-}
-
-/// `src/demo_csg_mesh.rs` is exactly what `bake` writes for `examples/csg/part.csg` today, so
-/// the scene cannot drift from the CSG modeller (or the modeller change the part unnoticed).
-/// Needs the `bake` example built (`cargo test` builds it; with `--test bench_scenes` alone,
-/// `cargo build --release --examples` first).
-#[test]
-fn the_baked_csg_part_is_what_bake_writes() {
-    let root = env!("CARGO_MANIFEST_DIR");
-    let exe = std::env::current_exe().unwrap();
-    let bake = exe
-        .parent()
-        .unwrap()
-        .parent()
-        .unwrap()
-        .join("examples")
-        .join(format!("bake{}", std::env::consts::EXE_SUFFIX));
-    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench_scenes");
-    std::fs::create_dir_all(&dir).unwrap();
-    let out = dir.join("demo_csg_mesh.rs");
-    let run = std::process::Command::new(&bake)
-        .args(["--csg", &format!("{root}/examples/csg/part.csg"), "--out"])
-        .arg(&out)
-        .output()
-        .unwrap_or_else(|e| panic!("{}: {e} (build the examples first)", bake.display()));
-    assert!(run.status.success(), "{run:?}");
-    let want = std::fs::read(format!("{root}/src/demo_csg_mesh.rs")).unwrap();
-    let got = std::fs::read(&out).unwrap();
-    assert!(
-        got == want,
-        "src/demo_csg_mesh.rs differs from a fresh `cargo run --release --example bake -- --csg \
-         examples/csg/part.csg --out src/demo_csg_mesh.rs`"
-    );
 }

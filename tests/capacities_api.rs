@@ -18,10 +18,10 @@ use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use scanline3d::demo::{self, deg, TorusShape};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
 use scanline3d::{Capacity, Error, Shortfall, Stats};
+use scanline3d_support::demo::{self, deg, TorusShape};
 
 type Q = Fx<I16F16>;
 
@@ -361,7 +361,7 @@ fn large_renderer_as_a_static() {
             let scene = Scene::new(&objects, demo::camera().unwrap(), demo::lights());
             let mut r = BIG.lock().unwrap();
             r.set_dither(true);
-            let mut target = scanline3d::hash::NullTarget::<Rgb888>::new(1024, 1024);
+            let mut target = scanline3d_support::hash::NullTarget::<Rgb888>::new(1024, 1024);
             let stats = r.render(&scene, &mut target).unwrap();
             assert!(r.shortfall().is_none());
             stats.pixels_written

@@ -297,7 +297,7 @@ fn layered_frames_need_depth_lines() {
 /// The benchmark's depth-mode scenes draw their Z-buffer scene's pixels at every angle, with
 /// less renderer RAM.
 fn bench_case<S: Scalar>() {
-    use scanline3d::demo::{render_bench, Bench};
+    use scanline3d_support::demo::{render_bench, Bench};
     for (b, zbuffer) in [
         (Bench::CubePainter, Bench::Cube),
         (Bench::CubeNoDepth, Bench::Cube),

@@ -10,9 +10,9 @@ mod common;
 
 use common::{compare565, screen_camera, Frame};
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
-use scanline3d::demo::{self, deg};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
+use scanline3d_support::demo::{self, deg};
 
 type Q = Fx<I16F16>;
 type R = Renderer<Q, Rgb565, 240, 240, 1024, 2048, 192>;

@@ -478,7 +478,7 @@ fn bad_fog_and_bad_point_lights_are_reported() {
 /// (looked at).
 #[test]
 fn effects_frames_match_their_golden_images() {
-    use scanline3d::demo::{render_bench, Bench};
+    use scanline3d_support::demo::{render_bench, Bench};
     fn one<S: Scalar>(b: Bench, ty: &str) {
         let mut f = Frame::new(240, 240, Rgb565::BLACK);
         render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::NoProbe).unwrap();
@@ -614,7 +614,7 @@ fn automatic_exposure_adapts_to_bright_and_dark_scenes() {
             let f = hdr_sphere(Some(tone), COLOR);
             // Measured as the strips go out (here the frame in one call to a target that
             // discards it), sphere and background alike.
-            let mut sink = scanline3d::hash::NullTarget::<Rgb565>::new(SIZE, SIZE);
+            let mut sink = scanline3d_support::hash::NullTarget::<Rgb565>::new(SIZE, SIZE);
             let mut m = Metered::new(&mut sink);
             let all = Rectangle::new(Point::zero(), Size::new(SIZE, SIZE));
             m.fill_contiguous(&all, f.px.iter().copied()).unwrap();
@@ -643,7 +643,7 @@ fn automatic_exposure_adapts_to_bright_and_dark_scenes() {
     // The exposure stays within its range whatever is measured.
     // Leaving the background out: the sphere's own mean.
     let f = hdr_sphere::<f64>(None, COLOR);
-    let mut sink = scanline3d::hash::NullTarget::<Rgb565>::new(SIZE, SIZE);
+    let mut sink = scanline3d_support::hash::NullTarget::<Rgb565>::new(SIZE, SIZE);
     let mut m = Metered::new(&mut sink).excluding(Rgb565::BLACK);
     let all = Rectangle::new(Point::zero(), Size::new(SIZE, SIZE));
     m.fill_contiguous(&all, f.px.iter().copied()).unwrap();

@@ -8,10 +8,10 @@ mod common;
 use common::compare::{Record, Replay};
 use common::{screen_camera, unlit, Frame};
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
-use scanline3d::demo::deg;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
 use scanline3d::{Probe, Stats, TriangleId};
+use scanline3d_support::demo::deg;
 
 type Q = Fx<I16F16>;
 
@@ -1018,11 +1018,11 @@ fn long_run<S: Scalar>() {
             material: unlit([200, 100, 50], Shading::Flat),
         }];
         let scene = Scene::new(&objects, cam, [Light::white([S::ZERO, S::ZERO, S::ONE])]);
-        let mut h = scanline3d::hash::HashTarget::<Rgb565>::new(32, 32);
+        let mut h = scanline3d_support::hash::HashTarget::<Rgb565>::new(32, 32);
         long.render(&scene, &mut h).unwrap();
         if k % 997 == 0 || k == 35_999 {
             let mut fresh: Box<Renderer<S, Rgb565, 32, 32, 32, 16, 16>> = Box::default();
-            let mut h2 = scanline3d::hash::HashTarget::<Rgb565>::new(32, 32);
+            let mut h2 = scanline3d_support::hash::HashTarget::<Rgb565>::new(32, 32);
             fresh.render(&scene, &mut h2).unwrap();
             assert_eq!(
                 h.hash(),

@@ -516,7 +516,7 @@ fn errors_implement_display_and_error() {
         index: 9,
     };
     assert!(error_text(&m).contains("triangle 3") && error_text(&m).contains('9'));
-    let g = scanline3d::overlay::GlyphError::TooManyChars { capacity: 4 };
+    let g = scanline3d_support::overlay::GlyphError::TooManyChars { capacity: 4 };
     assert!(error_text(&g).contains('4'));
     let c: Error<core::convert::Infallible> = Error::Light {
         index: 1,
@@ -527,8 +527,8 @@ fn errors_implement_display_and_error() {
     let cam: Error<core::convert::Infallible> = Error::Camera(CameraError::EyeAtTarget);
     assert!(core::error::Error::source(&cam).is_some());
     assert!(error_text(&cam).contains("eye equals target"));
-    let b: scanline3d::demo::BenchError<core::convert::Infallible> =
-        scanline3d::demo::BenchError::Render(Error::MissingNormals { object: 2 });
+    let b: scanline3d_support::demo::BenchError<core::convert::Infallible> =
+        scanline3d_support::demo::BenchError::Render(Error::MissingNormals { object: 2 });
     assert!(error_text(&b).contains("object 2"));
     assert!(error_text(&CameraError::UpParallelToView).contains("parallel"));
 }

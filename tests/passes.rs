@@ -7,10 +7,10 @@ mod common;
 use common::Frame;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
-use scanline3d::demo;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
 use scanline3d::{Error, Stats};
+use scanline3d_support::demo;
 
 type Q = Fx<I16F16>;
 

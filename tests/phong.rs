@@ -256,7 +256,7 @@ fn phong_needs_the_attribute_stores() {
 /// (looked at).
 #[test]
 fn phong_frames_match_their_golden_images() {
-    use scanline3d::demo::{render_bench, Bench};
+    use scanline3d_support::demo::{render_bench, Bench};
     fn one<S: Scalar>(b: Bench, ty: &str) {
         let mut f = Frame::new(240, 240, Rgb565::BLACK);
         render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::NoProbe).unwrap();

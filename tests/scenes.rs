@@ -7,11 +7,11 @@ mod common;
 
 use common::{at, check_golden, compare565, screen_camera, unlit, Frame};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
-use scanline3d::demo::{self, deg};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
 use scanline3d::quantize;
 use scanline3d::Stats;
+use scanline3d_support::demo::{self, deg};
 
 type Q = Fx<I16F16>;
 

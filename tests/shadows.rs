@@ -7,9 +7,9 @@ mod common;
 use common::Frame;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
-use scanline3d::demo::{render_bench, Bench};
 use scanline3d::prelude::*;
 use scanline3d::{Error, LayerError, Layering, Layers, NoProbe, PlanarShadow, ShadowLight};
+use scanline3d_support::demo::{render_bench, Bench};
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;
 

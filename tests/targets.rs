@@ -9,9 +9,9 @@ mod common;
 use common::Frame;
 use embedded_graphics::pixelcolor::{BinaryColor, Gray2, Gray4, Gray8, GrayColor};
 use embedded_graphics::prelude::*;
-use scanline3d::demo::deg;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
+use scanline3d_support::demo::deg;
 
 /// A lit white icosphere, Gouraud, 64 × 64, into a `C` frame.
 fn sphere<S: Scalar, C: TargetColor + PixelColor>(dither: bool, bg: C) -> Frame<C> {

@@ -151,7 +151,7 @@ fn attribute_stores_cost_exactly_their_records() {
 /// (looked at): the checkerboard floor crossing the near plane and the textured cube.
 #[test]
 fn textured_frames_match_their_golden_images() {
-    use scanline3d::demo::{render_bench, Bench};
+    use scanline3d_support::demo::{render_bench, Bench};
     fn one<S: Scalar>(b: Bench, ty: &str) {
         let mut f = common::Frame::new(240, 240, Rgb565::BLACK);
         render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::NoProbe).unwrap();
@@ -241,7 +241,7 @@ fn seeking_a_row_gives_the_rows_of_the_whole_frame() {
         mesh: shape.mesh(),
         transform: Mat4::rotate_y(Q::lit(0.5)),
         material: Material::matte([255; 3], Q::lit(0.3), Q::lit(0.7))
-            .textured(&scanline3d::demo::CHECKER),
+            .textured(&scanline3d_support::demo::CHECKER),
     }];
     let cam = Camera::look_at(
         [Q::lit(0.0), Q::lit(1.5), Q::lit(3.0)],

@@ -23,13 +23,13 @@
 
 use embedded_graphics_core::pixelcolor::Rgb565;
 use scanline3d::fixed::types::I16F16;
-use scanline3d::hash::HashTarget;
 use scanline3d::prelude::*;
 use scanline3d::{
     check_adjacency, mesh_adjacency, mesh_creases, Adjacency, Edges, Layering, Layers, Outline,
     PlanarShadow, ShadowLight, Stats, Texture, TextureMode, TexturedShape, ToneCurve, ToneMap,
     VolumeShadow, Wrap, NO_NEIGHBOUR,
 };
+use scanline3d_support::hash::HashTarget;
 
 // The renderer's and the layers' capacities.
 const W: usize = 40;

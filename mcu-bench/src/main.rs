@@ -3,7 +3,7 @@
 //! `-icount shift=7`: every instruction advances the virtual clock by 128 ns, so a board timer
 //! counts instructions), per-stage counts, the image hash, and memory figures.
 //!
-//! Output lines (parsed by `examples/mcu_report.rs`):
+//! Output lines (parsed by `tools/src/bin/mcu_report.rs`):
 //! `BENCH scene=.. number=.. instructions=.. vertices=.. lighting=.. triangles=.. setup=..
 //!  raster=.. output=.. hash=.. pixels=.. renderer_ram=.. drawn=..`, then
 //! `SPLIT frame=.. split=.. geometry=.. top=.. bottom=..` (the Pico firmware's frame
@@ -17,9 +17,9 @@ use core::panic::PanicInfo;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics_core::pixelcolor::Rgb565;
-use scanline3d::demo::{render_bench, Bench};
+use scanline3d_support::demo::{render_bench, Bench};
 use scanline3d::fixed::types::I16F16;
-use scanline3d::hash::{HashTarget, NullTarget};
+use scanline3d_support::hash::{HashTarget, NullTarget};
 use scanline3d::{Fx, NoProbe, Probe, Scalar, Stage};
 
 #[cfg(not(feature = "microbit"))]
@@ -248,19 +248,19 @@ mod flash_torus {
 /// Side of the square frame the torus is rendered at on the 16 KB part: the largest multiple
 /// of 8 pixels that fits (the firmware prints what the next size would need).
 #[cfg(feature = "microbit")]
-pub const MICROBIT_TORUS_SIZE: usize = scanline3d::demo::SMALL_PART_TORUS.0;
+pub const MICROBIT_TORUS_SIZE: usize = scanline3d_support::demo::SMALL_PART_TORUS.0;
 /// Triangle and active capacities of that renderer: what the frame needs.
 #[cfg(feature = "microbit")]
 const MICROBIT_CAPACITY: (usize, usize) = (
-    scanline3d::demo::SMALL_PART_TORUS.1,
-    scanline3d::demo::SMALL_PART_TORUS.2,
+    scanline3d_support::demo::SMALL_PART_TORUS.1,
+    scanline3d_support::demo::SMALL_PART_TORUS.2,
 );
 
 /// The default torus frame at `W × W` on the 16 KB part, from the flash mesh.
 #[cfg(feature = "microbit")]
 #[inline(never)]
 fn torus_sized<const W: usize>() {
-    use scanline3d::demo::render_torus_sized;
+    use scanline3d_support::demo::render_torus_sized;
     const T: usize = MICROBIT_CAPACITY.0;
     const A: usize = MICROBIT_CAPACITY.1;
     let mesh = match scanline3d::Mesh::new(&flash_torus::POSITIONS, &flash_torus::INDICES)
@@ -306,7 +306,7 @@ fn report_sized(w: usize, ticks: u64, hash: u64, ram: usize, drawn: u32, written
 
 /// One benchmark scene, dithering on or off (`DITHER`, a constant as it is in firmware that
 /// never changes it): with dithering the line's scene name gets the suffix `_dithered`
-/// (`examples/mcu_report.rs` renders the host's frame the same way).
+/// (`tools/src/bin/mcu_report.rs` renders the host's frame the same way).
 // Not inlined: inlined into `main` (as LLVM chose once), its 5 KB frame stayed under the
 // 16 KB part's largest frame (`torus_sized`) and overflowed its RAM.
 #[inline(never)]
@@ -375,7 +375,7 @@ fn bench<S: Scalar, const DITHER: bool>(scene: Bench) {
 /// hash (`scripts/mcu-bench` checks that the hash equals the one-line frame's).
 #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
 fn strip_bench<const LINES: usize>() {
-    use scanline3d::demo::render_torus_strip;
+    use scanline3d_support::demo::render_torus_strip;
     let mut null = NullTarget::<Rgb565>::new(240, 240);
     let mut ft = FrameTimer { start: 0, ticks: 0 };
     let r = render_torus_strip::<Fx<I16F16>, Rgb565, _, _, LINES>(0.0, false, &mut null, &mut ft);
@@ -415,9 +415,9 @@ fn render_error<E>(e: &scanline3d::Error<E>) -> &'static str {
 }
 
 /// [`render_error`] of a benchmark's error.
-fn bench_error<E>(e: &scanline3d::demo::BenchError<E>) -> &'static str {
+fn bench_error<E>(e: &scanline3d_support::demo::BenchError<E>) -> &'static str {
     match e {
-        scanline3d::demo::BenchError::Render(e) => render_error(e),
+        scanline3d_support::demo::BenchError::Render(e) => render_error(e),
         _ => "scene",
     }
 }
@@ -430,7 +430,7 @@ fn bench_error<E>(e: &scanline3d::demo::BenchError<E>) -> &'static str {
 #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
 fn split_bench(frame: u32) {
     use embedded_graphics_core::pixelcolor::RgbColor;
-    use scanline3d::demo::board::{self, SplitPart};
+    use scanline3d_support::demo::board::{self, SplitPart};
     let Ok(scene) = board::BoardScene::<Fx<I16F16>>::new() else {
         hprintln!("ERROR split: scene");
         return;

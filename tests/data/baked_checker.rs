@@ -1,4 +1,4 @@
-// Baked by `cargo run --release --example bake -- --texture checker8.png --name CHECKER8 --wrap repeat`
+// Baked by `cargo run --release -p scanline3d-tools --bin bake -- --texture checker8.png --name CHECKER8 --wrap repeat`
 // from checker8.png (Rgba, 8 bits per sample). Do not edit.
 //
 // 8 x 8 texels, RGB565 (red bits 11..15, green 5..10, blue 0..4), 128 bytes of flash.

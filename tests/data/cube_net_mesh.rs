@@ -1,4 +1,4 @@
-// Baked by `cargo run --release --example bake` from cube_net.obj. Do not edit.
+// Baked by `cargo run --release -p scanline3d-tools --bin bake` from cube_net.obj. Do not edit.
 //
 // 14 vertices, 12 triangles, 520 bytes of flash.
 // Positions are normalized: model = stored * SCALE + OFFSET (stored within ±1, Q16.16).

@@ -1,4 +1,4 @@
-// Baked by `cargo run --release --example bake` from torus.obj. Do not edit.
+// Baked by `cargo run --release -p scanline3d-tools --bin bake` from torus.obj. Do not edit.
 //
 // 512 vertices, 1024 triangles, 18432 bytes of flash.
 // Positions are normalized: model = stored * SCALE + OFFSET (stored within ±1, Q16.16).

@@ -220,7 +220,7 @@ function main() {
     if (!opts.hostTool || !fs.existsSync(opts.hostTool)) {
       compareFailures.push(
         `the host reference tool is missing (${opts.hostTool ?? 'no --host-tool given'}): ` +
-          'examples/board_frames.rs builds it; --no-host runs without the comparison',
+          'tools/src/bin/board_frames.rs builds it; --no-host runs without the comparison',
       );
     } else if (labels) {
       const hostDir = path.join(opts.out, 'host');
