@@ -166,7 +166,7 @@ pub struct Capacities {
 
 impl Capacities {
     /// Largest `width` and `height`.
-    pub const MAX_SCREEN: usize = crate::project::MAX_SCREEN;
+    pub const MAX_SCREEN: usize = crate::geometry::project::MAX_SCREEN;
     /// Largest `vertices`.
     pub const MAX_VERTICES: usize = FLAT_BIT as usize;
     /// Largest `triangles`.

@@ -558,3 +558,115 @@ pub struct StripBufferTooSmall {
     /// Bytes given.
     pub given: usize,
 }
+
+/// The most translucent objects one layered frame draws (the [`crate::Layers`]' table of them).
+pub const MAX_TRANSLUCENT: usize = 16;
+
+/// Why a layered frame was refused (inside [`crate::Error::Layers`]). Nothing was drawn.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum LayerError {
+    /// A receiver or caster index is not an object of the scene.
+    NoSuchObject {
+        /// The index given.
+        index: usize,
+    },
+    /// The shadow's plane or light has an invalid number, the plane's normal is zero, or the
+    /// light is in the plane (point) or parallel to it (directional).
+    Shadow,
+    /// Object `object` is translucent and textured or Phong-shaded: translucent triangles are
+    /// drawn with flat or Gouraud colours only.
+    Translucent {
+        /// Index of the object in the scene.
+        object: usize,
+    },
+    /// Receiver `object` does not lie in the shadow's plane (a vertex is farther from it than
+    /// 2⁻¹⁰ of its distance from the origin, or of one unit): the shadow would float off it.
+    OffPlane {
+        /// Index of the object in the scene.
+        object: usize,
+    },
+    /// More translucent objects than [`MAX_TRANSLUCENT`].
+    TooManyTranslucent,
+    /// The target colour cannot report its channels ([`crate::TargetColor::channels`]), so
+    /// nothing can be blended onto it.
+    Blending,
+    /// Both a planar shadow and shadow volumes: the stencil serves one of them per frame.
+    TwoShadows,
+    /// Object `object` (a volume caster or an outlined object) has no adjacency table, or one
+    /// checked against another mesh ([`crate::Adjacency::is_for`]: not the same index and
+    /// position slices).
+    Adjacency {
+        /// Index of the object in the scene.
+        object: usize,
+    },
+    /// Outlined object `object` has no crease table ([`crate::Edges::Crease`]), or one shorter than
+    /// its mesh's `3·T` bits ([`crate::mesh_creases`]).
+    Creases {
+        /// Index of the object in the scene.
+        object: usize,
+    },
+    /// Object `object` has more triangles than the stencil lines have bits
+    /// (`8·W·LINES`): a volume caster's or outlined object's faces are marked there while
+    /// its silhouette is found.
+    TooManyTriangles {
+        /// Index of the object in the scene.
+        object: usize,
+        /// Its triangles.
+        triangles: usize,
+        /// The bits of the stencil lines.
+        capacity: usize,
+    },
+    /// The volumes' `reach` is not a valid positive number.
+    Reach,
+}
+
+impl core::fmt::Display for LayerError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            LayerError::NoSuchObject { index } => {
+                write!(f, "receiver or caster {index} is not an object of the scene")
+            }
+            LayerError::Translucent { object } => write!(
+                f,
+                "object {object} is translucent and textured or Phong: translucency is flat or Gouraud only"
+            ),
+            LayerError::OffPlane { object } => {
+                write!(f, "receiver {object} does not lie in the shadow's plane")
+            }
+            LayerError::Shadow => write!(
+                f,
+                "the shadow's plane or light is invalid (a NaN, a zero normal, or a light in or parallel to the plane)"
+            ),
+            LayerError::TooManyTranslucent => write!(
+                f,
+                "more than {} translucent objects",
+                MAX_TRANSLUCENT
+            ),
+            LayerError::TwoShadows => {
+                write!(f, "a planar shadow and shadow volumes in one frame")
+            }
+            LayerError::Adjacency { object } => write!(
+                f,
+                "object {object} has no adjacency table checked against its mesh (Adjacency::new)"
+            ),
+            LayerError::Creases { object } => write!(
+                f,
+                "outlined object {object} has no crease table of 3 bits per triangle (mesh_creases)"
+            ),
+            LayerError::TooManyTriangles {
+                object,
+                triangles,
+                capacity,
+            } => write!(
+                f,
+                "object {object} has {triangles} triangles, the stencil lines mark at most {capacity}"
+            ),
+            LayerError::Reach => write!(f, "the shadow volumes' reach is not a positive number"),
+            LayerError::Blending => {
+                write!(f, "the target colour cannot report its channels for blending")
+            }
+        }
+    }
+}

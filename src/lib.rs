@@ -174,93 +174,68 @@
 
 // Every module is private; what users name is re-exported below (tiny-skia's layout). The
 // built-in scenes, hashes, metrics and overlays live in the repository's support crate
-// (support/), not here. The stages, in pipeline order:
-// scene → geometry (camera, math, clip, project, shade; the cull kernel) → bin → strip (setup,
-// span, with the raster formats) → the target. Architecture-specific code lives in `kernel`
-// only (see "Cortex-M kernels" above).
-mod adjacency;
-mod attrs;
-mod bin;
-mod camera;
-mod clip;
-mod color;
+// (support/), not here. One folder per stage, in pipeline order: `scene` (what the user
+// describes) → `geometry` (vertices, lighting, clipping, projection, culling, binning) →
+// `raster` (the strip pass: setup, spans, layers) → the target; `num` (the number types) on
+// `kernel` (every architecture-specific routine and the capability-chosen integer arithmetic,
+// see "Cortex-M kernels" above), which imports nothing of the crate. `scripts/module-graph`
+// checks these layers.
 mod config;
-mod cull;
-mod depth_mode;
-mod effects;
 mod error;
 mod geometry;
-mod geometry_attrs;
 mod kernel;
-mod layer_rows;
-mod layers;
-mod math;
-mod mesh;
-mod no_depth;
-mod object_setup;
-mod phong;
-mod project;
+mod num;
 mod raster;
 mod renderer;
-mod scalar;
 mod scene;
 #[doc(hidden)]
 pub mod selftest;
-mod setup;
-mod shade;
-mod shadow;
-mod shapes;
-mod span;
 mod stats;
-mod strip;
-mod texture;
-mod textured;
-mod textured_shapes;
-mod tone;
-mod volume;
-mod wide;
 
 pub use fixed;
 
 // The baked CSG part (support/src/demo_csg_mesh.rs) names the crate as its users do.
 extern crate self as scanline3d;
 
-pub use adjacency::{
-    check_adjacency, mesh_adjacency, mesh_creases, Adjacency, AdjacencyError, NO_NEIGHBOUR,
-};
-pub use camera::{Camera, CameraError, Projection, MAX_DEPTH_RATIO};
-pub use clip::{BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP};
-pub use color::{luma, quantize, scale_channels, TargetColor, TriangleId, BAYER};
 #[doc(hidden)]
 pub use config::__macro as __renderer_type;
 pub use config::Capacities;
-pub use cull::{facing, signed_area2, Facing};
-pub use depth_mode::DrawOrder;
-pub use effects::{Effects, Fog, PointLight, MAX_PHONG_POINT_LIGHTS};
-pub use layers::Layers;
-pub use math::{add, cross, dot, length, normalize, scale, sub, Mat4, Vec3};
-pub use mesh::{face_normal, vertex_normals, Mesh, MeshError, UV_LIMIT};
-pub use no_depth::NoDepthRenderer;
-pub use phong::MAX_PHONG_LIGHTS;
-pub use project::{ScreenVertex, COORD_LIMIT, DEPTH_FRAC_BITS, MAX_SCREEN, SUBPIXEL_BITS};
+pub use error::{LayerError, MAX_TRANSLUCENT};
+pub use geometry::clip::{BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP};
+pub use geometry::cull::{facing, signed_area2, Facing};
+pub use geometry::project::{
+    ScreenVertex, COORD_LIMIT, DEPTH_FRAC_BITS, MAX_SCREEN, SUBPIXEL_BITS,
+};
+pub use num::math::{add, cross, dot, length, normalize, scale, sub, Mat4, Vec3};
+pub use num::scalar::{Fx, FxRecip, Scalar, NDC_FRAC_BITS};
+pub use raster::depth_mode::DrawOrder;
+pub use raster::layers::Layers;
+pub use raster::no_depth::NoDepthRenderer;
+pub use raster::phong::MAX_PHONG_LIGHTS;
+pub use raster::shadow::{
+    Edges, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow, BLOB_RINGS,
+    BLOB_SIDES,
+};
+pub use raster::strip::StripCanvas;
 pub use raster::{DepthTest, COLOR_FRAC_BITS};
 pub use renderer::{
     Capacity, Error, Needs, NoProbe, OverflowPolicy, Probe, Renderer, Shortfall, Stage, Stats,
     StripBufferTooSmall, ACTIVE_EXTRA_BYTES, ACTIVE_EXTRA_BYTES_32, VERTEX_EXTRA_BYTES,
     VERTEX_EXTRA_BYTES_32,
 };
-pub use scalar::{Fx, FxRecip, Scalar, NDC_FRAC_BITS};
-pub use scene::{Object, Scene};
-pub use shade::{Light, Material, Shading};
-pub use shadow::{
-    Edges, LayerError, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow,
-    BLOB_RINGS, BLOB_SIDES, MAX_TRANSLUCENT,
+pub use scene::adjacency::{
+    check_adjacency, mesh_adjacency, mesh_creases, Adjacency, AdjacencyError, NO_NEIGHBOUR,
 };
-pub use shapes::{ParamValue, Shape, ShapeError};
-pub use strip::StripCanvas;
-pub use texture::{Texture, TextureError, TextureMode, Texturing, Wrap, MAX_TEXTURE_SIZE};
-pub use textured_shapes::TexturedShape;
-pub use tone::{AutoExposure, Metered, ToneCurve, ToneMap, MAX_TONE_SCALE};
+pub use scene::camera::{Camera, CameraError, Projection, MAX_DEPTH_RATIO};
+pub use scene::color::{luma, quantize, scale_channels, TargetColor, TriangleId, BAYER};
+pub use scene::effects::{Effects, Fog, PointLight, MAX_PHONG_POINT_LIGHTS};
+pub use scene::mesh::{face_normal, vertex_normals, Mesh, MeshError, UV_LIMIT};
+pub use scene::shade::{Light, Material, Shading};
+pub use scene::shapes::{ParamValue, Shape, ShapeError};
+pub use scene::texture::{Texture, TextureError, TextureMode, Texturing, Wrap, MAX_TEXTURE_SIZE};
+pub use scene::textured_shapes::TexturedShape;
+pub use scene::tone::{AutoExposure, Metered, ToneCurve, ToneMap, MAX_TONE_SCALE};
+pub use scene::{Object, Scene};
 
 #[doc(inline)]
 pub use embedded_graphics_core::draw_target::DrawTarget;
@@ -269,11 +244,11 @@ pub use embedded_graphics_core::draw_target::DrawTarget;
 /// vertex colour packing, the normalized reciprocal). Not API: no stability promise.
 #[doc(hidden)]
 pub mod internals {
-    pub use crate::no_depth::set_order_any;
-    pub use crate::project::{pack_channels, Viewport};
+    pub use crate::geometry::project::{pack_channels, Viewport};
+    pub use crate::kernel::wide::recip_norm;
+    pub use crate::raster::no_depth::set_order_any;
+    pub use crate::raster::shadow::plane_basis;
     pub use crate::renderer::{ram_formula, ACTIVE_BYTES, TRIANGLE_BYTES, VERTEX_BYTES};
-    pub use crate::shadow::plane_basis;
-    pub use crate::wide::recip_norm;
 }
 
 /// The types and traits a typical user needs.

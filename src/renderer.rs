@@ -10,14 +10,14 @@ use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Drawable;
 use heapless::Vec;
 
-use crate::attrs::{ActiveExtra, FREE, TRI};
-use crate::color::TargetColor;
-use crate::depth_mode::{painter_insert, painter_key, DrawOrder};
-use crate::project::{ScreenVertex, MAX_SCREEN};
+use crate::geometry::project::{ScreenVertex, MAX_SCREEN};
+use crate::num::scalar::Scalar;
+use crate::raster::attrs::{ActiveExtra, FREE, TRI};
+use crate::raster::depth_mode::{painter_insert, painter_key, DrawOrder};
+use crate::raster::textured::{attach_pushed, is_textured, VertexExtra};
 use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
-use crate::scalar::Scalar;
+use crate::scene::color::TargetColor;
 use crate::scene::Scene;
-use crate::textured::{attach_pushed, is_textured, VertexExtra};
 
 pub use crate::error::{Capacity, Error, Needs, OverflowPolicy, Shortfall, StripBufferTooSmall};
 pub use crate::stats::{NoProbe, Probe, Stage, Stats};
@@ -567,7 +567,7 @@ impl<
             });
         }
         self.begin_target(target)?;
-        let background = crate::color::quantize::<C>(first.background);
+        let background = crate::scene::color::quantize::<C>(first.background);
         for c in &mut self.color[..vh] {
             c[..vw].fill(background);
         }
@@ -791,7 +791,7 @@ pub const fn ram_formula(
 #[cfg(test)]
 mod ram_tests {
     use super::*;
-    use crate::scalar::Fx;
+    use crate::num::scalar::Fx;
     use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
     use fixed::types::I16F16;
 

@@ -133,6 +133,7 @@ fn reference_toned(x: u32, y: u32, tone: Option<(ToneCurve, f64, f64)>) -> Optio
                 ToneCurve::Filmic => {
                     (x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14)).min(1.0)
                 }
+                other => panic!("no float reference for the tone curve {other:?}"),
             }
     }))
 }

@@ -56,6 +56,7 @@ pub(crate) mod portable;
 pub(crate) mod records;
 #[cfg(scanline3d_thumb)]
 mod thumb;
+pub(crate) mod wide;
 
 use heapless::Vec;
 
@@ -82,7 +83,7 @@ pub(crate) enum Setup565 {
 #[inline]
 pub(crate) fn udiv_small(n: u32, d: u32) -> (u32, u32) {
     #[cfg(scanline3d_no_divide)]
-    return crate::wide::udiv_shift_subtract(n, d);
+    return crate::kernel::wide::udiv_shift_subtract(n, d);
     #[cfg(not(scanline3d_no_divide))]
     (n / d, n % d)
 }

@@ -8,7 +8,7 @@ use crate::kernel::records::{
     INVALID, LIT, NEEDS_CLIP, NEEDS_LIGHT, SUBPIXELS, SUBPIXEL_BITS,
 };
 use crate::kernel::udiv_small;
-use crate::wide::div_floor;
+use crate::kernel::wide::div_floor;
 
 impl Edge {
     /// [`Edge::new`] in portable code. Out of line where the edge kernel runs (ARMv6-M: it

@@ -62,7 +62,7 @@ pub(crate) const FLAG_MASK: u16 = (1 << 10) - 1;
 impl ScreenVertex {
     /// Colour channels in the target's channel units with `10 − bits` fraction bits for a
     /// channel of `bits` bits (RGB565: red and blue 5.5, green 6.4; 8-bit channels 8.2;
-    /// 0..=1023, step 1/32 LSB for RGB565; see [`pack_channels`](crate::project::pack_channels)).
+    /// 0..=1023, step 1/32 LSB for RGB565; see [`pack_channels`](crate::geometry::project::pack_channels)).
     #[inline]
     #[must_use]
     pub fn color(&self) -> [u16; 3] {

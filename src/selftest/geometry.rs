@@ -10,7 +10,7 @@ use super::*;
 /// first object with a differing record, as its seed.
 #[doc(hidden)]
 pub fn vertex_self_test(n: u32) -> Option<u32> {
-    use crate::scalar::Fx;
+    use crate::num::scalar::Fx;
     use fixed::types::I16F16;
     type Q = Fx<I16F16>;
     let q = |b: i32| Fx(I16F16::from_bits(b));
@@ -72,8 +72,8 @@ pub fn vertex_self_test(n: u32) -> Option<u32> {
 /// seed.
 #[doc(hidden)]
 pub fn light_self_test(n: u32) -> Option<u32> {
-    use crate::scalar::Fx;
-    use crate::shade::Material;
+    use crate::num::scalar::Fx;
+    use crate::scene::shade::Material;
     use embedded_graphics_core::pixelcolor::Rgb565;
     use fixed::types::I16F16;
     type Q = Fx<I16F16>;
@@ -160,13 +160,21 @@ pub fn cull_self_test(n: u32) -> Option<u32> {
     for _ in 0..n {
         let seed = seeds();
         let mut next = xorshift32(seed | 1);
-        let spread = [40, 400, 4000, 2 * crate::project::COORD_LIMIT as u32][(next() % 4) as usize];
+        let spread = [
+            40,
+            400,
+            4000,
+            2 * crate::geometry::project::COORD_LIMIT as u32,
+        ][(next() % 4) as usize];
         let mut verts = [ScreenVertex::default(); 16];
         for v in &mut verts {
             let r = next();
             let c = |h: u32| {
                 let v = (h % spread) as i32 - spread as i32 / 2 + 1000;
-                v.clamp(-crate::project::COORD_LIMIT, crate::project::COORD_LIMIT) as i16
+                v.clamp(
+                    -crate::geometry::project::COORD_LIMIT,
+                    crate::geometry::project::COORD_LIMIT,
+                ) as i16
             };
             v.x = c(r & 0xffff);
             v.y = c(r >> 16);
@@ -182,7 +190,7 @@ pub fn cull_self_test(n: u32) -> Option<u32> {
             }
             if f % 5 != 0 {
                 // A lit vertex's colour bits are anything; an unlit one's are zero.
-                flags |= LIT | (f >> 16) as u16 & !crate::project::FLAG_MASK;
+                flags |= LIT | (f >> 16) as u16 & !crate::geometry::project::FLAG_MASK;
             }
             v.flags = flags;
         }
@@ -259,7 +267,7 @@ pub fn cull_self_test(n: u32) -> Option<u32> {
 #[doc(hidden)]
 #[must_use]
 pub fn projection_self_test(n: u32) -> Option<([i32; 4], u32)> {
-    use crate::scalar::Fx;
+    use crate::num::scalar::Fx;
     use fixed::types::I16F16;
     let mut next = xorshift32(0x2545_f491);
     for i in 0..n {
@@ -295,7 +303,7 @@ pub fn projection_self_test(n: u32) -> Option<([i32; 4], u32)> {
 /// matrices and points of every magnitude up to the saturation rails. Returns the first
 /// mismatching case.
 pub fn transform_self_test(n: u32) -> Option<u32> {
-    use crate::scalar::Fx;
+    use crate::num::scalar::Fx;
     use fixed::types::I16F16;
     type Q = Fx<I16F16>;
     let mut next = xorshift32(0x2545_f491);

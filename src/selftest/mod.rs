@@ -18,7 +18,7 @@ pub use raster::{
     gouraud_setup_self_test, rows_self_test, span_self_test, triangle_setup_self_test,
 };
 
-use crate::color::{rgb565_words_mut, TargetColor};
+use crate::geometry::project::{pack_channels, Viewport};
 use crate::geometry::vertex_record;
 use crate::kernel;
 use crate::kernel::records::{
@@ -26,14 +26,16 @@ use crate::kernel::records::{
     DITHER_OK, FAST, FLAT, LIT, NEEDS_LIGHT,
 };
 use crate::kernel::records::{CullStop, Edge};
-use crate::math::Mat4;
-use crate::project::{pack_channels, Viewport};
+use crate::num::math::Mat4;
+use crate::num::scalar::Scalar;
+use crate::raster::setup::attribute_words;
+use crate::raster::span::{
+    span_flat_portable, span_packed_dither_portable, span_packed_portable, LESS,
+};
 use crate::raster::{DepthTest, SpanMode};
-use crate::scalar::Scalar;
-use crate::setup::attribute_words;
-use crate::shade::lit_diffuse;
-use crate::shade::PreparedLight;
-use crate::span::{span_flat_portable, span_packed_dither_portable, span_packed_portable, LESS};
+use crate::scene::color::{rgb565_words_mut, TargetColor};
+use crate::scene::shade::lit_diffuse;
+use crate::scene::shade::PreparedLight;
 use heapless::Vec;
 
 /// A signed value of 1 to `max_bits`

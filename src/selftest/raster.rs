@@ -9,7 +9,7 @@ use super::*;
 #[doc(hidden)]
 pub fn edge_setup_self_test(n: u32) -> Option<[i32; 5]> {
     let mut next = xorshift32(0x9e37_79b9u32);
-    let lim = crate::project::COORD_LIMIT;
+    let lim = crate::geometry::project::COORD_LIMIT;
     for i in 0..n {
         let (r1, r2, r3) = (next(), next(), next());
         // Short and long edges, steep and flat, every sign.
@@ -43,7 +43,7 @@ pub fn edge_setup_self_test(n: u32) -> Option<[i32; 5]> {
 pub fn gouraud_setup_self_test(n: u32) -> Option<([[i32; 4]; 3], [i32; 3])> {
     use embedded_graphics_core::pixelcolor::Rgb565;
     let mut next = xorshift32(0x6a09_e667u32);
-    let lim = crate::project::COORD_LIMIT;
+    let lim = crate::geometry::project::COORD_LIMIT;
     for i in 0..n {
         let size = [64u32, 512, 4096, 2 * lim as u32][(i % 4) as usize];
         let (ox, oy) = ((next() % 4096) as i32 - 2048, (next() % 4096) as i32 - 2048);
@@ -395,7 +395,7 @@ pub fn span_self_test(n: u32) -> Option<[u32; 2]> {
         );
         let (zf, gzf) = ((z0 >> 4) as i32, gz as i32 >> 4);
         let (mut zk, mut ck, mut zp, mut cp) = (za, ca, za, ca);
-        let word = crate::color::rgb565_word(color)?;
+        let word = crate::scene::color::rgb565_word(color)?;
         let words = rgb565_words_mut(&mut ck[..len])?;
         if let Some(wk) = kernel::span565_flat_less(&mut zk[..len], words, zf, gzf, word) {
             let wp =

@@ -611,7 +611,7 @@ pub(crate) fn gouraud_setup(rec: &mut ActiveTri, tri: &Sorted<'_>) -> bool {
         assert!(o::ROW == o::GX + 16 && o::INC == o::ROW + 16);
         assert!(core::mem::size_of::<Sorted<'_>>() == 28);
     };
-    let seed: &'static [u16; 128] = &crate::wide::RECIP_SEED;
+    let seed: &'static [u16; 128] = &crate::kernel::wide::RECIP_SEED;
     // SAFETY: `Sorted` is `repr(C)`, seven words (three vertex pointers, four `i32`), which the
     // routine reads along with the three vertices (at the field offsets given to it) and the
     // 128-entry seed table; it writes only the twelve words of `rec` from `gx` on (`gx`, `row`

@@ -17,7 +17,7 @@
 #![allow(unsafe_code)]
 
 use crate::kernel::records::{ScreenVertex, FLAG_MASK, LIT, NEEDS_LIGHT};
-use crate::wide::spread_bits;
+use crate::kernel::wide::spread_bits;
 
 /// The routine's argument block (`repr(C)`: it reads and updates the fields by offset). The
 /// constant factors are split into 16-bit halves, the low one unsigned, the high one signed.

@@ -327,7 +327,7 @@ pub(crate) fn project_q16(p: &[i32; 4], sx: u32, sy: u32) -> Option<[i32; 3]> {
     let mut out = [0i32; 3];
     // SAFETY: the routine reads the point's four words and the 128-entry seed table, and writes
     // only the three words of `out`.
-    let seed: &'static [u16; 128] = &crate::wide::RECIP_SEED;
+    let seed: &'static [u16; 128] = &crate::kernel::wide::RECIP_SEED;
     let ok = unsafe {
         scanline3d_project_q16(p.as_ptr(), sx | sy << 16, seed.as_ptr(), out.as_mut_ptr())
     };

@@ -326,7 +326,7 @@ pub(crate) fn setup565(
         assert!(o::CX == o::BX + 4 && o::BX % 4 == 0 && o::ROW_END == o::ROW_MID + 2);
         assert!(o::ROW_MID % 4 == 0 && o::RIGHT == o::LEFT + 8 && o::RIGHT_DY == o::LEFT_DY + 2);
     };
-    let seed: &'static [u16; 128] = &crate::wide::RECIP_SEED;
+    let seed: &'static [u16; 128] = &crate::kernel::wide::RECIP_SEED;
     let args = SetupArgs {
         verts: verts.as_ptr() as *const u32,
         len: verts.len() as u32,

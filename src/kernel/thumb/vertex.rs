@@ -16,7 +16,7 @@
 use crate::kernel::records::{
     ScreenVertex, BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP,
 };
-use crate::wide::spread_bits;
+use crate::kernel::wide::spread_bits;
 use heapless::Vec;
 
 /// The routine's argument block (`repr(C)`: it reads and updates the fields by offset).
@@ -538,7 +538,7 @@ pub(crate) fn project_run<const V: usize>(
     let n = ps.len().min(V - out.len());
     let run = ps[..n].as_ptr_range();
     let len = out.len();
-    let seed: &'static [u16; 128] = &crate::wide::RECIP_SEED;
+    let seed: &'static [u16; 128] = &crate::kernel::wide::RECIP_SEED;
     let mut ctx = RunCtx {
         pos: run.start,
         end: run.end,

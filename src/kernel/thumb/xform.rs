@@ -1,7 +1,7 @@
 //! The Q16.16 point and direction transforms (a 4 × 4 matrix times a point or a direction).
 #![allow(unsafe_code)]
 
-use crate::wide::spread_bits;
+use crate::kernel::wide::spread_bits;
 
 extern "C" {
     fn scanline3d_xform_q16(m: *const i32, p: *const i32, out: *mut i32, rows: u32);

@@ -1,0 +1,810 @@
+//! Layered frames: each strip row drawn in layers — the planar shadow's receivers, its
+//! projected polygons (stencilled, so overlaps darken once), the other opaque objects, the
+//! shadow volumes' faces (counted in the stencil, then every pixel with a non-zero count
+//! darkened), the outlines, then the translucent triangles back to front — with the lists and
+//! the stencil lines in a [`Layers`] the caller owns. A frame drawn by [`Renderer::render`]
+//! uses none of this and pays nothing for it: no field, no branch.
+
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Point, Size};
+use embedded_graphics_core::primitives::Rectangle;
+use heapless::Vec;
+
+use crate::error::{LayerError, MAX_TRANSLUCENT};
+use crate::kernel;
+use crate::kernel::records::{first_pixel, ActiveList, ScreenVertex, TriRecord};
+use crate::num::scalar::Scalar;
+use crate::raster::layer_rows::{
+    blend, darken_span, div255, outline_row, shadow_row, translucent_row, volume_row, Darken, Post,
+};
+use crate::raster::shadow::{blob_disc, Edges, Layering, ShadowLight, ShadowMethod, BLOB_FAN};
+use crate::raster::strip::draw_list_row;
+use crate::raster::textured::{attach_pushed, is_textured};
+use crate::raster::volume::{volume_sign, Lines, Pick};
+use crate::raster::SpanMode;
+use crate::renderer::*;
+use crate::scene::color::{rgb565_word, rgb565_words_mut, TargetColor};
+use crate::scene::shade::Material;
+use crate::scene::{Object, Scene};
+
+/// [`Layers`] post-list entry kinds.
+const SHADOW: u8 = 1;
+const TRANSLUCENT: u8 = 2;
+/// A shadow-volume face; its sign (1, or 255 for −1) in the opacity byte.
+const VOLUME: u8 = 3;
+const OUTLINE: u8 = 4;
+
+/// What a layered frame needs besides the renderer, owned by the caller (a `static` on a
+/// microcontroller, like the renderer): `W` and `LINES` as the renderer's, `RA` receiver
+/// triangles and `PA` shadow and translucent triangles active on one row at once.
+///
+/// RAM: `LINES·W` (the stencil lines, one byte per pixel) `+ 84·(RA + PA)` (the two active
+/// lists) `+ 12·PA` (each post triangle's kind, opacity and sort key) plus about 300 bytes
+/// (the shadow's blend tables and the translucent objects' table);
+/// [`Layers::RAM_BYTES`] is the exact figure.
+#[derive(Debug)]
+pub struct Layers<const W: usize, const LINES: usize, const RA: usize, const PA: usize> {
+    /// Per pixel of each strip line: a planar shadow's mark once a shadow polygon darkened it,
+    /// or the shadow volumes' count (modulo 256: a pixel inside at most 255 nested volumes
+    /// counts right). During the geometry stage, a bit per triangle of one object (which faces
+    /// turn toward the light or the eye).
+    stencil: [[u8; W]; LINES],
+    receivers: ActiveList<RA>,
+    post: ActiveList<PA>,
+    /// Per post-list entry: kind in bits 0..=7, opacity (0..=255) in bits 8..=15.
+    meta: [u16; PA],
+    /// Per post-list entry: back-to-front sort key (larger is drawn first).
+    key: [u64; PA],
+    /// Vertex-store index where the receivers' vertices end, the opaque objects' vertices
+    /// end, the shadow polygons' (or volumes') vertices end and the outlines' vertices end;
+    /// the translucent objects' vertices follow.
+    bounds: [u16; 4],
+    /// The translucent objects: the vertex-store index where each one's vertices end, and its
+    /// opacity.
+    translucent: Vec<(u16, u8), MAX_TRANSLUCENT>,
+    /// The shadow's blend per channel value, for channels of at most 6 bits (RGB565):
+    /// `round((c·(255 − α) + s·α)/255)`, in the channel's units.
+    lut: [[u8; 64]; 3],
+    /// The shadow's colour in the target's channel units, and its opacity (0: no shadow).
+    shadow: ([u8; 3], u8),
+    /// The shadow is blobs: nested discs that each darken (no stencil).
+    blob: bool,
+    /// The shadow is volumes, counted in the stencil.
+    volume: bool,
+    /// The outlines are drawn without the depth test ([`crate::Outline::see_through`]).
+    see_through: bool,
+    skipped: u32,
+}
+
+impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize>
+    Layers<W, LINES, RA, PA>
+{
+    /// Exact RAM of these layers in bytes.
+    pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
+
+    /// Empty layers (a `const fn`, for a `static`).
+    #[must_use]
+    pub const fn new() -> Self {
+        Layers {
+            stencil: [[0; W]; LINES],
+            receivers: ActiveList::new(),
+            post: ActiveList::new(),
+            meta: [0; PA],
+            key: [0; PA],
+            bounds: [0; 4],
+            translucent: Vec::new(),
+            lut: [[0; 64]; 3],
+            shadow: ([0; 3], 0),
+            blob: false,
+            volume: false,
+            see_through: false,
+            skipped: 0,
+        }
+    }
+
+    /// Shadow and translucent triangles left out of the last frame for want of room (only
+    /// under [`OverflowPolicy::DrawWhatFits`]).
+    #[must_use]
+    pub fn skipped(&self) -> u32 {
+        self.skipped
+    }
+}
+
+impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize> Default
+    for Layers<W, LINES, RA, PA>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<
+        S: Scalar,
+        C: TargetColor,
+        const W: usize,
+        const H: usize,
+        const VERTS: usize,
+        const TRIS: usize,
+        const ACTIVE: usize,
+        const LINES: usize,
+        const XV: usize,
+        const XA: usize,
+        const ZL: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
+{
+    /// Draws one frame of `scene` into `target` in layers: each row of each strip draws the
+    /// `layering`'s receivers, then its projected shadow (each receiver pixel darkened at most
+    /// once, the stencil of `layers` keeping count), then the other opaque objects, then the
+    /// translucent triangles ([`crate::Material::alpha`]) back to front, depth-tested against
+    /// the opaque ones and not writing depth. With [`Layering::volumes`] the shadow is
+    /// counted instead, after the opaque objects of each row (see [`crate::VolumeShadow`]);
+    /// [`Layering::with_outline`] adds outlines before the translucent triangles. The shadow and the translucent triangles blend
+    /// onto the strip's pixels (`C = Csrc·α + Cdst·(1 − α)`): one product per channel and
+    /// pixel (the only per-pixel products of the renderer), a table lookup for the shadow on
+    /// a target of at most 6 bits per channel (RGB565).
+    ///
+    /// Translucent triangles are sorted per row by the sum of their vertices' depths (then by
+    /// their screen positions), so the image does not depend on the order they are given in;
+    /// triangles that cross in depth are not split.
+    ///
+    /// # Errors
+    ///
+    /// As [`Renderer::render`], and [`Error::Layers`] for a layering that cannot be drawn
+    /// ([`LayerError`]), [`Error::NoDepthLines`] on a renderer without depth lines (the
+    /// layers test against them); all before anything is drawn.
+    pub fn render_layered<D, const L: usize, const RA: usize, const PA: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        layering: &Layering<'_, S>,
+        layers: &mut Layers<W, LINES, RA, PA>,
+        target: &mut D,
+    ) -> Result<Stats, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+    {
+        self.render_layered_probed(scene, layering, layers, target, &mut NoProbe)
+    }
+
+    /// [`Renderer::render_layered`], reporting each stage change to `probe`.
+    pub fn render_layered_probed<D, P, const L: usize, const RA: usize, const PA: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        layering: &Layering<'_, S>,
+        layers: &mut Layers<W, LINES, RA, PA>,
+        target: &mut D,
+        probe: &mut P,
+    ) -> Result<Stats, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+        P: Probe,
+    {
+        probe.frame_start();
+        let result = self
+            .begin_target(target)
+            .and_then(|_| self.geometry_layered(scene, layering, layers, probe))
+            .and_then(|_| {
+                probe.enter(Stage::Raster);
+                let vw = self.vw;
+                while let Some((y0, lines)) = self.draw_strip_layered(layers, probe) {
+                    let area = Rectangle::new(
+                        Point::new(0, y0 as i32),
+                        Size::new(vw as u32, lines as u32),
+                    );
+                    probe.enter(Stage::Output);
+                    let sent = target.fill_contiguous(
+                        &area,
+                        self.color[..lines]
+                            .iter()
+                            .flat_map(|line| line[..vw].iter())
+                            .copied(),
+                    );
+                    probe.enter(Stage::Raster);
+                    if let Err(e) = sent {
+                        self.next_row = self.vh;
+                        return Err(Error::Target(e));
+                    }
+                }
+                Ok(self.stats)
+            });
+        probe.enter(Stage::Done);
+        probe.frame_end();
+        result
+    }
+
+    /// Measures what a layered frame of `scene` needs ([`Needs`], with the `layers`' lists:
+    /// [`Needs::receivers`] for `RA`, [`Needs::overlays`] for `PA`, and the vertices the
+    /// shadow polygons, volumes and outlines add): runs the layered frame's geometry stage
+    /// (as [`Renderer::render_layered`] does, whatever the overflow policy) and leaves no
+    /// frame prepared. For sizing a device's renderer and layers on the host, as
+    /// [`Renderer::needs`] for a plain frame; check with
+    /// `worst.fits(&Device::CAPACITY.with_layers(RA, PA))`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Renderer::render_layered`] for a layering that cannot be drawn, and as
+    /// [`Renderer::needs`] when this renderer's stores are too small to measure the frame
+    /// exactly.
+    pub fn needs_layered<const L: usize, const RA: usize, const PA: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        layering: &Layering<'_, S>,
+        layers: &mut Layers<W, LINES, RA, PA>,
+    ) -> Result<Needs, Error<core::convert::Infallible>> {
+        let policy = self.overflow;
+        self.overflow = OverflowPolicy::DrawWhatFits;
+        let result = self.geometry_layered(scene, layering, layers, &mut NoProbe);
+        self.overflow = policy;
+        self.next_row = self.vh;
+        result?;
+        self.measured()
+    }
+
+    /// The geometry stage of a layered frame: the receivers' objects first, then the other
+    /// opaque ones, the casters' shadow polygons and the translucent objects, each group's
+    /// vertices contiguous in the store (which is how the strip pass tells them apart).
+    fn geometry_layered<E, P: Probe, const L: usize, const RA: usize, const PA: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        layering: &Layering<'_, S>,
+        layers: &mut Layers<W, LINES, RA, PA>,
+        probe: &mut P,
+    ) -> Result<Stats, Error<E>> {
+        if ZL == 0 {
+            return Err(Error::NoDepthLines);
+        }
+        let n = scene.objects.len();
+        let bad = |index: usize| Error::Layers(LayerError::NoSuchObject { index });
+        let outlined = layering.outline.map_or(&[][..], |o| o.objects);
+        for &i in layering
+            .receivers
+            .iter()
+            .chain(layering.casters)
+            .chain(outlined)
+        {
+            if i >= n {
+                return Err(bad(i));
+            }
+        }
+        let shadow = match &layering.shadow {
+            Some(s) => Some((s.matrix().ok_or(Error::Layers(LayerError::Shadow))?, s)),
+            None => None,
+        };
+        if let Some(v) = &layering.volume {
+            if shadow.is_some() {
+                return Err(Error::Layers(LayerError::TwoShadows));
+            }
+            check_volume(scene, layering.casters, v, 8 * W * LINES)?;
+        }
+        if let Some(o) = &layering.outline {
+            check_adjacency(scene, o.objects, o.adjacency, 8 * W * LINES)?;
+            check_creases(scene, o)?;
+        }
+        let translucent = scene.objects.iter().any(|o| o.material.alpha < 255);
+        // (A [`crate::TriangleId`] target records the opaque triangles only: nothing blends.)
+        if (shadow.is_some() || layering.volume.is_some() || translucent)
+            && C::from_channels([0; 3]).channels().is_none()
+            && C::triangle_id(0).is_none()
+        {
+            return Err(Error::Layers(LayerError::Blending));
+        }
+        if let Some(i) = scene
+            .objects
+            .iter()
+            .position(|o| o.material.alpha < 255 && o.material.needs_attribute_stores())
+        {
+            return Err(Error::Layers(LayerError::Translucent { object: i }));
+        }
+        if scene
+            .objects
+            .iter()
+            .filter(|o| o.material.alpha < 255)
+            .count()
+            > MAX_TRANSLUCENT
+        {
+            return Err(Error::Layers(LayerError::TooManyTranslucent));
+        }
+        if let Some((_, s)) = &shadow {
+            for &i in layering.receivers {
+                if scene.objects[i].material.alpha == 255 && !s.holds(&scene.objects[i]) {
+                    return Err(Error::Layers(LayerError::OffPlane { object: i }));
+                }
+            }
+        }
+        let receiver = |i: usize| {
+            shadow.is_some()
+                && scene.objects[i].material.alpha == 255
+                && layering.receivers.contains(&i)
+        };
+        let c = self.frame_begin(scene, true)?;
+        let mut f = crate::geometry::Frame::default();
+        for (i, o) in scene.objects.iter().enumerate() {
+            if receiver(i) {
+                self.frame_object(&c, &mut f, scene, o, i, probe)?;
+            }
+        }
+        let end = |r: &Self| r.verts.len().min(u16::MAX as usize) as u16;
+        layers.bounds[0] = end(self);
+        for (i, o) in scene.objects.iter().enumerate() {
+            if !receiver(i) && o.material.alpha == 255 {
+                self.frame_object(&c, &mut f, scene, o, i, probe)?;
+            }
+        }
+        layers.bounds[1] = end(self);
+        layers.shadow = ([0; 3], 0);
+        layers.blob = false;
+        layers.volume = false;
+        let marks = layers.stencil.as_flattened_mut();
+        if let Some(v) = &layering.volume {
+            for (k, &i) in layering.casters.iter().enumerate() {
+                let adjacency = v.adjacency[k].table();
+                let o = &scene.objects[i];
+                let reach = crate::raster::volume::volume_reach(
+                    &scene.camera,
+                    (self.vw, self.vh),
+                    o,
+                    v.reach,
+                );
+                self.volume_object(&c, &mut f, o, adjacency, v, reach, marks, probe);
+            }
+            layers.volume = true;
+            set_blend::<C, W, LINES, RA, PA>(layers, v.color, v.alpha);
+        }
+        if let Some((m, s)) = shadow {
+            // Flat and unlit: only the coverage of these triangles is used.
+            let material = Material::matte(s.color, S::ONE, S::ZERO).flat();
+            let disc = blob_disc::<S>();
+            let blob = s.method == ShadowMethod::Blob;
+            for (i, o) in scene.objects.iter().enumerate() {
+                if !layering.casters.contains(&i) {
+                    continue;
+                }
+                if !blob {
+                    // The caster's triangles flattened onto the plane.
+                    let flat = Object {
+                        mesh: o.mesh,
+                        transform: m.mul(&o.transform),
+                        material,
+                    };
+                    self.frame_object(&c, &mut f, scene, &flat, i, probe)?;
+                } else if let Some(rings) = s.blob_rings(&m, o) {
+                    let mesh = crate::Mesh::new(&disc, &BLOB_FAN)
+                        .map_err(|_| Error::Layers(LayerError::Shadow))?;
+                    for transform in rings {
+                        let ring = Object {
+                            mesh,
+                            transform,
+                            material,
+                        };
+                        self.frame_object(&c, &mut f, scene, &ring, i, probe)?;
+                    }
+                }
+            }
+            let alpha = if blob { s.blob_ring_alpha() } else { s.alpha };
+            set_blend::<C, W, LINES, RA, PA>(layers, s.color, alpha);
+            layers.blob = blob;
+        }
+        layers.bounds[2] = end(self);
+        if let Some(o) = &layering.outline {
+            let cam = &scene.camera;
+            let eye = match cam.projection {
+                crate::Projection::Orthographic { .. } => {
+                    let r = cam.view.m[2];
+                    ([r[0], r[1], r[2]], true)
+                }
+                _ => (cam.eye, false),
+            };
+            layers.see_through = o.see_through;
+            let marks = layers.stencil.as_flattened_mut();
+            for (k, &i) in o.objects.iter().enumerate() {
+                let obj = &scene.objects[i];
+                let pick = match o.edges {
+                    Edges::Silhouette => Pick::Silhouette,
+                    Edges::Crease(tables) => Pick::Crease(tables[k]),
+                    Edges::All => Pick::All,
+                };
+                let lines = Lines {
+                    adjacency: o.adjacency[k].table(),
+                    pick,
+                    see_through: o.see_through,
+                    color: o.color,
+                    eye,
+                };
+                self.outline_object(&c, &mut f, obj, lines, marks, probe);
+            }
+        }
+        layers.bounds[3] = end(self);
+        layers.translucent.clear();
+        for (i, o) in scene.objects.iter().enumerate() {
+            if o.material.alpha < 255 {
+                self.frame_object(&c, &mut f, scene, o, i, probe)?;
+                // Cannot fail: counted above.
+                let _ = layers.translucent.push((end(self), o.material.alpha));
+            }
+        }
+        self.frame_end(scene, &c, &mut f, usize::MAX)?;
+        // Each list's most triangles on one row, against its capacity: all three at once.
+        let [receivers, overlays, opaque] =
+            [0u8, 1, 2].map(|list| self.layer_overlap(&layers.bounds, list));
+        self.stats.max_receivers = receivers as u32;
+        self.stats.max_overlays = overlays as u32;
+        self.stats.max_active = opaque as u32;
+        let needed = Needs::from_stats(&self.stats);
+        let capacity = Self::CAPACITY.with_layers(RA, PA);
+        if self.overflow == OverflowPolicy::Error
+            && (receivers > RA || overlays > PA || opaque > ACTIVE)
+        {
+            self.next_row = self.vh;
+            return Err(Error::Shortfall(Shortfall {
+                needed,
+                capacity,
+                exact: true,
+                skipped: 0,
+            }));
+        }
+        layers.receivers.clear();
+        layers.post.clear();
+        layers.skipped = 0;
+        Ok(self.stats)
+    }
+
+    /// The most triangles of list `list` (0: receivers, 1: shadow, outline and translucent
+    /// triangles, 2: the other opaque ones) covering one row, by a sweep over the row-change counts (in `starts`, free
+    /// once the buckets are sorted).
+    fn layer_overlap(&mut self, bounds: &[u16; 4], list: u8) -> usize {
+        let vh = self.vh;
+        self.starts[..vh].fill(0);
+        for t in self.tris.iter() {
+            let i = t.v[1] as usize;
+            let group = if i < bounds[0] as usize {
+                0
+            } else if i < bounds[1] as usize {
+                2
+            } else {
+                1
+            };
+            if group != list {
+                continue;
+            }
+            let [a, b, c] = t.indices().map(|k| self.verts[k].y as i32);
+            let first = first_pixel(a.min(b).min(c)).clamp(0, vh as i32) as usize;
+            let end = first_pixel(a.max(b).max(c)).clamp(0, vh as i32) as usize;
+            if first < end {
+                self.starts[first] += 1;
+                if end < vh {
+                    self.starts[end] -= 1;
+                }
+            }
+        }
+        let (mut cur, mut max) = (0i32, 0i32);
+        for &s in &self.starts[..vh] {
+            cur += s as i32;
+            max = max.max(cur);
+        }
+        max as usize
+    }
+
+    /// Draws the next strip of a layered frame into the renderer's lines; its first row and
+    /// height, or `None` when the frame is complete.
+    fn draw_strip_layered<P: Probe, const RA: usize, const PA: usize>(
+        &mut self,
+        layers: &mut Layers<W, LINES, RA, PA>,
+        probe: &mut P,
+    ) -> Option<(usize, usize)> {
+        let y0 = self.next_row;
+        let (vw, vh) = (self.vw, self.vh);
+        if y0 >= vh {
+            return None;
+        }
+        let mode = SpanMode::new::<C>(self.depth_test, self.dither);
+        let lines = LINES.min(vh - y0);
+        for l in 0..lines {
+            let row = y0 + l;
+            match (
+                rgb565_words_mut(&mut self.color[l][..vw]),
+                rgb565_word(self.background),
+            ) {
+                (Some(words), Some(bg)) => {
+                    kernel::clear_line565(words, &mut self.depth[l][..vw], bg)
+                }
+                _ => {
+                    self.color[l][..vw].fill(self.background);
+                    self.depth[l][..vw].fill(u16::MAX);
+                }
+            }
+            layers.stencil[l][..vw].fill(0);
+            let end = if row + 1 < vh {
+                self.heads[row + 1] as usize
+            } else {
+                self.tris.len()
+            };
+            let bucket = self.heads[row] as usize..end;
+            if !bucket.is_empty() {
+                probe.enter(Stage::Setup);
+            }
+            for t in bucket {
+                let rec = self.tris[t];
+                if !self.setup_layered(&rec, row, mode, layers) {
+                    self.active_skipped = self.active_skipped.saturating_add(1);
+                }
+            }
+            probe.enter(Stage::Raster);
+            let Renderer {
+                xactive,
+                active,
+                color,
+                depth,
+                depth_test,
+                dither,
+                stats,
+                ..
+            } = self;
+            let (colors, depth) = (&mut color[l][..vw], &mut depth[l][..vw]);
+            draw_list_row::<C, RA, XA>(
+                &mut layers.receivers,
+                xactive,
+                row,
+                colors,
+                depth,
+                *depth_test,
+                *dither,
+                stats,
+            );
+            let Layers {
+                stencil,
+                lut,
+                shadow,
+                blob,
+                volume,
+                post,
+                meta,
+                key,
+                ..
+            } = layers;
+            let stencil = &mut stencil[l][..vw];
+            let d = Darken {
+                lut,
+                shadow: *shadow,
+            };
+            let (row, blob) = (row as i32, *blob);
+            let mut post = Post {
+                list: post,
+                meta,
+                key,
+            };
+            post.rows(SHADOW, row, |t, _, _| {
+                let (frag, written) = shadow_row(t, colors, depth, stencil, d, blob);
+                stats.add_row(frag, written);
+            });
+            draw_list_row::<C, ACTIVE, XA>(
+                active,
+                xactive,
+                row as usize,
+                colors,
+                depth,
+                *depth_test,
+                *dither,
+                stats,
+            );
+            if *volume {
+                // Count the volume faces behind the surface, then darken where the count is
+                // not zero, over the columns the faces covered.
+                let (mut lo, mut hi) = (vw, 0);
+                post.rows(VOLUME, row, |t, meta, _| {
+                    let (frag, r) = volume_row(t, depth, stencil, (meta >> 8) as u8);
+                    if !r.is_empty() {
+                        (lo, hi) = (lo.min(r.start), hi.max(r.end));
+                    }
+                    stats.add_row(frag, 0);
+                });
+                if lo < hi {
+                    let r = lo..hi;
+                    let written = darken_span(
+                        &mut colors[r.clone()],
+                        &depth[r.clone()],
+                        &mut stencil[r],
+                        d,
+                        |s| *s != 0,
+                    );
+                    stats.add_row(0, written);
+                }
+            }
+            post.rows(OUTLINE, row, |t, meta, _| {
+                let (frag, written) = outline_row(t, colors, depth, meta >> 8 != 0);
+                stats.add_row(frag, written);
+            });
+            // Translucent triangles, farthest first: their indices sorted by key per row.
+            let mut order = [0u16; PA];
+            let mut n = 0;
+            for j in 0..post.list.len() {
+                if post.meta[j] as u8 == TRANSLUCENT {
+                    order[n] = j as u16;
+                    n += 1;
+                }
+            }
+            let key = &post.key;
+            order[..n].sort_unstable_by(|a, b| key[*b as usize].cmp(&key[*a as usize]));
+            for &j in &order[..n] {
+                let j = j as usize;
+                let alpha = (post.meta[j] >> 8) as u32;
+                let (frag, written) = translucent_row(post.list.get_mut(j), colors, depth, alpha);
+                stats.add_row(frag, written);
+            }
+            // Advance (or retire) them after all are drawn: removal reorders the list.
+            post.rows(TRANSLUCENT, row, |_, _, _| {});
+        }
+        self.next_row = y0 + lines;
+        Some((y0, lines))
+    }
+
+    /// Sets triangle `rec` (first covered row `row`) up in its layer's list. False when that
+    /// list is full (under [`OverflowPolicy::DrawWhatFits`]; the triangle is left out).
+    fn setup_layered<const RA: usize, const PA: usize>(
+        &mut self,
+        rec: &TriRecord,
+        row: usize,
+        mode: SpanMode,
+        layers: &mut Layers<W, LINES, RA, PA>,
+    ) -> bool {
+        let (verts, h) = (&self.verts[..], self.vh as i32);
+        let v = rec.v[1] as usize;
+        if v >= layers.bounds[1] as usize {
+            // A shadow polygon or a translucent triangle: unpacked rows (no fast path).
+            let m = SpanMode::default();
+            let before = layers.post.len();
+            if !layers
+                .post
+                .push_with(|a| a.setup::<C>(rec, verts, row as i32, h, m))
+            {
+                return false;
+            }
+            if layers.post.len() > before {
+                let (kind, alpha) = if v < layers.bounds[2] as usize {
+                    if layers.volume {
+                        (VOLUME, volume_sign(rec))
+                    } else {
+                        (SHADOW, 0)
+                    }
+                } else if v < layers.bounds[3] as usize {
+                    (OUTLINE, layers.see_through as u8)
+                } else {
+                    let a = layers
+                        .translucent
+                        .iter()
+                        .find(|(end, _)| v < *end as usize)
+                        .map_or(255, |e| e.1);
+                    (TRANSLUCENT, a)
+                };
+                layers.meta[before] = kind as u16 | (alpha as u16) << 8;
+                if kind == TRANSLUCENT {
+                    layers.key[before] = sort_key(rec, verts);
+                }
+            }
+            return true;
+        }
+        let textured = XV > 0 && XA > 0 && is_textured(rec, &self.xverts);
+        let m = if textured { SpanMode::default() } else { mode };
+        macro_rules! push {
+            ($list:expr, $n:ident) => {{
+                let before = $list.len();
+                $list.push_with(|a| a.setup::<C>(rec, verts, row as i32, h, m))
+                    && (!textured
+                        || attach_pushed::<C, $n>(
+                            &mut $list,
+                            before,
+                            &mut self.xactive,
+                            rec,
+                            verts,
+                            &self.xverts,
+                        ))
+            }};
+        }
+        if v < layers.bounds[0] as usize {
+            push!(layers.receivers, RA)
+        } else {
+            push!(self.active, ACTIVE)
+        }
+    }
+}
+
+/// A translucent triangle's back-to-front key: the sum of its vertices' depths (16.8 each),
+/// then the sums of their x and y (so that equal depths sort the same whatever the order the
+/// triangles were given in).
+fn sort_key(t: &TriRecord, verts: &[ScreenVertex]) -> u64 {
+    let [a, b, c] = t.indices().map(|k| verts[k]);
+    let z = |v: &ScreenVertex| ((v.z as u64) << 8) | v.zf as u64;
+    let x = (a.x as i32 + b.x as i32 + c.x as i32 + (1 << 17)) as u64 & 0xf_ffff;
+    let y = (a.y as i32 + b.y as i32 + c.y as i32 + (1 << 17)) as u64 & 0xf_ffff;
+    ((z(&a) + z(&b) + z(&c)) << 40) | (x << 20) | y
+}
+
+/// The shadow's colour in the target's channel units and its opacity, and the blend table for
+/// channels of at most 6 bits (RGB565), into `layers`.
+fn set_blend<
+    C: TargetColor,
+    const W: usize,
+    const LINES: usize,
+    const RA: usize,
+    const PA: usize,
+>(
+    layers: &mut Layers<W, LINES, RA, PA>,
+    color: [u8; 3],
+    alpha: u8,
+) {
+    let max = C::CHANNEL_MAX;
+    let sc: [u8; 3] = core::array::from_fn(|k| div255(color[k] as u32 * max[k] as u32) as u8);
+    layers.shadow = (sc, alpha);
+    // The table serves channels of at most 6 bits (`darken_span`): wider ones blend directly.
+    if max.iter().any(|&m| m > 63) {
+        return;
+    }
+    for k in 0..3 {
+        for (c, e) in layers.lut[k].iter_mut().enumerate() {
+            *e = blend(c as u32, sc[k] as u32, alpha as u32) as u8;
+        }
+    }
+}
+
+/// Checks each object of `objects` has an adjacency table (`adjacency`, in the same order)
+/// checked against its mesh ([`crate::Adjacency::is_for`]: two pointer comparisons, the table
+/// itself was checked when it was made), and at most `bits` triangles.
+fn check_adjacency<S: Scalar, E, const L: usize>(
+    scene: &Scene<'_, S, L>,
+    objects: &[usize],
+    adjacency: &[crate::Adjacency<'_, S>],
+    bits: usize,
+) -> Result<(), Error<E>> {
+    for (k, &object) in objects.iter().enumerate() {
+        let mesh = &scene.objects[object].mesh;
+        if !adjacency.get(k).is_some_and(|a| a.is_for(mesh)) {
+            return Err(Error::Layers(LayerError::Adjacency { object }));
+        }
+        let triangles = mesh.indices().len();
+        if triangles > bits {
+            return Err(Error::Layers(LayerError::TooManyTriangles {
+                object,
+                triangles,
+                capacity: bits,
+            }));
+        }
+    }
+    Ok(())
+}
+
+/// Checks an outline's crease tables ([`Edges::Crease`]): one per outlined object, of at least
+/// 3 bits per triangle.
+fn check_creases<S: Scalar, E, const L: usize>(
+    scene: &Scene<'_, S, L>,
+    o: &crate::Outline<'_, S>,
+) -> Result<(), Error<E>> {
+    if let Edges::Crease(tables) = o.edges {
+        for (k, &object) in o.objects.iter().enumerate() {
+            let bytes = (3 * scene.objects[object].mesh.indices().len()).div_ceil(8);
+            if tables.get(k).is_none_or(|t| t.len() < bytes) {
+                return Err(Error::Layers(LayerError::Creases { object }));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks a shadow volume's light, reach and the casters' adjacency tables.
+fn check_volume<S: Scalar, E, const L: usize>(
+    scene: &Scene<'_, S, L>,
+    casters: &[usize],
+    v: &crate::VolumeShadow<'_, S>,
+    bits: usize,
+) -> Result<(), Error<E>> {
+    let light_ok = match v.light {
+        ShadowLight::Directional(d) => {
+            d.iter().all(|c| c.is_valid()) && d.iter().any(|&c| c != S::ZERO)
+        }
+        ShadowLight::Point(p) => p.iter().all(|c| c.is_valid()),
+    };
+    if !light_ok {
+        return Err(Error::Layers(LayerError::Shadow));
+    }
+    if !(v.reach.is_valid() && v.reach > S::ZERO) {
+        return Err(Error::Layers(LayerError::Reach));
+    }
+    check_adjacency(scene, casters, v.adjacency, bits)
+}

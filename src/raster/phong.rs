@@ -1,0 +1,870 @@
+//! Phong shading: the seeds' lighting model evaluated per pixel from the vertex normals
+//! interpolated across the triangle, in integers (so the image is the same for every number
+//! type and on every core). [`Shading::Phong`](crate::Shading::Phong) lights every pixel;
+//! [`Shading::FastPhong`](crate::Shading::FastPhong) lights every 8th pixel of a span and
+//! interpolates the colour linearly in between (Gouraud within 8-pixel segments): per pixel
+//! additions only.
+//!
+//! Model (as the Gouraud path's, [`crate::Material`]): per channel
+//! `c = material·(ambient + Σ diffuse·light/255·max(0, N·L)) + Σ specular·light·max(0, R·V)^n`,
+//! clamped to 0..=255, with `N` the interpolated normal normalized per lit pixel, `L` each
+//! directional light's unit direction, `R·V = 2(N·L)(N·V) − L·V`, and `V` the unit direction
+//! from the object's origin toward the eye (one per object: a viewer distant compared with
+//! the object; Gouraud uses the exact direction at each vertex).
+//!
+//! Formats: directions and normals Q1.14 (`i32`, step 2⁻¹⁴); coefficients Q8.14 (ambient,
+//! diffuse and specular up to 255); the lit channel Q8.14 (0..=255·2¹⁴).
+
+use crate::geometry::project::DEPTH_FRAC_BITS;
+use crate::num::scalar::{bitlen32, mul_wide, recip_norm};
+use crate::raster::attrs::{ActiveExtra, MODE_FAST_PHONG, POINTS};
+use crate::raster::fog::FogSpan;
+use crate::raster::span::{passes, ALWAYS, EQUAL, LESS, LESS_EQUAL};
+use crate::raster::{DepthTest, COLOR_FRAC_BITS};
+use crate::scene::color::TargetColor;
+use crate::scene::effects::MAX_PHONG_POINT_LIGHTS;
+
+/// The most directional lights Phong shading takes (more are left out of it).
+pub const MAX_PHONG_LIGHTS: usize = 4;
+
+/// One light as Phong spans see it.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PhongLight {
+    /// Unit direction toward the light, world space, Q1.14.
+    pub(crate) dir: [i32; 3],
+    /// Light colour (0..=255 per channel).
+    pub(crate) color: [u8; 3],
+}
+
+/// `c/255` in Q0.16 (0..=65536), rounded: a light channel as a fraction.
+fn fraction(c: u8) -> i64 {
+    (c as i64 * 65536 + 127) / 255
+}
+
+/// The lights of a frame for Phong spans (world space).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PhongLights {
+    pub(crate) lights: [PhongLight; MAX_PHONG_LIGHTS],
+    pub(crate) count: u8,
+}
+
+/// An object's material and view direction as Phong spans see them.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PhongMaterial {
+    pub(crate) color: [u8; 3],
+    /// Ambient, diffuse and specular coefficients, Q8.14 (0..=255·2¹⁴).
+    pub(crate) k: [i32; 3],
+    pub(crate) shininess: u8,
+    /// Unit direction from the object's origin toward the eye, Q1.14.
+    pub(crate) v: [i32; 3],
+    /// `L·V` of each light, Q1.14.
+    pub(crate) lv: [i32; MAX_PHONG_LIGHTS],
+    /// The scene's tone curve ([`TONE_NONE`], [`TONE_REINHARD`], [`TONE_FILMIC`]); with a tone
+    /// map, `k` holds the coefficients times the exposure (ambient) or times the intensity and
+    /// the exposure (diffuse, specular).
+    pub(crate) tone: u8,
+}
+
+/// [`PhongMaterial::tone`]: the lit channel clamped to 255 (no tone map, or the clamp curve).
+pub(crate) const TONE_NONE: u8 = 0;
+/// [`PhongMaterial::tone`]: Reinhard's curve on the exposed radiance.
+pub(crate) const TONE_REINHARD: u8 = 1;
+/// [`PhongMaterial::tone`]: the filmic curve on the exposed radiance.
+pub(crate) const TONE_FILMIC: u8 = 2;
+
+/// White in the lit channel's format (Q8.14 channel units).
+const WHITE14: i64 = 255 << 14;
+/// The largest exposed radiance a tone curve reads, 128 × white (Q8.14 channel units, below
+/// 2²⁹): as `Fx<I16F16>`'s per-vertex radiance, which saturates at 128.5 × white.
+const HDR_MAX14: i64 = 128 * WHITE14;
+
+/// `num/den` in Q2.30 for `0 ≤ num ≤ 1.1·den`, `den ≥ 1`, without division: both are brought
+/// below 2³² together and `1/den` is a normalized reciprocal ([`recip_norm`]).
+fn ratio_q30(num: u64, den: u64) -> u64 {
+    let k = crate::kernel::wide::bitlen64(den.max(1)).saturating_sub(32);
+    let (n, d) = (num >> k, (den >> k).max(1));
+    let (m, e) = recip_norm(d);
+    // n < 2^32.2 and m ≤ 2^30: the product fits; e = 29 + bitlen(d) ≥ 30.
+    (n * m as u64) >> (e - 30)
+}
+
+/// The tone curve `tone` on an exposed radiance `v` (Q8.14 channel units, 255·2¹⁴ = white):
+/// the display channel, Q8.14 in 0..=255·2¹⁴. Reinhard `x/(1 + x)` and the filmic
+/// `x(2.51x + 0.03)/(x(2.43x + 0.59) + 0.14)` (clamped to 1) as [`crate::ToneCurve`]
+/// defines them, in integers: the filmic polynomials on `v/2¹⁰` (steps of 1/16 channel unit,
+/// constants Q2.14).
+fn tone14(v: i64, tone: u8) -> i32 {
+    let v = v.clamp(0, HDR_MAX14) as u64;
+    let q = if tone == TONE_REINHARD {
+        ratio_q30(v, v + WHITE14 as u64)
+    } else {
+        let (t, w) = (v >> 10, (WHITE14 >> 10) as u64);
+        // 2.51, 0.03, 2.43, 0.59, 0.14 in Q2.14; t ≤ 2^19, w = 4080: every product below 2^55.
+        let num = t * (41124 * t + 492 * w);
+        let den = t * (39813 * t + 9667 * w) + 2294 * w * w;
+        ratio_q30(num, den)
+    };
+    ((q.min(1 << 30) * WHITE14 as u64) >> 30) as i32
+}
+
+/// A point light as Phong spans see it.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PhongPoint {
+    /// Position less the eye's, world space, in units of 2^-`bits` ([`PhongPoints::bits`];
+    /// clamped to ±2³⁰).
+    pub(crate) pos: [i32; 3],
+    /// Light colour (0..=255 per channel).
+    pub(crate) color: [u8; 3],
+    /// Attenuation coefficients (constant, linear, quadratic; world units), Q5.16
+    /// (0..2²¹, step 2⁻¹⁶).
+    pub(crate) att: [i32; 3],
+}
+
+/// The point lights of a frame for Phong spans.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PhongPoints {
+    pub(crate) lights: [PhongPoint; MAX_PHONG_POINT_LIGHTS],
+    pub(crate) count: u8,
+    /// Fraction bits of the positions (theirs and the vertices', `effects::position_bits`).
+    pub(crate) bits: u8,
+}
+
+impl PhongPoints {
+    /// Stored in pool entry `e` (see [`ActiveExtra`]'s payloads).
+    pub(crate) fn store(&self, e: &mut ActiveExtra) {
+        let mut w = [0i64; 9];
+        let lo = |v: i32| v as u32 as i64;
+        for (k, l) in self.lights.iter().enumerate() {
+            let c = l.color;
+            w[3 * k] = lo(l.pos[0]) | (l.pos[1] as i64) << 32;
+            w[3 * k + 1] =
+                lo(l.pos[2]) | (c[0] as i64) << 32 | (c[1] as i64) << 40 | (c[2] as i64) << 48;
+            let a = l.att.map(|v| v.clamp(0, (1 << 21) - 1) as i64);
+            w[3 * k + 2] = a[0] | a[1] << 21 | a[2] << 42;
+        }
+        w[8] = self.count as i64 | (self.bits as i64) << 8;
+        e.set_words(w);
+        e.kind = POINTS;
+    }
+
+    pub(crate) fn load(e: &ActiveExtra) -> Self {
+        let w = e.words();
+        let mut lights = [PhongPoint::default(); MAX_PHONG_POINT_LIGHTS];
+        for (k, l) in lights.iter_mut().enumerate() {
+            let (a, b, c) = (w[3 * k], w[3 * k + 1], w[3 * k + 2]);
+            l.pos = [a as i32, (a >> 32) as i32, b as i32];
+            l.color = [(b >> 32) as u8, (b >> 40) as u8, (b >> 48) as u8];
+            l.att = [0, 21, 42].map(|s| ((c >> s) & ((1 << 21) - 1)) as i32);
+        }
+        PhongPoints {
+            lights,
+            count: (w[8] as u8).min(MAX_PHONG_POINT_LIGHTS as u8),
+            bits: (w[8] >> 8) as u8,
+        }
+    }
+}
+
+/// Q1.14 one.
+const ONE: i32 = 1 << 14;
+
+fn pack3(v: [i32; 3]) -> i64 {
+    let h = |x: i32| (x as i16 as u16) as i64;
+    h(v[0]) | h(v[1]) << 16 | h(v[2]) << 32
+}
+
+fn unpack3(w: i64) -> [i32; 3] {
+    [0, 16, 32].map(|s| (w >> s) as i16 as i32)
+}
+
+impl PhongLights {
+    /// Stored in pool entry `e` (see [`ActiveExtra`]'s payloads).
+    pub(crate) fn store(&self, e: &mut ActiveExtra) {
+        let mut words = [0i64; 9];
+        for (k, l) in self.lights.iter().enumerate() {
+            words[k] = pack3(l.dir) | (l.color[0] as i64) << 48 | (l.color[1] as i64) << 56;
+            // The fractions (17 bits each), computed once a frame, and the third colour.
+            let f = l.color.map(fraction);
+            words[4 + k] = f[0] | f[1] << 17 | f[2] << 34 | (l.color[2] as i64) << 51;
+        }
+        words[8] = self.count as i64;
+        e.set_words(words);
+    }
+
+    /// The lights stored in `e` (the spans read them with [`ShadeCtx::from_entries`]).
+    #[cfg(test)]
+    pub(crate) fn load(e: &ActiveExtra) -> Self {
+        let w = e.words();
+        let mut lights = [PhongLight::default(); MAX_PHONG_LIGHTS];
+        for (k, l) in lights.iter_mut().enumerate() {
+            l.dir = unpack3(w[k]);
+            l.color = [
+                (w[k] >> 48) as u8,
+                (w[k] >> 56) as u8,
+                (w[4 + k] >> 51) as u8,
+            ];
+        }
+        PhongLights {
+            lights,
+            count: (w[8] as u8).min(MAX_PHONG_LIGHTS as u8),
+        }
+    }
+}
+
+impl PhongMaterial {
+    pub(crate) fn store(&self, e: &mut ActiveExtra) {
+        let mut words = [0i64; 9];
+        words[0] = self.k[0] as i64;
+        words[1] = self.k[1] as i64;
+        words[2] = self.k[2] as i64;
+        words[3] = self.color[0] as i64
+            | (self.color[1] as i64) << 8
+            | (self.color[2] as i64) << 16
+            | (self.shininess as i64) << 24
+            | (self.tone as i64) << 32;
+        words[4] = pack3(self.v);
+        for k in 0..MAX_PHONG_LIGHTS {
+            words[5 + k] = self.lv[k] as i64;
+        }
+        e.set_words(words);
+    }
+
+    pub(crate) fn load(e: &ActiveExtra) -> Self {
+        let w = e.words();
+        PhongMaterial {
+            k: [w[0] as i32, w[1] as i32, w[2] as i32],
+            color: [0, 8, 16].map(|s| (w[3] >> s) as u8),
+            shininess: (w[3] >> 24) as u8,
+            v: unpack3(w[4]),
+            lv: [w[5] as i32, w[6] as i32, w[7] as i32, w[8] as i32],
+            tone: (w[3] >> 32) as u8,
+        }
+    }
+}
+
+/// `⌊√x⌋`, bit by bit (16 steps).
+fn isqrt(x: u32) -> u32 {
+    let (mut r, mut rem, mut bit) = (0u32, x, 1u32 << 30);
+    while bit > rem {
+        bit >>= 2;
+    }
+    while bit != 0 {
+        if rem >= r + bit {
+            rem -= r + bit;
+            r = (r >> 1) + bit;
+        } else {
+            r >>= 1;
+        }
+        bit >>= 2;
+    }
+    r
+}
+
+/// `b^e` for `b` in Q1.14 (0..=1), by squaring.
+fn pow14(mut b: i32, mut e: u8) -> i32 {
+    let mut r = ONE;
+    while e > 0 {
+        if e & 1 == 1 {
+            r = (r * b) >> 14;
+        }
+        b = (b * b) >> 14;
+        e >>= 1;
+    }
+    r
+}
+
+/// The lights and material of a span in the forms [`shade`] uses (built once per row).
+#[derive(Copy, Clone, Debug, Default)]
+pub(crate) struct ShadeCtx {
+    /// Directions (Q1.14) and colours as fractions `light/255` (Q0.16, 0..=65536).
+    dir: [[i32; 3]; MAX_PHONG_LIGHTS],
+    frac: [[i32; 3]; MAX_PHONG_LIGHTS],
+    /// `light` (0..=255) per channel, for the specular term.
+    full: [[i32; 3]; MAX_PHONG_LIGHTS],
+    lv: [i32; MAX_PHONG_LIGHTS],
+    count: usize,
+    v: [i32; 3],
+    color: [i32; 3],
+    /// Ambient, diffuse, specular (Q8.14).
+    k: [i32; 3],
+    shininess: u8,
+    /// [`PhongMaterial::tone`].
+    tone: u8,
+    /// Where the specular sums saturate (Q8.14): white, or with a tone curve
+    /// [`HDR_MAX14`].
+    spec_cap: i32,
+}
+
+/// The point lights of a span in the forms [`shade`] uses ([`PhongPoints`]), their count
+/// and the positions' fraction bits.
+#[derive(Copy, Clone, Debug, Default)]
+pub(crate) struct PointsCtx {
+    points: [PointCtx; MAX_PHONG_POINT_LIGHTS],
+    count: usize,
+    bits: u32,
+}
+
+/// A point light in the forms [`shade`] uses.
+#[derive(Copy, Clone, Debug, Default)]
+struct PointCtx {
+    pos: [i32; 3],
+    frac: [i32; 3],
+    full: [i32; 3],
+    /// Q5.16.
+    att: [i32; 3],
+}
+
+impl ShadeCtx {
+    /// From the pool's lights entry `lights` (or none) and material entry `m`, without
+    /// unpacking the lights' structure: the fractions were computed when they were stored.
+    pub(crate) fn from_entries(lights: Option<&ActiveExtra>, m: &PhongMaterial) -> Self {
+        let mut c = Self::new(&PhongLights::default(), m);
+        if let Some(e) = lights {
+            let w = e.words();
+            c.count = (w[8] as usize).min(MAX_PHONG_LIGHTS);
+            for k in 0..MAX_PHONG_LIGHTS {
+                c.dir[k] = unpack3(w[k]);
+                c.full[k] = [
+                    (w[k] >> 48) as u8,
+                    (w[k] >> 56) as u8,
+                    (w[4 + k] >> 51) as u8,
+                ]
+                .map(|x| x as i32);
+                c.frac[k] = [0, 17, 34].map(|s| ((w[4 + k] >> s) & 0x1_ffff) as i32);
+            }
+        }
+        c
+    }
+
+    pub(crate) fn new(l: &PhongLights, m: &PhongMaterial) -> Self {
+        let mut c = ShadeCtx {
+            count: l.count as usize,
+            v: m.v,
+            color: m.color.map(|x| x as i32),
+            k: m.k,
+            shininess: m.shininess,
+            lv: m.lv,
+            tone: m.tone,
+            spec_cap: if m.tone == TONE_NONE {
+                WHITE14
+            } else {
+                HDR_MAX14
+            } as i32,
+            ..Default::default()
+        };
+        for (k, pl) in l.lights.iter().enumerate() {
+            c.dir[k] = pl.dir;
+            c.full[k] = pl.color.map(|x| x as i32);
+            c.frac[k] = pl.color.map(|x| fraction(x) as i32);
+        }
+        c
+    }
+}
+
+impl PointsCtx {
+    /// No point lights (a constant: a span without them builds nothing).
+    pub(crate) const NONE: PointsCtx = PointsCtx {
+        points: [PointCtx {
+            pos: [0; 3],
+            frac: [0; 3],
+            full: [0; 3],
+            att: [0; 3],
+        }; MAX_PHONG_POINT_LIGHTS],
+        count: 0,
+        bits: 0,
+    };
+
+    /// The point lights of pool entry `e` (none when it holds none).
+    pub(crate) fn load(e: Option<&ActiveExtra>) -> Self {
+        let mut c = PointsCtx::default();
+        if let Some(e) = e.filter(|e| e.kind == POINTS) {
+            let p = PhongPoints::load(e);
+            c.count = p.count as usize;
+            c.bits = (p.bits as u32).min(14);
+            for (x, l) in c.points.iter_mut().zip(&p.lights) {
+                *x = PointCtx {
+                    pos: l.pos,
+                    frac: l.color.map(|v| fraction(v) as i32),
+                    full: l.color.map(|v| v as i32),
+                    att: l.att,
+                };
+            }
+        }
+        c
+    }
+}
+
+/// The unit direction (Q1.14) toward point light `p` from position `x` (units of
+/// 2^-`bits`) and the light's attenuation there (Q0.16, 0..=65536), `None` at the light.
+/// No division: the direction by a normalized reciprocal of `⌊√(l·l)⌋` after scaling `l`
+/// below 2¹⁴ a component, the attenuation by one of `c + l·d + q·d²` (Q16.16, at least 1).
+fn point_dir(p: &PointCtx, x: [i32; 3], bits: u32) -> Option<([i32; 3], i32)> {
+    let l = [0, 1, 2].map(|k| p.pos[k].wrapping_sub(x[k]));
+    let m = l.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+    if m == 0 {
+        return None;
+    }
+    let s = bitlen32(m).saturating_sub(14);
+    let ls = l.map(|v| v >> s);
+    let len = isqrt((ls[0] * ls[0] + ls[1] * ls[1] + ls[2] * ls[2]) as u32).max(1);
+    let (mm, ee) = recip_norm(len as u64);
+    let dir = ls.map(|v| (mul_wide(v, mm) >> (ee - 14)) as i32);
+    // The distance in Q16.16 world units (2^-bits units: shifted by 16 − bits).
+    let d = (((len as i64) << s) << (16 - bits)).min(i32::MAX as i64) as i32;
+    let [c0, c1, c2] = p.att;
+    let q = (mul_wide(c2, d) >> 16).min(i32::MAX as i64) as i32;
+    let den = c0 as i64 + (mul_wide(c1, d) >> 16) + (mul_wide(q, d) >> 16);
+    let (am, ae) = recip_norm(den.max(1 << 16) as u64);
+    // 2³²/den: `den` is at least 2¹⁶ (ae ≥ 46), and past 2⁴⁷ or so (a light far away with a
+    // large attenuation) the shift passes 31 and the attenuation is 0.
+    let att = am.checked_shr(ae - 32).unwrap_or(0);
+    Some((dir, att.min(1 << 16)))
+}
+
+/// The lit colour (Q8.14 per channel, clamped to 0..=255) of a point with the interpolated
+/// normal `n` (Q1.14, at most unit length plus the planes' rounding; zero lights ambient
+/// only) at position `x` (read for point lights only: `POINTS`, [`PointsCtx`]). No division: `1/|n|`
+/// is a normalized reciprocal ([`recip_norm`]) of `⌊√(n·n)⌋`; 64-bit products are 32 × 32-bit
+/// ones ([`mul_wide`]).
+pub(crate) fn shade<const POINTS: bool>(
+    n: [i32; 3],
+    x: [i32; 3],
+    c: &ShadeCtx,
+    pts: &PointsCtx,
+) -> [i32; 3] {
+    // |n| ≤ 2^14 inside the triangle (a mix of unit normals, plus rounding); a fast-Phong
+    // segment's end may lie a pixel outside, where a sliver's planes take any value: clamped
+    // to 2^14 + 2^10 a component, so that each dot product with a unit direction, and n·n,
+    // stays below 2^30.
+    let n = n.map(|v| v.clamp(-(ONE + 1024), ONE + 1024));
+    let dot = |x: [i32; 3]| n[0] * x[0] + n[1] * x[1] + n[2] * x[2];
+    let len = isqrt(dot(n).max(0) as u32) as i32; // Q1.14
+    let [ambient, diffuse, specular] = c.k;
+    let mut light = [ambient; 3]; // Q8.14 coefficient sums
+    let mut spec = [0i32; 3]; // Q8.14 channel sums
+    if len > 0 {
+        // N̂·X = (n·X)/|n| in Q1.14: (n·X)·m·2^-e with 1/|n| = m·2^-e.
+        let (m, e) = recip_norm(len as u64);
+        let unit = |s: i32| (mul_wide(s, m) >> e) as i32;
+        let nv = unit(dot(c.v));
+        for k in 0..c.count.min(MAX_PHONG_LIGHTS) {
+            let nl = unit(dot(c.dir[k]));
+            if nl <= 0 {
+                continue;
+            }
+            // diffuse · light/255 · N·L (Q8.14; below 2^22 · 4 lights · 1).
+            let d = (mul_wide(diffuse, nl) >> 14) as i32;
+            for ch in 0..3 {
+                light[ch] += (mul_wide(d, c.frac[k][ch]) >> 16) as i32;
+            }
+            if specular > 0 {
+                let rv = ((2 * mul_wide(nl, nv)) >> 14) as i32 - c.lv[k];
+                if rv > 0 {
+                    let p = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
+                    for ch in 0..3 {
+                        // Saturating: the channel is clamped at 255 (the tone curves read
+                        // at most 128 × white) anyway.
+                        spec[ch] = (spec[ch] + p * c.full[k][ch]).min(c.spec_cap);
+                    }
+                }
+            }
+        }
+        if POINTS {
+            add_points(&mut light, &mut spec, c, pts, x, n, (m, e), nv);
+        }
+    }
+    if c.tone != TONE_NONE {
+        return toned(c, &light, &spec);
+    }
+    let mut out = [0i32; 3];
+    for ch in 0..3 {
+        // material · (Σ), Q8.14, plus the specular sum.
+        let v = mul_wide(c.color[ch], light[ch]) + spec[ch] as i64;
+        out[ch] = v.clamp(0, WHITE14) as i32;
+    }
+    out
+}
+
+/// [`shade`]'s channels with a tone curve: `material · (Σ) + specular` exposed radiance
+/// mapped by [`tone14`]. Out of line, so that the loops of scenes without a tone map compile as
+/// they did.
+#[inline(never)]
+fn toned(c: &ShadeCtx, light: &[i32; 3], spec: &[i32; 3]) -> [i32; 3] {
+    [0, 1, 2].map(|ch| tone14(mul_wide(c.color[ch], light[ch]) + spec[ch] as i64, c.tone))
+}
+
+/// Adds the point lights' terms to [`shade`]'s sums (`light`: coefficients, `spec`:
+/// channels, Q8.14) for the normal `n` (clamped) with `1/|n| = m·2^-e`, `N̂·V = nv`, at
+/// position `x`: as a directional light's, toward each light and scaled by its attenuation.
+#[allow(clippy::too_many_arguments)]
+fn add_points(
+    light: &mut [i32; 3],
+    spec: &mut [i32; 3],
+    c: &ShadeCtx,
+    pts: &PointsCtx,
+    x: [i32; 3],
+    n: [i32; 3],
+    (m, e): (i32, u32),
+    nv: i32,
+) {
+    let dot = |a: [i32; 3], b: [i32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let [_, diffuse, specular] = c.k;
+    for p in pts.points.iter().take(pts.count) {
+        let Some((dir, att)) = point_dir(p, x, pts.bits) else {
+            continue;
+        };
+        let nl = (mul_wide(dot(n, dir), m) >> e) as i32;
+        if nl <= 0 {
+            continue;
+        }
+        let d = (mul_wide(diffuse, nl) >> 14) as i32;
+        let d = (mul_wide(d, att) >> 16) as i32;
+        for ch in 0..3 {
+            light[ch] += (mul_wide(d, p.frac[ch]) >> 16) as i32;
+        }
+        if specular > 0 {
+            let lv = dot(dir, c.v) >> 14;
+            let rv = ((2 * mul_wide(nl, nv)) >> 14) as i32 - lv;
+            if rv > 0 {
+                let q = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
+                let q = (mul_wide(q, att) >> 16) as i32;
+                for ch in 0..3 {
+                    spec[ch] = (spec[ch] + q * p.full[ch]).min(c.spec_cap);
+                }
+            }
+        }
+    }
+}
+
+/// Pixels per segment of [`crate::Shading::FastPhong`] (lit at both ends, linear between).
+pub(crate) const FAST_SEGMENT: i32 = 8;
+
+/// The factors of [`channels`]: `max·2²²/255` rounded, per channel of `C`.
+fn channel_factors<C: TargetColor>() -> [i32; 3] {
+    C::CHANNEL_MAX.map(|m| ((((m as u32) << 22) + 127) / 255) as i32)
+}
+
+/// The lit colour of `shade` (Q8.14, ≤ 255·2¹⁴) in the channel units of `C` with
+/// [`COLOR_FRAC_BITS`]: `v·max/255·2⁶` as `v·factor/2¹⁶` (no division; the factor's rounding
+/// is below 2⁻¹⁵ of a unit).
+#[inline]
+fn channels(v: [i32; 3], f: &[i32; 3]) -> [i32; 3] {
+    [0, 1, 2].map(|c| (mul_wide(v[c], f[c]) >> 16) as i32)
+}
+
+/// A Phong triangle's span: pixels `x0..` of `row` (the length of `zs` and `cs`) from its
+/// pool entry `slot`, depth `z` (16.12 with its rounding bias, and its step). Returns the
+/// pixels written.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fill<C: TargetColor>(
+    pool: &[ActiveExtra],
+    slot: usize,
+    x0: i32,
+    row: i32,
+    z: [i32; 2],
+    zs: &mut [u16],
+    cs: &mut [C],
+    test: DepthTest,
+) -> u32 {
+    match test {
+        DepthTest::Less => fill_t::<C, LESS>(pool, slot, x0, row, z, zs, cs),
+        DepthTest::LessEqual => fill_t::<C, LESS_EQUAL>(pool, slot, x0, row, z, zs, cs),
+        DepthTest::Equal => fill_t::<C, EQUAL>(pool, slot, x0, row, z, zs, cs),
+        DepthTest::Always => fill_t::<C, ALWAYS>(pool, slot, x0, row, z, zs, cs),
+    }
+}
+
+fn fill_t<C: TargetColor, const T: u8>(
+    pool: &[ActiveExtra],
+    slot: usize,
+    x0: i32,
+    row: i32,
+    z: [i32; 2],
+    zs: &mut [u16],
+    cs: &mut [C],
+) -> u32 {
+    let e = &pool[slot];
+    let entry = |i: i32| usize::try_from(i).ok().and_then(|i| pool.get(i));
+    let Some(m) = pool.get(e.key as usize).map(PhongMaterial::load) else {
+        return 0;
+    };
+    let ctx = ShadeCtx::from_entries(entry(e.base[0]), &m);
+    let span = Span {
+        e,
+        x0,
+        row,
+        z,
+        ctx: &ctx,
+    };
+    // A frame with point lights or fog takes the loop that reads the positions' planes and
+    // the fog; the others keep the loop without them.
+    let fog = FogSpan::load(pool);
+    if fog.is_some() || e.base[1] >= 0 {
+        let pts = PointsCtx::load(entry(e.base[1]));
+        span.fill::<C, T, true>(&pts, fog.as_ref(), zs, cs)
+    } else {
+        span.fill::<C, T, false>(&PointsCtx::NONE, None, zs, cs)
+    }
+}
+
+/// A Phong span's triangle entry, first pixel, row, depth (16.12 with its bias, and its step)
+/// and lighting.
+struct Span<'a> {
+    e: &'a ActiveExtra,
+    x0: i32,
+    row: i32,
+    z: [i32; 2],
+    ctx: &'a ShadeCtx,
+}
+
+impl Span<'_> {
+    /// Tests and writes the span's pixels; returns how many it wrote. With `FX`, lit with the
+    /// point lights `pts` at the interpolated position, and fogged by `fog`.
+    fn fill<C: TargetColor, const T: u8, const FX: bool>(
+        &self,
+        pts: &PointsCtx,
+        fog: Option<&FogSpan>,
+        zs: &mut [u16],
+        cs: &mut [C],
+    ) -> u32 {
+        let e = self.e;
+        let n = zs.len().min(cs.len()) as i32;
+        let seg = if e.mode == MODE_FAST_PHONG {
+            FAST_SEGMENT
+        } else {
+            1
+        };
+        // The planes stepped: the normal's, and with `FX` the position's (integer parts: Q1.14
+        // and 2^-bits units), from the span's first pixel.
+        let planes = if FX { 6 } else { 3 };
+        let mut nv = [0i32; 6];
+        let mut step = [0i32; 6];
+        for k in 0..planes {
+            nv[k] = e.plane32(k, self.x0, self.row);
+            step[k] = e.step32(k);
+        }
+        let factors = channel_factors::<C>();
+        let lit = |nv: &[i32; 6], z: i32| {
+            let n = [nv[0] >> 16, nv[1] >> 16, nv[2] >> 16];
+            if !FX {
+                return channels(shade::<false>(n, [0; 3], self.ctx, pts), &factors);
+            }
+            let x = [nv[3] >> 16, nv[4] >> 16, nv[5] >> 16];
+            let c = shade::<true>(n, x, self.ctx, pts);
+            let c = match fog {
+                // Toward the fog colour (Q8.14) by the factor at this depth.
+                Some(f) => {
+                    let t = f.factor(z) as i64;
+                    [0, 1, 2].map(|k| {
+                        let d = ((f.channel(k) << 14) - c[k]) as i64;
+                        c[k] + ((d * t) >> 16) as i32
+                    })
+                }
+                None => c,
+            };
+            channels(c, &factors)
+        };
+        let half = 1 << (COLOR_FRAC_BITS - 1);
+        let out = |c: [i32; 3]| {
+            C::from_channels([0, 1, 2].map(|k| {
+                ((c[k] + half) >> COLOR_FRAC_BITS).clamp(0, C::CHANNEL_MAX[k] as i32) as u8
+            }))
+        };
+        let [mut z, gz] = self.z;
+        let mut written = 0;
+        let mut i = 0;
+        if seg == 1 {
+            while i < n {
+                let k = i as usize;
+                let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+                if passes::<T>(z16, zs[k]) {
+                    zs[k] = z16;
+                    cs[k] = out(lit(&nv, z));
+                    written += 1;
+                }
+                z = z.wrapping_add(gz);
+                for k in 0..planes {
+                    nv[k] = nv[k].wrapping_add(step[k]);
+                }
+                i += 1;
+            }
+            return written;
+        }
+        let mut c0 = lit(&nv, z);
+        while i < n {
+            let len = seg.min(n - i);
+            for k in 0..planes {
+                nv[k] = nv[k].wrapping_add(step[k].wrapping_mul(len));
+            }
+            let c1 = lit(&nv, z.wrapping_add(gz.wrapping_mul(len)));
+            // A whole segment's step by a shift (8 px), a shorter last one by a division.
+            let dc = [0, 1, 2].map(|k| {
+                if len == FAST_SEGMENT {
+                    (c1[k] - c0[k]) >> 3
+                } else {
+                    (c1[k] - c0[k]) / len
+                }
+            });
+            let mut c = c0;
+            for x in i..i + len {
+                let k = x as usize;
+                let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+                if passes::<T>(z16, zs[k]) {
+                    zs[k] = z16;
+                    cs[k] = out(c);
+                    written += 1;
+                }
+                z = z.wrapping_add(gz);
+                for k in 0..3 {
+                    c[k] += dc[k];
+                }
+            }
+            c0 = c1;
+            i += len;
+        }
+        written
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integer_square_root() {
+        for x in [
+            0u32,
+            1,
+            2,
+            3,
+            4,
+            15,
+            16,
+            17,
+            1 << 28,
+            (1 << 28) + 12345,
+            u32::MAX,
+        ] {
+            let r = isqrt(x) as u64;
+            assert!(r * r <= x as u64 && (r + 1) * (r + 1) > x as u64, "{x}");
+        }
+    }
+
+    #[test]
+    fn shade_matches_the_model_in_floating_point() {
+        let unit = |v: [f64; 3]| {
+            let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            v.map(|c| c / l)
+        };
+        let q = |v: [f64; 3]| v.map(|c| (c * ONE as f64).round() as i32);
+        let (ld, vd) = (unit([-1.0, 1.0, 1.0]), unit([0.2, 0.3, 1.0]));
+        let lv = ld[0] * vd[0] + ld[1] * vd[1] + ld[2] * vd[2];
+        let mut lights = PhongLights {
+            count: 1,
+            ..Default::default()
+        };
+        lights.lights[0] = PhongLight {
+            dir: q(ld),
+            color: [255, 200, 100],
+        };
+        let m = PhongMaterial {
+            color: [200, 60, 60],
+            k: [0.1, 0.8, 0.6].map(|c: f64| (c * ONE as f64).round() as i32),
+            shininess: 20,
+            v: q(vd),
+            lv: [(lv * ONE as f64).round() as i32, 0, 0, 0],
+            tone: TONE_NONE,
+        };
+        let mut worst = 0.0f64;
+        for i in 0..200 {
+            let a = i as f64 * 0.1;
+            let n = unit([a.sin(), (a * 0.7).cos(), 0.5 + (a * 1.3).sin().abs()]);
+            // A shorter normal (as interpolation gives) must light the same.
+            let got = shade::<false>(
+                q(n.map(|c| c * 0.8)),
+                [0; 3],
+                &ShadeCtx::new(&lights, &m),
+                &PointsCtx::default(),
+            );
+            let nl = n[0] * ld[0] + n[1] * ld[1] + n[2] * ld[2];
+            let nv = n[0] * vd[0] + n[1] * vd[1] + n[2] * vd[2];
+            for c in 0..3 {
+                let lc = lights.lights[0].color[c] as f64;
+                let mut v = m.color[c] as f64 * (0.1 + 0.8 * lc / 255.0 * nl.max(0.0));
+                let rv = 2.0 * nl * nv - lv;
+                if nl > 0.0 && rv > 0.0 {
+                    v += 0.6 * lc * rv.powi(20);
+                }
+                let want = v.clamp(0.0, 255.0);
+                worst = worst.max((got[c] as f64 / ONE as f64 - want).abs());
+            }
+        }
+        // Within 3/4 of an 8-bit step (a tenth of an RGB565 step): Q1.14 directions, whose
+        // 2⁻¹⁴ rounding the specular power multiplies (20·2⁻¹⁴·0.6·255 ≈ 0.2 a step, from each
+        // of the products in R·V), and the power's truncated squarings.
+        assert!(worst < 0.75, "{worst}");
+    }
+
+    #[test]
+    fn pool_payloads_round_trip() {
+        let mut e = ActiveExtra::EMPTY;
+        let mut l = PhongLights {
+            count: 3,
+            ..Default::default()
+        };
+        l.lights[2] = PhongLight {
+            dir: [1, -2, 3],
+            color: [255, 0, 7],
+        };
+        l.store(&mut e);
+        assert_eq!(PhongLights::load(&e), l);
+        let m0 = PhongMaterial::default();
+        let (a, b) = (
+            ShadeCtx::from_entries(Some(&e), &m0),
+            ShadeCtx::new(&l, &m0),
+        );
+        assert_eq!(
+            (a.dir, a.frac, a.full, a.count),
+            (b.dir, b.frac, b.full, b.count)
+        );
+        let m = PhongMaterial {
+            color: [1, 2, 3],
+            k: [255 << 14, 0, 12345],
+            shininess: 255,
+            v: [-16384, 5, 16383],
+            lv: [-12000, 16384, 0, -1],
+            tone: TONE_FILMIC,
+        };
+        m.store(&mut e);
+        assert_eq!(PhongMaterial::load(&e), m);
+    }
+
+    /// The integer tone curves against the f64 ones: within 1/8 of a channel unit (the filmic
+    /// constants rounded to Q2.14), monotone,
+    /// and white at the top of their range.
+    #[test]
+    fn tone14_follows_the_curves() {
+        let f64_curve = |tone: u8, x: f64| match tone {
+            TONE_REINHARD => x / (1.0 + x),
+            _ => (x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14)).min(1.0),
+        };
+        for tone in [TONE_REINHARD, TONE_FILMIC] {
+            let mut last = 0;
+            let mut worst = 0.0f64;
+            // Finely from 0 to 2 × white, then coarsely to past the top of the range.
+            let fine = (0..=2 * 255 * 64).map(|k| (k as i64) << 8);
+            let coarse = (3..=140).map(|k| k as i64 * WHITE14);
+            for v in fine.chain(coarse) {
+                let got = tone14(v, tone);
+                assert!(got >= last, "{tone} not monotone at {v}");
+                last = got;
+                let x = v.min(HDR_MAX14) as f64 / WHITE14 as f64;
+                let want = 255.0 * f64_curve(tone, x);
+                worst = worst.max((got as f64 / 16384.0 - want).abs());
+            }
+            assert!(worst < 1.0 / 8.0, "{tone}: {worst}");
+            assert_eq!(tone14(-5, tone), 0);
+            assert_eq!(tone14(i64::MAX / 4, tone), tone14(HDR_MAX14, tone));
+        }
+        assert_eq!(tone14(HDR_MAX14, TONE_FILMIC), WHITE14 as i32);
+    }
+}

@@ -1,0 +1,507 @@
+//! The strip pass and its output: each strip of `LINES` lines cleared, the triangles that
+//! start on its rows set up, every active triangle's row drawn (the row kernel where it runs),
+//! an overlay composed, and the finished lines handed to the target with one
+//! `fill_contiguous` (or written as big-endian bytes for a DMA buffer).
+
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
+use embedded_graphics_core::pixelcolor::raw::ToBytes;
+use embedded_graphics_core::pixelcolor::PixelColor;
+use embedded_graphics_core::primitives::Rectangle;
+use embedded_graphics_core::Pixel;
+
+use crate::num::scalar::Scalar;
+use crate::raster::depth_mode::{draw_row_no_depth, painter_insert, painter_key};
+use crate::raster::textured::{attach_pushed, draw_row_textured, is_textured, TEXTURED};
+use crate::raster::SpanMode;
+use crate::scene::color::{rgb565_word, rgb565_words_mut, TargetColor};
+
+use crate::error::*;
+use crate::kernel;
+use crate::renderer::*;
+use crate::stats::*;
+
+/// The strip being rendered, as a draw target covering the whole `W × H` screen: pixels outside
+/// the strip's rows are ignored. [`Renderer::render_overlaid`] hands it to an overlay
+/// [`Drawable`](embedded_graphics_core::Drawable) after the 3D content of each strip is drawn and before the strip is sent, so that
+/// text or a HUD is composed into the lines instead of being drawn over the finished frame
+/// (no flicker on a display without a framebuffer).
+#[derive(Debug)]
+pub struct StripCanvas<'a, C, const W: usize> {
+    lines: &'a mut [[C; W]],
+    y0: usize,
+    height: u32,
+}
+
+impl<C, const W: usize> OriginDimensions for StripCanvas<'_, C, W> {
+    fn size(&self) -> Size {
+        Size::new(W as u32, self.height)
+    }
+}
+
+impl<C: PixelColor, const W: usize> DrawTarget for StripCanvas<'_, C, W> {
+    type Color = C;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
+        for Pixel(p, c) in pixels {
+            if p.x < 0 || p.y < self.y0 as i32 || p.x as usize >= W {
+                continue;
+            }
+            if let Some(line) = self.lines.get_mut(p.y as usize - self.y0) {
+                line[p.x as usize] = c;
+            }
+        }
+        Ok(())
+    }
+
+    /// Clipped to the strip first: a rectangle of any size (a stroke two billion pixels wide)
+    /// costs only the pixels it has on the strip's rows.
+    fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Self::Error> {
+        if let Some((rows, cols)) = self.clip(area) {
+            for line in &mut self.lines[rows] {
+                line[cols.clone()].fill(color);
+            }
+        }
+        Ok(())
+    }
+
+    /// Clipped to the strip first: the colours of the rows above the strip are skipped with
+    /// `nth`, the rows below are never read, and an area that misses the strip reads none.
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = C>,
+    {
+        let Some((rows, cols)) = self.clip(area) else {
+            return Ok(());
+        };
+        // Offsets within `area`, in u64: the area may be up to 2³² px on a side.
+        let (ax, ay) = (i64::from(area.top_left.x), i64::from(area.top_left.y));
+        let width = u64::from(area.size.width);
+        let mut colors = colors.into_iter();
+        // The colour index `colors` is at.
+        let mut at = 0u64;
+        for r in rows {
+            let y = (self.y0 + r) as i64;
+            let row_start = (y - ay) as u64 * width;
+            let first = row_start + (cols.start as i64 - ax) as u64;
+            // Skip to the row's first visible colour (usize steps: a skip longer than
+            // usize::MAX on a 32-bit core is done in pieces).
+            let mut skip = first - at;
+            while skip > 0 {
+                let step = skip.min(usize::MAX as u64);
+                if step > 0 && colors.nth(step as usize - 1).is_none() {
+                    return Ok(());
+                }
+                skip -= step;
+            }
+            at = first;
+            for x in cols.clone() {
+                let Some(c) = colors.next() else {
+                    return Ok(());
+                };
+                self.lines[r][x] = c;
+                at += 1;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<C, const W: usize> StripCanvas<'_, C, W> {
+    /// The strip's lines and columns `area` covers, or `None` if it covers none of them.
+    fn clip(&self, area: &Rectangle) -> Option<(core::ops::Range<usize>, core::ops::Range<usize>)> {
+        let (x0, y0) = (i64::from(area.top_left.x), i64::from(area.top_left.y));
+        let (x1, y1) = (
+            x0 + i64::from(area.size.width),
+            y0 + i64::from(area.size.height),
+        );
+        let (sy0, sy1) = (self.y0 as i64, (self.y0 + self.lines.len()) as i64);
+        let (cx0, cx1) = (x0.max(0), x1.min(W as i64));
+        let (cy0, cy1) = (y0.max(sy0), y1.min(sy1));
+        if cx0 >= cx1 || cy0 >= cy1 {
+            return None;
+        }
+        Some((
+            (cy0 - sy0) as usize..(cy1 - sy0) as usize,
+            cx0 as usize..cx1 as usize,
+        ))
+    }
+}
+
+impl<
+        S: Scalar,
+        C: TargetColor,
+        const W: usize,
+        const H: usize,
+        const VERTS: usize,
+        const TRIS: usize,
+        const ACTIVE: usize,
+        const LINES: usize,
+        const XV: usize,
+        const XA: usize,
+        const ZL: usize,
+    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
+{
+    /// [`Renderer::render_strip`], reporting stage changes to `probe`.
+    pub fn render_strip_probed<D, P>(
+        &mut self,
+        target: &mut D,
+        probe: &mut P,
+    ) -> Result<Option<core::ops::Range<usize>>, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+        P: Probe,
+    {
+        if self.next_row >= self.vh {
+            return Ok(None);
+        }
+        self.check_target(target)?;
+        self.strip(target, probe, |_| {})
+    }
+
+    pub(crate) fn strip<D, P, F>(
+        &mut self,
+        target: &mut D,
+        probe: &mut P,
+        mut overlay: F,
+    ) -> Result<Option<core::ops::Range<usize>>, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+        P: Probe,
+        F: FnMut(&mut StripCanvas<'_, C, W>),
+    {
+        let Some((y0, lines)) = self.draw_strip::<P, true>(None, LINES, probe) else {
+            return Ok(None);
+        };
+        let (vw, vh) = (self.vw, self.vh);
+        overlay(&mut StripCanvas {
+            lines: &mut self.color[..lines],
+            y0,
+            height: vh as u32,
+        });
+        let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(vw as u32, lines as u32));
+        probe.enter(Stage::Output);
+        let result = target.fill_contiguous(
+            &area,
+            self.color[..lines]
+                .iter()
+                .flat_map(|line| line[..vw].iter())
+                .copied(),
+        );
+        probe.enter(Stage::Raster);
+        if let Err(e) = result {
+            // The frame is abandoned: a later render_strip draws nothing.
+            self.next_row = vh;
+            return Err(Error::Target(e));
+        }
+        Ok(Some(y0..y0 + lines))
+    }
+
+    /// Draws the next strip of the prepared frame into `lines`, colour lines that the caller
+    /// owns, and returns its rows, or `None` when the frame is complete (or nothing was
+    /// prepared). Nothing is sent anywhere: the caller hands the lines to a DMA channel, a
+    /// display driver or another core, and may draw into them first (a label, a HUD).
+    ///
+    /// The strip is `min(N, LINES, rows left)` rows high (the depth lines are the renderer's
+    /// own, `LINES` of them); row `y0 + i` is `lines[i][..vw]` for the returned `y0..y1`. Lines
+    /// beyond the strip and columns beyond the viewport are left as they were. Each line is
+    /// cleared to the background first, so a buffer can be reused without clearing it.
+    ///
+    /// For RGB565, a line is `W` native 16-bit words: an SPI display sends them in its own
+    /// (big-endian) order when the SPI transfers 16-bit frames, which most microcontrollers'
+    /// SPI and DMA units can do with no byte swapping at all (the Pico firmware does this). For
+    /// a byte stream, [`Renderer::render_strip_be`] writes big-endian bytes instead.
+    ///
+    /// The pixels are exactly those [`Renderer::render`] draws into a target.
+    pub fn render_strip_into<const N: usize>(
+        &mut self,
+        lines: &mut [[C; W]; N],
+    ) -> Option<core::ops::Range<usize>> {
+        const { assert!(N >= 1, "a strip buffer needs at least one line") };
+        self.draw_strip::<NoProbe, true>(Some(lines), N, &mut NoProbe)
+            .map(|(y0, n)| y0..y0 + n)
+    }
+
+    /// Draws the next strip of the prepared frame into the renderer's own lines and writes it
+    /// to `out` as big-endian pixel bytes (for RGB565 the byte order of SPI panels such as the
+    /// ST7789 and ILI9341: high byte first), row after row, `vw` pixels a row; returns its rows,
+    /// or `None` when the frame is complete. The strip is as many rows as fit in `out`, at most
+    /// `LINES`. For a driver that sends bytes (an 8-bit SPI DMA channel, a USB or network
+    /// link); [`Renderer::render_strip_into`] avoids the copy.
+    ///
+    /// # Errors
+    ///
+    /// [`StripBufferTooSmall`] when `out` cannot hold one row (`vw · bytes per pixel`); nothing
+    /// is drawn then.
+    pub fn render_strip_be(
+        &mut self,
+        out: &mut [u8],
+    ) -> Result<Option<core::ops::Range<usize>>, StripBufferTooSmall>
+    where
+        C: ToBytes,
+        C::Bytes: AsRef<[u8]>,
+    {
+        let bpp = core::mem::size_of::<C::Bytes>();
+        let row_bytes = self.vw * bpp;
+        if self.next_row >= self.vh {
+            return Ok(None);
+        }
+        if out.len() < row_bytes || bpp == 0 {
+            return Err(StripBufferTooSmall {
+                needed: row_bytes,
+                given: out.len(),
+            });
+        }
+        let fit = out.len() / row_bytes;
+        let Some((y0, lines)) = self.draw_strip::<NoProbe, true>(None, fit, &mut NoProbe) else {
+            return Ok(None);
+        };
+        for (line, dst) in self.color[..lines]
+            .iter()
+            .zip(out.chunks_exact_mut(row_bytes))
+        {
+            for (c, d) in line[..self.vw].iter().zip(dst.chunks_exact_mut(bpp)) {
+                d.copy_from_slice(c.to_be_bytes().as_ref());
+            }
+        }
+        Ok(Some(y0..y0 + lines))
+    }
+
+    /// Rasterizes the next strip of the prepared frame, at most `limit` rows, into `ext` (the
+    /// caller's lines) or, for `None`, into the renderer's own lines. Returns its first row and
+    /// height, or `None` when the frame is complete. `CLEAR`: each line is cleared to the
+    /// background (colour) and the far plane (depth) first; without it the frame is drawn over
+    /// what the lines hold ([`Renderer::render_passes`]; a constant, so the strip routines of
+    /// a frame compile as they did without the option).
+    pub(crate) fn draw_strip<P: Probe, const CLEAR: bool>(
+        &mut self,
+        ext: Option<&mut [[C; W]]>,
+        limit: usize,
+        probe: &mut P,
+    ) -> Option<(usize, usize)> {
+        let y0 = self.next_row;
+        let (vw, vh) = (self.vw, self.vh);
+        if y0 >= vh {
+            return None;
+        }
+        let (mode, painter) = self.setup_mode();
+        let Renderer {
+            verts,
+            xverts,
+            xactive,
+            tris,
+            active,
+            heads,
+            starts,
+            color: own,
+            depth,
+            depth_test,
+            dither,
+            background,
+            stats,
+            active_skipped: skipped,
+            ..
+        } = self;
+        let color: &mut [[C; W]] = match ext {
+            Some(lines) => lines,
+            None => own.as_mut_slice(),
+        };
+        let lines = LINES.min(limit).min(color.len()).min(vh - y0);
+        for l in 0..lines {
+            if CLEAR && ZL == 0 {
+                color[l][..vw].fill(*background);
+            } else if CLEAR {
+                match (
+                    rgb565_words_mut(&mut color[l][..vw]),
+                    rgb565_word(*background),
+                ) {
+                    (Some(words), Some(bg)) => {
+                        kernel::clear_line565(words, &mut depth[l][..vw], bg)
+                    }
+                    _ => {
+                        color[l][..vw].fill(*background);
+                        depth[l][..vw].fill(u16::MAX);
+                    }
+                }
+            }
+            let row = y0 + l;
+            let end = if row + 1 < vh {
+                heads[row + 1] as usize
+            } else {
+                tris.len()
+            };
+            let bucket = heads[row] as usize..end;
+            if !bucket.is_empty() {
+                probe.enter(Stage::Setup);
+            }
+            for t in bucket {
+                let rec = tris[t];
+                let (verts, h) = (&*verts, vh as i32);
+                // A textured triangle is set up as an ordinary one (no fast path) and gets its
+                // planes after. (Constant tests: without attribute stores this is the loop it
+                // was.)
+                let textured = XV > 0 && XA > 0 && is_textured(&rec, xverts);
+                let m = if textured { SpanMode::default() } else { mode };
+                let before = active.len();
+                // Full only under `OverflowPolicy::DrawWhatFits` (the largest number of rows'
+                // overlaps was checked): the triangle is left out and counted.
+                if !active.push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, m))
+                    || (textured
+                        && !attach_pushed::<C, ACTIVE>(
+                            active, before, xactive, &rec, verts, xverts,
+                        ))
+                {
+                    *skipped = skipped.saturating_add(1);
+                } else if painter && active.len() > before {
+                    let ord = (ACTIVE <= H).then_some(&mut starts[..]);
+                    painter_insert(active, ord, painter_key(&rec, verts));
+                }
+            }
+            probe.enter(Stage::Raster);
+            if ZL == 0 {
+                // No depth lines: every fragment written, in the painter's or the list's order.
+                let ord = (ACTIVE <= H).then_some(&mut starts[..]);
+                let (frag, written) =
+                    draw_row_no_depth(active, ord, painter, row, &mut color[l][..vw], *dither);
+                stats.add_row(frag, written);
+                continue;
+            }
+            if XA > 0 {
+                draw_row_with_textures(
+                    active,
+                    xactive,
+                    row,
+                    &mut color[l][..vw],
+                    &mut depth[l][..vw],
+                    *depth_test,
+                    *dither,
+                    stats,
+                );
+                continue;
+            }
+            // (The loop of `draw_list_row`, written out here as it was before the layered
+            // frames: the Pico's frame rate measured 0.06 % lower through the function.)
+            let mut i = 0;
+            loop {
+                if let Some(words) = rgb565_words_mut(&mut color[l][..vw]) {
+                    if let Some((next, frag, written)) =
+                        kernel::rows565(active, i, words, &mut depth[l][..vw], row, *dither)
+                    {
+                        stats.add_row(frag, written);
+                        i = next;
+                    }
+                }
+                if i >= active.len() {
+                    break;
+                }
+                let (frag, written, done) = active.get_mut(i).draw_row(
+                    row as i32,
+                    &mut color[l][..vw],
+                    &mut depth[l][..vw],
+                    *depth_test,
+                    *dither,
+                );
+                stats.add_row(frag, written);
+                if done {
+                    active.swap_remove(i);
+                } else {
+                    i += 1;
+                }
+            }
+        }
+        self.next_row = y0 + lines;
+        Some((y0, lines))
+    }
+}
+
+/// Draws one row of every triangle of `active` into a strip line: the RGB565 row kernel where
+/// it runs, then each remaining triangle's row ([`draw_row_with_textures`] when the renderer
+/// has a textured triangles' pool, `XA > 0`). Removes the triangles whose last row this was.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn draw_list_row<C: TargetColor, const N: usize, const XA: usize>(
+    active: &mut crate::raster::ActiveList<N>,
+    pool: &mut [crate::raster::attrs::ActiveExtra],
+    row: usize,
+    colors: &mut [C],
+    depth: &mut [u16],
+    test: crate::raster::DepthTest,
+    dither: bool,
+    stats: &mut Stats,
+) {
+    if XA > 0 {
+        draw_row_with_textures(active, pool, row, colors, depth, test, dither, stats);
+        return;
+    }
+    let mut i = 0;
+    loop {
+        if let Some(words) = rgb565_words_mut(colors) {
+            if let Some((next, frag, written)) =
+                kernel::rows565(active, i, words, depth, row, dither)
+            {
+                stats.add_row(frag, written);
+                i = next;
+            }
+        }
+        if i >= active.len() {
+            break;
+        }
+        let (frag, written, done) = active
+            .get_mut(i)
+            .draw_row(row as i32, colors, depth, test, dither);
+        stats.add_row(frag, written);
+        if done {
+            active.swap_remove(i);
+        } else {
+            i += 1;
+        }
+    }
+}
+
+/// The row loop of a strip line for a renderer with a textured triangles' pool: as the
+/// renderer's own (the row kernel, then each active triangle's row), with textured triangles
+/// drawn by [`draw_row_textured`]. Apart, so that a renderer without the pool compiles its row
+/// loop exactly as before.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn draw_row_with_textures<C: TargetColor, const N: usize>(
+    active: &mut crate::raster::ActiveList<N>,
+    pool: &mut [crate::raster::attrs::ActiveExtra],
+    row: usize,
+    colors: &mut [C],
+    depth: &mut [u16],
+    test: crate::raster::DepthTest,
+    dither: bool,
+    stats: &mut Stats,
+) {
+    let mut i = 0;
+    loop {
+        if let Some(words) = rgb565_words_mut(colors) {
+            if let Some((next, frag, written)) =
+                kernel::rows565(active, i, words, depth, row, dither)
+            {
+                stats.add_row(frag, written);
+                i = next;
+            }
+        }
+        if i >= active.len() {
+            break;
+        }
+        let a = active.get_mut(i);
+        let (frag, written, done) = if a.flags & TEXTURED != 0 {
+            draw_row_textured(a, pool, row as i32, colors, depth, test)
+        } else {
+            a.draw_row(row as i32, colors, depth, test, dither)
+        };
+        stats.add_row(frag, written);
+        if done {
+            active.swap_remove(i);
+        } else {
+            i += 1;
+        }
+    }
+}

@@ -1,0 +1,576 @@
+//! Textured triangles: their per-vertex attributes (the vertex store's twin), their extra
+//! planes while active (a pool beside the active list), and their span loop. A renderer
+//! without attribute stores (`XV = XA = 0`, the default) compiles none of this into its frame
+//! (every call is behind a test of those constants), so its RAM and instructions are those of
+//! a renderer without textures.
+//!
+//! A textured triangle is set up as an ordinary (not [`FAST`]) triangle for its edges, depth
+//! and lit colour, and gets three more planes in its pool entry: `Q`, proportional to `1/w`,
+//! and `U = Δs·Q`, `V = Δt·Q` (the texel offsets from its first vertex), which are linear in
+//! screen space. A span finds the exact texture coordinate `(U/Q, V/Q)` at the ends of each
+//! segment of [`TextureMode::segment`] pixels (one normalized reciprocal, no division) and
+//! steps linearly in between; [`TextureMode::Affine`] uses `Q = 1`. The cost per pixel is
+//! additions, shifts and masks for the texel's address, a load, the depth test and one
+//! product per channel for the lighting (a 32-bit `muls`, one cycle on a Cortex-M0+).
+
+use crate::geometry::project::{
+    vertex_frac_bits, ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS,
+};
+use crate::num::scalar::{mul_wide, recip_norm};
+use crate::raster::attrs::*;
+use crate::raster::fog::FogSpan;
+use crate::raster::span::{passes, ALWAYS, EQUAL, LESS, LESS_EQUAL};
+use crate::raster::*;
+use crate::scene::color::TargetColor;
+use crate::scene::texture::{Texture, TextureMode, Texturing};
+
+/// A vertex's texture attributes, indexed as the vertex store.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) struct VertexExtra {
+    /// `(s, t)`, signed Q16.16 texture units (|·| < 16, step 2⁻¹⁶).
+    pub(crate) st: [i32; 2],
+    /// `near/w` from the vertex's depth, unsigned Q0.24 (0..=2²⁴, step 2⁻²⁴; 2²⁴ at the near
+    /// plane and in orthographic projection).
+    pub(crate) q: u32,
+    /// The texture (`None`: the vertex is not textured).
+    pub(crate) texture: Option<&'static Texture>,
+    /// The colour key, and whether there is one.
+    pub(crate) key: u16,
+    pub(crate) has_key: bool,
+    /// [`TextureMode`] as its index.
+    pub(crate) mode: u8,
+}
+
+impl VertexExtra {
+    pub(crate) const NONE: VertexExtra = VertexExtra {
+        st: [0; 2],
+        q: 0,
+        texture: None,
+        key: 0,
+        has_key: false,
+        mode: 0,
+    };
+
+    /// The attributes of a vertex of a Phong object: its unit normal (world space, Q1.14)
+    /// and its position less the eye's (world space, 2^-bits units, `effects::position_bits`),
+    /// packed as six `i16` in `st` and `q`; the pool entry of its object's material, and the
+    /// variant.
+    pub(crate) fn phong(n: [i32; 3], pos: [i32; 3], material: u16, fast: bool) -> Self {
+        let h = |v: i32| (v.clamp(-32768, 32767) as u16) as u32;
+        VertexExtra {
+            st: [
+                (h(n[0]) | h(n[1]) << 16) as i32,
+                (h(n[2]) | h(pos[0]) << 16) as i32,
+            ],
+            q: h(pos[1]) | h(pos[2]) << 16,
+            texture: None,
+            key: material,
+            has_key: false,
+            mode: if fast { MODE_FAST_PHONG } else { MODE_PHONG },
+        }
+    }
+
+    /// A Phong vertex's normal and position ([`VertexExtra::phong`]).
+    pub(crate) fn phong_attributes(&self) -> ([i32; 3], [i32; 3]) {
+        let lo = |v: u32| v as u16 as i16 as i32;
+        let hi = |v: u32| (v >> 16) as u16 as i16 as i32;
+        let (a, b) = (self.st[0] as u32, self.st[1] as u32);
+        ([lo(a), hi(a), lo(b)], [hi(b), lo(self.q), hi(self.q)])
+    }
+
+    /// The attributes of a vertex of an object textured by `map`.
+    pub(crate) fn new(map: &Texturing, st: [i32; 2], q: u32) -> Self {
+        VertexExtra {
+            st,
+            q,
+            texture: Some(map.texture()),
+            key: map.key().unwrap_or(0),
+            has_key: map.key().is_some(),
+            mode: mode_index(map.mode()),
+        }
+    }
+}
+
+fn mode_index(m: TextureMode) -> u8 {
+    match m {
+        TextureMode::PerPixel => 0,
+        TextureMode::Subdivided16 => 1,
+        TextureMode::Subdivided8 => 2,
+        TextureMode::Affine => 3,
+    }
+}
+
+fn mode_of(i: u8) -> TextureMode {
+    match i {
+        0 => TextureMode::PerPixel,
+        1 => TextureMode::Subdivided16,
+        2 => TextureMode::Subdivided8,
+        _ => TextureMode::Affine,
+    }
+}
+
+/// `near/w` in Q0.24 of a vertex with depth `depth` (unsigned 16.8, [`ScreenVertex::depth`]
+/// without its 4 extra bits) for the perspective constant `k = 1 − near/far` in Q0.24
+/// (0 for an orthographic projection): the depth is `d = (1 − near/w)/k` of the far plane's,
+/// so `near/w = 1 − d·k`. Exact to a step of the depth.
+pub(crate) fn q_from_depth(depth: u32, k24: u32) -> u32 {
+    const D_MAX: u64 = 65535 << 8;
+    let dk = (depth.min(D_MAX as u32) as u64 * k24 as u64 + D_MAX / 2) / D_MAX;
+    ((1u64 << 24) - dk.min(1 << 24)) as u32
+}
+
+/// Flag of [`ActiveTri::flags`]: the triangle is textured; [`ActiveTri::spare`] is its pool
+/// entry.
+pub(crate) const TEXTURED: u8 = 64;
+
+/// Whether triangle `t` is textured (its first vertex has a texture; a flat triangle's
+/// colour vertex has the attributes of the vertex it copies).
+#[inline(always)]
+pub(crate) fn is_textured(t: &TriRecord, xverts: &[VertexExtra]) -> bool {
+    let i = (t.v[0] & !FLAT_BIT) as usize;
+    xverts
+        .get(i)
+        .is_some_and(|x| x.texture.is_some() || x.mode >= MODE_PHONG)
+}
+
+/// Gives textured triangle `t`, just set up in `rec` (as an ordinary triangle, with the
+/// default [`SpanMode`]), its planes in the free entry of `pool` (the entry's index in
+/// `rec.spare`). Returns false, leaving `rec` as it was, when the pool is full or the vertices'
+/// attributes are missing.
+pub(crate) fn attach_textured<C: TargetColor>(
+    rec: &mut ActiveTri,
+    pool: &mut [ActiveExtra],
+    t: &TriRecord,
+    verts: &[ScreenVertex],
+    xverts: &[VertexExtra],
+) -> bool {
+    let Some(slot) = pool.iter().position(|e| e.kind == FREE) else {
+        return false;
+    };
+    let [i0, i1, i2] = t.indices();
+    let x0 = xverts[(t.v[0] & !FLAT_BIT) as usize];
+    let (Some(x1), Some(x2)) = (xverts.get(i1), xverts.get(i2)) else {
+        return false;
+    };
+    let p = [&verts[i0], &verts[i1], &verts[i2]];
+    let e = &mut pool[slot];
+    *e = ActiveExtra::EMPTY;
+    if x0.mode >= MODE_PHONG {
+        // The normals' and positions' planes, 32 bits each; the material entry's index in
+        // `key`.
+        let [a, b, c] = [&x0, x1, x2].map(|x| x.phong_attributes());
+        let planes = |j: usize| {
+            let at = |v: &([i32; 3], [i32; 3]), k: usize| [v.0, v.1][j][k] as i64;
+            [0, 1, 2].map(|k| [at(&a, k), at(&b, k), at(&c, k)])
+        };
+        let (mut normals, mut positions) = (ActiveExtra::EMPTY, ActiveExtra::EMPTY);
+        if !set_planes(&mut normals, p, planes(0)) || !set_planes(&mut positions, p, planes(1)) {
+            return false;
+        }
+        e.set_planes32(&normals, &positions);
+        e.mode = x0.mode;
+        e.key = x0.key;
+        // The frame's lights entry and the point lights' right after it.
+        let lights = pool.iter().position(|e| e.kind == LIGHTS);
+        let points = lights
+            .map(|i| i + 1)
+            .filter(|&i| pool.get(i).is_some_and(|e| e.kind == POINTS));
+        let e = &mut pool[slot];
+        let index = |i: Option<usize>| i.map_or(-1, |i| i as i32);
+        e.base = [index(lights), index(points)];
+        rec.flags |= TEXTURED;
+        rec.spare = slot as i16;
+        return true;
+    }
+    let Some(texture) = x0.texture else {
+        return false;
+    };
+    e.texture = Some(texture);
+    e.key = x0.key;
+    e.has_key = x0.has_key;
+    e.mode = x0.mode;
+    if rec.flags & FLAT != 0 {
+        let c = p[0].color();
+        for k in 0..3 {
+            let f = vertex_frac_bits(C::CHANNEL_MAX[k]);
+            e.flat[k] = (c[k] as i32) << (COLOR_FRAC_BITS - f);
+        }
+    }
+    let xs = [&x0, x1, x2];
+    let (wl, hl) = texture.logs();
+    // Texel coordinates (Q16.16 texels, in 64 bits: |s·width| < 2³⁰·2¹⁰) and their offsets
+    // from the first vertex.
+    let tc = |x: &VertexExtra, k: usize| (x.st[k] as i64) << [wl, hl][k];
+    let base = [tc(&x0, 0), tc(&x0, 1)];
+    let d = |k: usize| [0, 1, 2].map(|i| tc(xs[i], k) - base[k]);
+    let (du, dv) = (d(0), d(1));
+    // Fraction bits f: the offsets in 2^-f texels below 2¹⁵ (|Δ| < 2^15 texels: UV_LIMIT).
+    let m = du
+        .iter()
+        .chain(dv.iter())
+        .map(|v| v.unsigned_abs())
+        .max()
+        .unwrap_or(0);
+    let mut f = 15u32;
+    while f > 0 && (m >> (16 - f)) >= 1 << 15 {
+        f -= 1;
+    }
+    e.f = f as u8;
+    e.base = [base[0] as i32, base[1] as i32];
+    let affine = mode_of(x0.mode) == TextureMode::Affine;
+    let qs = [x0.q, x1.q, x2.q].map(|q| q.max(1));
+    let qmax = qs.iter().copied().max().unwrap_or(1);
+    let shift = (32 - qmax.leading_zeros()).saturating_sub(15);
+    let qn = qs.map(|q| {
+        if affine {
+            1 << 14
+        } else {
+            ((q >> shift).max(1)) as i64
+        }
+    });
+    let vals = |d: [i64; 3]| [0, 1, 2].map(|i| (d[i] >> (16 - f)) * qn[i]);
+    if !set_planes(e, p, [vals(du), vals(dv), qn]) {
+        return false;
+    }
+    rec.flags |= TEXTURED;
+    rec.spare = slot as i16;
+    true
+}
+
+/// Sets `e`'s planes through the values `planes[k]` at the vertices `p` (|values| < 2³¹),
+/// and marks it a triangle's entry; false for a triangle of no area.
+fn set_planes(e: &mut ActiveExtra, p: [&ScreenVertex; 3], planes: [[i64; 3]; 3]) -> bool {
+    // Plane gradients per subpixel are N/det; per pixel, with 16 fraction bits,
+    // 2⁴·2¹⁶·N/det, from N/det's quotient and remainder (N < 2⁴⁷, det < 2³¹: no overflow).
+    let (ax, ay) = (p[0].x as i64, p[0].y as i64);
+    let (dx1, dy1) = (p[1].x as i64 - ax, p[1].y as i64 - ay);
+    let (dx2, dy2) = (p[2].x as i64 - ax, p[2].y as i64 - ay);
+    let det = dx1 * dy2 - dx2 * dy1;
+    if det == 0 {
+        return false;
+    }
+    let (px0, py0) = (
+        ax.div_euclid(SUBPIXELS as i64),
+        ay.div_euclid(SUBPIXELS as i64),
+    );
+    // The first vertex's offset from that pixel's centre, in subpixels (|·| ≤ 8).
+    let (ox, oy) = (
+        SUBPIXELS as i64 * px0 + SUBPIXELS as i64 / 2 - ax,
+        SUBPIXELS as i64 * py0 + SUBPIXELS as i64 / 2 - ay,
+    );
+    for k in 0..3 {
+        let [a, b, c] = planes[k];
+        let (d1, d2) = (b - a, c - a);
+        let nx = d1 * dy2 - d2 * dy1;
+        let ny = d2 * dx1 - d1 * dx2;
+        e.gx[k] = scaled_div(nx, det, 20);
+        e.gy[k] = scaled_div(ny, det, 20);
+        // The value at the pixel centre: a + (nx·ox + ny·oy)/det, with 16 fraction bits.
+        e.val[k] = (a << 16).wrapping_add(scaled_div(nx * ox + ny * oy, det, 16));
+    }
+    e.px0 = px0 as i16;
+    e.py0 = py0 as i16;
+    e.kind = TRI;
+    true
+}
+
+/// After the caller set up textured triangle `t` with [`ActiveList::push_with`] and the
+/// default [`SpanMode`] (its own setup call, so that the ordinary setup keeps its call sites),
+/// `before` being the list's length before: attaches its planes, or leaves it out when the
+/// pool is full. False when it was left out (to be counted).
+pub(crate) fn attach_pushed<C: TargetColor, const N: usize>(
+    active: &mut ActiveList<N>,
+    before: usize,
+    pool: &mut [ActiveExtra],
+    t: &TriRecord,
+    verts: &[ScreenVertex],
+    xverts: &[VertexExtra],
+) -> bool {
+    if active.len() == before {
+        return true; // nothing to draw from this row on
+    }
+    let ok = attach_textured::<C>(active.get_mut(before), pool, t, verts, xverts);
+    if !ok {
+        active.swap_remove(before);
+    }
+    ok
+}
+
+/// A textured triangle's row: draws it like [`ActiveTri::draw_row`] and moves to the next
+/// row; frees its pool entry when it ends. Returns `(fragments, written, finished)`.
+pub(crate) fn draw_row_textured<C: TargetColor>(
+    rec: &mut ActiveTri,
+    pool: &mut [ActiveExtra],
+    row: i32,
+    colors: &mut [C],
+    depth: &mut [u16],
+    test: DepthTest,
+) -> (u32, u32, bool) {
+    let slot = rec.spare as usize;
+    let width = colors.len().min(depth.len()) as i32;
+    let (lc, rc) = (rec.edges[0].c(), rec.edges[1].c());
+    let (xs, xe) = (lc.max(0), rc.min(width));
+    let mut counts = (0, 0);
+    if xs < xe && pool.get(slot).is_some_and(|e| e.mode >= MODE_PHONG) {
+        let z = rec.row[0].wrapping_add(rec.gx[0].wrapping_mul(xs - lc));
+        let z = z.clamp(0, DEPTH_MAX << DEPTH_FRAC_BITS) + (1 << (DEPTH_FRAC_BITS - 1));
+        let (zs, cs) = (
+            &mut depth[xs as usize..xe as usize],
+            &mut colors[xs as usize..xe as usize],
+        );
+        let written =
+            crate::raster::phong::fill::<C>(pool, slot, xs, row, [z, rec.gx[0]], zs, cs, test);
+        counts = ((xe - xs) as u32, written);
+    } else if xs < xe {
+        if let Some(e) = pool.get(slot) {
+            let e = *e;
+            let skip = xs - lc;
+            let flat = rec.flags & FLAT != 0;
+            let at = |k: usize| rec.row[k].wrapping_add(rec.gx[k].wrapping_mul(skip));
+            let z = at(0).clamp(0, DEPTH_MAX << DEPTH_FRAC_BITS) + (1 << (DEPTH_FRAC_BITS - 1));
+            let mut light = [[0i32; 2]; 3];
+            for k in 0..3 {
+                let (v, g) = if flat {
+                    (e.flat[k], 0)
+                } else {
+                    (at(k + 1), rec.gx[k + 1])
+                };
+                light[k] = modulation::<C>(k, v, g);
+            }
+            let fog = FogSpan::entry(pool);
+            let span = TexSpan {
+                e: &e,
+                x0: xs,
+                row,
+                z: [z, rec.gx[0]],
+                light,
+                fog,
+            };
+            let (zs, cs) = (
+                &mut depth[xs as usize..xe as usize],
+                &mut colors[xs as usize..xe as usize],
+            );
+            let written = match (test, fog.is_some()) {
+                (DepthTest::Less, false) => span.fill::<C, LESS, false>(zs, cs),
+                (DepthTest::LessEqual, false) => span.fill::<C, LESS_EQUAL, false>(zs, cs),
+                (DepthTest::Equal, false) => span.fill::<C, EQUAL, false>(zs, cs),
+                (DepthTest::Always, false) => span.fill::<C, ALWAYS, false>(zs, cs),
+                (DepthTest::Less, true) => span.fill::<C, LESS, true>(zs, cs),
+                (DepthTest::LessEqual, true) => span.fill::<C, LESS_EQUAL, true>(zs, cs),
+                (DepthTest::Equal, true) => span.fill::<C, EQUAL, true>(zs, cs),
+                (DepthTest::Always, true) => span.fill::<C, ALWAYS, true>(zs, cs),
+            };
+            counts = ((xe - xs) as u32, written);
+        }
+    }
+    // The edges and the depth and colour planes move on in the triangle's own row routine,
+    // called for no pixel (its call sites stay those of an ordinary triangle).
+    let (_, _, done) = rec.draw_row::<C>(row, &mut [], &mut [], test, false);
+    if done {
+        if let Some(e) = pool.get_mut(slot) {
+            e.kind = FREE;
+        }
+    }
+    (counts.0, counts.1, done)
+}
+
+/// Texel maxima of the RGB565 channels.
+const TEXEL_MAX: [i32; 3] = [31, 63, 31];
+
+/// The modulation factor of channel `k` and its per-pixel step, from the lit value `v` and
+/// gradient `g` (channel units of `C`, [`COLOR_FRAC_BITS`]): `P = 2·L/texel max` (L clamped
+/// to the channel's range), so that the output channel is `(texel·P + 2²⁰) >> 21`
+/// (`texel·P < 2³⁰`).
+fn modulation<C: TargetColor>(k: usize, v: i32, g: i32) -> [i32; 2] {
+    let max = (C::CHANNEL_MAX[k] as i32) << COLOR_FRAC_BITS;
+    let t = TEXEL_MAX[k];
+    [2 * v.clamp(0, max) / t, 2 * g / t]
+}
+
+struct TexSpan<'e> {
+    e: &'e ActiveExtra,
+    /// First pixel's column and the row.
+    x0: i32,
+    row: i32,
+    /// Depth (16.12 with the rounding bias) and its step.
+    z: [i32; 2],
+    /// Modulation factors ([`modulation`]).
+    light: [[i32; 2]; 3],
+    /// The frame's fog entry (read by `fill::<_, _, true>` only).
+    fog: Option<&'e ActiveExtra>,
+}
+
+impl TexSpan<'_> {
+    /// The texture coordinates (Q16.16 texels) at the centre of pixel `x` of the row.
+    #[inline]
+    fn uv_at(&self, x: i32) -> [i32; 2] {
+        let e = self.e;
+        let (dx, dy) = ((x - e.px0 as i32) as i64, (self.row - e.py0 as i32) as i64);
+        let (val, gx, gy) = (e.val, e.gx, e.gy);
+        let plane = |k: usize| {
+            val[k]
+                .wrapping_add(gx[k].wrapping_mul(dx))
+                .wrapping_add(gy[k].wrapping_mul(dy))
+        };
+        // Q > 0 inside the triangle; a segment end half a pixel outside stays near it.
+        let q = plane(2).max(1 << 16);
+        let (m, ex) = recip_norm(q as u64);
+        // U/Q = (U >> 16)·m·2^(16 − ex), in Q16.16 texels: shifted by ex + f − 32 ≥ 14.
+        let sh = ex + e.f as u32 - 32;
+        let uv = |k: usize| {
+            let h = (plane(k) >> 16).clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+            (mul_wide(h, m) >> sh) as i32
+        };
+        [e.base[0].wrapping_add(uv(0)), e.base[1].wrapping_add(uv(1))]
+    }
+
+    /// Tests and writes the span's pixels; returns how many it wrote. With `FOG`, each
+    /// pixel is mixed toward the fog colour by the fog factor, exact at the ends of each
+    /// segment (from the depth) and linear between.
+    fn fill<C: TargetColor, const T: u8, const FOG: bool>(
+        &self,
+        zs: &mut [u16],
+        cs: &mut [C],
+    ) -> u32 {
+        let e = self.e;
+        let Some(tex) = e.texture else {
+            return 0;
+        };
+        let texels = tex.texels();
+        let (wl, hl) = tex.logs();
+        let key = if e.has_key { e.key as u32 } else { 1 << 16 };
+        let n = zs.len().min(cs.len()) as i32;
+        let seg = mode_of(e.mode).segment().unwrap_or(n.max(1));
+        let fog = if FOG {
+            self.fog.map(FogSpan::from_entry).unwrap_or_default()
+        } else {
+            FogSpan::default()
+        };
+        // The fog colour in the target's channel units.
+        let fogc = if FOG {
+            [0, 1, 2].map(|c| (fog.channel(c) * C::CHANNEL_MAX[c] as i32 * 2 + 255) / 510)
+        } else {
+            [0; 3]
+        };
+        let [mut z, gz] = self.z;
+        let mut l = self.light.map(|c| c[0]);
+        let gl = self.light.map(|c| c[1]);
+        let mut written = 0;
+        let mut i = 0;
+        let mut uv = self.uv_at(self.x0);
+        while i < n {
+            let len = seg.min(n - i);
+            let end = if seg == 1 {
+                uv
+            } else {
+                self.uv_at(self.x0 + i + len)
+            };
+            // A whole segment's step by a shift (16 or 8 px), a shorter one by a division.
+            let step = if len == seg && seg.count_ones() == 1 {
+                let sh = seg.trailing_zeros();
+                [
+                    end[0].wrapping_sub(uv[0]) >> sh,
+                    end[1].wrapping_sub(uv[1]) >> sh,
+                ]
+            } else if len > 1 {
+                [
+                    end[0].wrapping_sub(uv[0]) / len,
+                    end[1].wrapping_sub(uv[1]) / len,
+                ]
+            } else {
+                [0, 0]
+            };
+            let [mut u, mut v] = uv;
+            // With fog, the modulation times `1 − f` and the fog colour times `f` (`f` the fog
+            // factor, Q0.16, exact at the segment's ends from the depth), each linear across
+            // the segment: additions per pixel.
+            let by = |a: i32, b: i32| {
+                if len == seg && seg.count_ones() == 1 {
+                    b.wrapping_sub(a) >> seg.trailing_zeros()
+                } else if len > 1 {
+                    b.wrapping_sub(a) / len
+                } else {
+                    0
+                }
+            };
+            let (mut lf, mut fa, mut dlf, mut dfa) = ([0i32; 3], [0i32; 3], [0i32; 3], [0i32; 3]);
+            let l_end = [0, 1, 2].map(|c| l[c].wrapping_add(gl[c].wrapping_mul(len)));
+            if FOG {
+                let f0 = fog.factor(z);
+                let f1 = fog.factor(z.wrapping_add(gz.wrapping_mul(len)));
+                let keep = |lv: i32, f: i32| (mul_wide(lv, (1 << 16) - f) >> 16) as i32;
+                for c in 0..3 {
+                    lf[c] = keep(l[c], f0);
+                    dlf[c] = by(lf[c], keep(l_end[c], f1));
+                    // fogc·f/2¹⁶ in the output's 2²¹ units (below 2²⁷).
+                    fa[c] = (fogc[c] * f0) << 5;
+                    dfa[c] = by(fa[c], (fogc[c] * f1) << 5);
+                }
+            }
+            for x in i..i + len {
+                let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+                let k = x as usize;
+                if passes::<T>(z16, zs[k]) {
+                    let col = tex.col_index(u >> 16, wl, 0);
+                    let rw = tex.col_index(v >> 16, hl, 1);
+                    let texel = texels[(rw << wl) | col];
+                    if texel as u32 != key {
+                        let t = [
+                            (texel >> 11) as i32,
+                            ((texel >> 5) & 63) as i32,
+                            (texel & 31) as i32,
+                        ];
+                        let (m, a) = if FOG { (lf, fa) } else { (l, [0; 3]) };
+                        let ch = [0, 1, 2].map(|c| {
+                            ((t[c] * m[c] + a[c] + (1 << 20)) >> 21)
+                                .clamp(0, C::CHANNEL_MAX[c] as i32)
+                                as u8
+                        });
+                        zs[k] = z16;
+                        cs[k] = C::from_channels(ch);
+                        written += 1;
+                    }
+                }
+                z = z.wrapping_add(gz);
+                for c in 0..3 {
+                    if FOG {
+                        lf[c] = lf[c].wrapping_add(dlf[c]);
+                        fa[c] += dfa[c];
+                    } else {
+                        l[c] = l[c].wrapping_add(gl[c]);
+                    }
+                }
+                u = u.wrapping_add(step[0]);
+                v = v.wrapping_add(step[1]);
+            }
+            if FOG {
+                l = l_end;
+            }
+            i += len;
+            uv = if seg == 1 && i < n {
+                self.uv_at(self.x0 + i)
+            } else {
+                end
+            };
+        }
+        written
+    }
+}
+
+/// `n/d` rounded to nearest (halves away from zero), `d ≠ 0`.
+fn round_div(n: i64, d: i64) -> i64 {
+    let (q, r) = (n / d, n % d);
+    if 2 * r.unsigned_abs() >= d.unsigned_abs() {
+        q + if (n < 0) == (d < 0) { 1 } else { -1 }
+    } else {
+        q
+    }
+}
+
+/// `n·2^s/det` rounded, for `|n| < 2⁵²`, `0 < |det| < 2³²` and `s ≤ 20`, without overflow:
+/// the quotient shifted plus the rounded remainder's share (wrapping: a sliver's gradient may
+/// exceed 2⁶³, and only its low bits are used, see [`ActiveExtra`]).
+fn scaled_div(n: i64, det: i64, s: u32) -> i64 {
+    let (q, r) = (n / det, n % det);
+    q.wrapping_shl(s).wrapping_add(round_div(r << s, det))
+}
