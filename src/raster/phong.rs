@@ -18,8 +18,9 @@
 use crate::geometry::project::DEPTH_FRAC_BITS;
 use crate::num::scalar::{bitlen32, mul_wide, recip_norm};
 use crate::raster::attrs::{ActiveExtra, MODE_FAST_PHONG, POINTS};
+use crate::raster::by_depth_test;
 use crate::raster::fog::FogSpan;
-use crate::raster::span::{passes, ALWAYS, EQUAL, LESS, LESS_EQUAL};
+use crate::raster::span::passes;
 use crate::raster::{DepthTest, COLOR_FRAC_BITS};
 use crate::scene::color::TargetColor;
 use crate::scene::effects::MAX_PHONG_POINT_LIGHTS;
@@ -565,12 +566,7 @@ pub(crate) fn fill<C: TargetColor>(
     cs: &mut [C],
     test: DepthTest,
 ) -> u32 {
-    match test {
-        DepthTest::Less => fill_t::<C, LESS>(pool, slot, x0, row, z, zs, cs),
-        DepthTest::LessEqual => fill_t::<C, LESS_EQUAL>(pool, slot, x0, row, z, zs, cs),
-        DepthTest::Equal => fill_t::<C, EQUAL>(pool, slot, x0, row, z, zs, cs),
-        DepthTest::Always => fill_t::<C, ALWAYS>(pool, slot, x0, row, z, zs, cs),
-    }
+    by_depth_test!(test, T => fill_t::<C, T>(pool, slot, x0, row, z, zs, cs))
 }
 
 fn fill_t<C: TargetColor, const T: u8>(

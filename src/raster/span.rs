@@ -281,21 +281,9 @@ impl ActiveTri {
                 }
             } else if flat {
                 let c = C::from_channels(self.flat_channels());
-                match test {
-                    DepthTest::Less => span.fill_flat::<C, LESS>(colors, depth, c),
-                    DepthTest::LessEqual => span.fill_flat::<C, LESS_EQUAL>(colors, depth, c),
-                    DepthTest::Equal => span.fill_flat::<C, EQUAL>(colors, depth, c),
-                    DepthTest::Always => span.fill_flat::<C, ALWAYS>(colors, depth, c),
-                }
+                by_depth_test!(test, T => span.fill_flat::<C, T>(colors, depth, c))
             } else {
-                match test {
-                    DepthTest::Less => span.fill_gouraud::<C, LESS>(colors, depth, dither),
-                    DepthTest::LessEqual => {
-                        span.fill_gouraud::<C, LESS_EQUAL>(colors, depth, dither)
-                    }
-                    DepthTest::Equal => span.fill_gouraud::<C, EQUAL>(colors, depth, dither),
-                    DepthTest::Always => span.fill_gouraud::<C, ALWAYS>(colors, depth, dither),
-                }
+                by_depth_test!(test, T => span.fill_gouraud::<C, T>(colors, depth, dither))
             };
             counts = ((xe - xs) as u32, written);
         }

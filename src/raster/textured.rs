@@ -18,8 +18,9 @@ use crate::geometry::project::{
 };
 use crate::num::scalar::{mul_wide, recip_norm};
 use crate::raster::attrs::*;
+use crate::raster::by_depth_test;
 use crate::raster::fog::FogSpan;
-use crate::raster::span::{passes, ALWAYS, EQUAL, LESS, LESS_EQUAL};
+use crate::raster::span::passes;
 use crate::raster::*;
 use crate::scene::color::TargetColor;
 use crate::scene::texture::{Texture, TextureMode, Texturing};
@@ -350,15 +351,10 @@ pub(crate) fn draw_row_textured<C: TargetColor>(
                 &mut depth[xs as usize..xe as usize],
                 &mut colors[xs as usize..xe as usize],
             );
-            let written = match (test, fog.is_some()) {
-                (DepthTest::Less, false) => span.fill::<C, LESS, false>(zs, cs),
-                (DepthTest::LessEqual, false) => span.fill::<C, LESS_EQUAL, false>(zs, cs),
-                (DepthTest::Equal, false) => span.fill::<C, EQUAL, false>(zs, cs),
-                (DepthTest::Always, false) => span.fill::<C, ALWAYS, false>(zs, cs),
-                (DepthTest::Less, true) => span.fill::<C, LESS, true>(zs, cs),
-                (DepthTest::LessEqual, true) => span.fill::<C, LESS_EQUAL, true>(zs, cs),
-                (DepthTest::Equal, true) => span.fill::<C, EQUAL, true>(zs, cs),
-                (DepthTest::Always, true) => span.fill::<C, ALWAYS, true>(zs, cs),
+            let written = if fog.is_some() {
+                by_depth_test!(test, T => span.fill::<C, T, true>(zs, cs))
+            } else {
+                by_depth_test!(test, T => span.fill::<C, T, false>(zs, cs))
             };
             counts = ((xe - xs) as u32, written);
         }
