@@ -110,6 +110,32 @@ mod timer {
     pub fn instructions(ticks: u64) -> u64 {
         ticks
     }
+    /// What `minstret` counts from one read to the next across a known run: 32 full-size
+    /// `nop`s and 32 compressed ones, then the second read (the first read's own retirement
+    /// falls before its value). The firmware stops unless it is exactly
+    /// [`CALIBRATION_EXPECTED`]: a counter that is not one per executed instruction (QEMU run
+    /// without `-icount`, where it reads host time) fails the run instead of giving figures.
+    #[inline(never)]
+    pub fn calibration() -> u32 {
+        let (a, b): (u32, u32);
+        // SAFETY: reads a CSR twice around no-op instructions; no memory or stack is touched.
+        unsafe {
+            core::arch::asm!(
+                "csrr {a}, minstret",
+                ".rept 32",
+                "nop",
+                "c.nop",
+                ".endr",
+                "csrr {b}, minstret",
+                a = out(reg) a,
+                b = out(reg) b,
+                options(nomem, nostack),
+            )
+        };
+        b.wrapping_sub(a)
+    }
+    /// The instructions between the two reads of [`calibration`] and the second read.
+    pub const CALIBRATION_EXPECTED: u32 = 65;
 }
 
 /// A no-op instruction, for the trace markers.
@@ -533,6 +559,18 @@ fn main() -> ! {
     }
     if !cfg!(feature = "profile-torus") && !assembly_matches_portable() {
         debug::exit(debug::EXIT_FAILURE);
+    }
+    #[cfg(target_arch = "riscv32")]
+    {
+        let counted = timer::calibration();
+        if counted != timer::CALIBRATION_EXPECTED {
+            hprintln!(
+                "ERROR minstret counted {} over a run of {} instructions: not an exact instruction counter (QEMU needs -icount)",
+                counted,
+                timer::CALIBRATION_EXPECTED
+            );
+            debug::exit(debug::EXIT_FAILURE);
+        }
     }
     timer::start();
     for &scene in SCENES {
