@@ -41,20 +41,37 @@ fn torus_source() -> String {
 
 fn main() {
     let out = PathBuf::from(env::var("OUT_DIR").expect("OUT_DIR"));
-    let layout = if env::var_os("CARGO_FEATURE_MICROBIT").is_some() {
+    let feature = |f: &str| env::var_os(format!("CARGO_FEATURE_{f}")).is_some();
+    let layout = if feature("MICROBIT") {
         "layouts/microbit.x"
-    } else if env::var_os("CARGO_FEATURE_AN505").is_some() {
+    } else if feature("AN505") {
         "layouts/an505.x"
+    } else if feature("SIFIVE_E") {
+        "layouts/sifive_e.x"
+    } else if feature("VIRT") {
+        "layouts/virt.x"
     } else {
         "layouts/mps2.x"
     };
+    // `small_part`: the 16 KB parts' program (the cube at full size, the torus at the size that
+    // fits, its mesh in flash), on the microbit (Cortex-M0) and on the sifive_e (RISC-V).
+    println!("cargo:rustc-check-cfg=cfg(small_part)");
+    if feature("MICROBIT") || feature("SIFIVE_E") {
+        println!("cargo:rustc-cfg=small_part");
+    }
     fs::copy(layout, out.join("memory.x")).expect("copy memory layout");
     fs::write(out.join("torus_mesh.rs"), torus_source()).expect("write torus_mesh.rs");
     println!("cargo:rustc-link-search={}", out.display());
     println!("cargo:rerun-if-changed=layouts");
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=../src");
-    if env::var("TARGET").is_ok_and(|t| t.starts_with("thumb")) {
+    let target = env::var("TARGET").unwrap_or_default();
+    if target.starts_with("thumb") {
+        println!("cargo:rustc-link-arg=-Tlink.x");
+    }
+    if target.starts_with("riscv") {
+        // riscv-rt's link.x expects the layout (its REGION_ aliases) first.
+        println!("cargo:rustc-link-arg=-Tmemory.x");
         println!("cargo:rustc-link-arg=-Tlink.x");
     }
 }

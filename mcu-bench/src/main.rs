@@ -1,7 +1,9 @@
 //! Benchmark firmware: renders every benchmark scene with the fixed-point type and with f32 into
 //! a line-hashing target and prints, over semihosting, exact instruction counts (QEMU with
 //! `-icount shift=7`: every instruction advances the virtual clock by 128 ns, so a board timer
-//! counts instructions), per-stage counts, the image hash, and memory figures.
+//! counts instructions), per-stage counts, the image hash, and memory figures. On RISC-V (QEMU
+//! `virt` and `sifive_e`, machine mode) the count is the `minstret` CSR read directly, QEMU run
+//! with `-icount shift=0`.
 //!
 //! Output lines (parsed by `tools/src/bin/mcu_report.rs`):
 //! `BENCH scene=.. number=.. instructions=.. vertices=.. lighting=.. triangles=.. setup=..
@@ -14,15 +16,21 @@
 
 use core::panic::PanicInfo;
 
+#[cfg(target_arch = "arm")]
 use cortex_m_rt::entry;
+#[cfg(target_arch = "arm")]
 use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics_core::pixelcolor::Rgb565;
-use scanline3d_support::demo::{render_bench, Bench};
+#[cfg(target_arch = "riscv32")]
+use riscv_rt::entry;
+#[cfg(target_arch = "riscv32")]
+use riscv_semihosting::{debug, hprintln};
 use scanline3d::fixed::types::I16F16;
-use scanline3d_support::hash::{HashTarget, NullTarget};
 use scanline3d::{Fx, NoProbe, Probe, Scalar, Stage};
+use scanline3d_support::demo::{render_bench, Bench};
+use scanline3d_support::hash::{HashTarget, NullTarget};
 
-#[cfg(not(feature = "microbit"))]
+#[cfg(all(target_arch = "arm", not(feature = "microbit")))]
 mod timer {
     //! CMSDK APB TIMER0 of the mps2 boards: a 32-bit down-counter at the board's clock
     //! (mps2-an385/an386: 25 MHz; mps2-an505: the IoTKit's, at 20 MHz).
@@ -58,7 +66,7 @@ mod timer {
     }
 }
 
-#[cfg(feature = "microbit")]
+#[cfg(all(target_arch = "arm", feature = "microbit"))]
 mod timer {
     //! nRF51 TIMER0: 32-bit timer at 16 MHz, read by a capture task.
     const BASE: usize = 0x4000_8000;
@@ -83,6 +91,73 @@ mod timer {
     /// Instructions in `ticks`: 16 MHz ticks of 62.5 ns, 128 ns per instruction.
     pub fn instructions(ticks: u64) -> u64 {
         (ticks * 125 + 128) / 256
+    }
+}
+
+#[cfg(target_arch = "riscv32")]
+mod timer {
+    //! The hart's `minstret` CSR (machine mode): instructions retired. In QEMU it reads the
+    //! virtual clock, which with `-icount shift=0,align=off,sleep=off` advances exactly 1 ns per
+    //! instruction executed: the count is exact and the same on every run (without `-icount`
+    //! QEMU returns host time instead, and the script always passes it). The low 32 bits: one
+    //! frame stays far below 2^32 instructions.
+    pub fn start() {}
+    #[inline(always)]
+    pub fn now() -> u32 {
+        riscv::register::minstret::read() as u32
+    }
+    /// Instructions in `ticks`: one tick per instruction.
+    pub fn instructions(ticks: u64) -> u64 {
+        ticks
+    }
+    /// What `minstret` counts from one read to the next across a known run: 32 full-size
+    /// `nop`s and 32 compressed ones, then the second read (the first read's own retirement
+    /// falls before its value). The firmware stops unless it is exactly
+    /// [`CALIBRATION_EXPECTED`]: a counter that is not one per executed instruction (QEMU run
+    /// without `-icount`, where it reads host time) fails the run instead of giving figures.
+    #[inline(never)]
+    pub fn calibration() -> u32 {
+        let (a, b): (u32, u32);
+        // SAFETY: reads a CSR twice around no-op instructions; no memory or stack is touched.
+        unsafe {
+            core::arch::asm!(
+                "csrr {a}, minstret",
+                ".rept 32",
+                "nop",
+                "c.nop",
+                ".endr",
+                "csrr {b}, minstret",
+                a = out(reg) a,
+                b = out(reg) b,
+                options(nomem, nostack),
+            )
+        };
+        b.wrapping_sub(a)
+    }
+    /// The instructions between the two reads of [`calibration`] and the second read.
+    pub const CALIBRATION_EXPECTED: u32 = 65;
+}
+
+/// A no-op instruction, for the trace markers.
+#[inline(always)]
+fn nop() {
+    #[cfg(target_arch = "arm")]
+    cortex_m::asm::nop();
+    #[cfg(target_arch = "riscv32")]
+    riscv::asm::nop();
+}
+
+/// The current stack pointer.
+#[inline(always)]
+fn stack_pointer() -> usize {
+    #[cfg(target_arch = "arm")]
+    return cortex_m::register::msp::read() as usize;
+    #[cfg(target_arch = "riscv32")]
+    {
+        let sp: usize;
+        // SAFETY: copies the stack pointer into a register; no memory is touched.
+        unsafe { core::arch::asm!("mv {}, sp", out(reg) sp, options(nomem, nostack)) };
+        sp
     }
 }
 
@@ -113,14 +188,14 @@ struct Markers;
 
 #[inline(never)]
 fn frame_start_marker() {
-    cortex_m::asm::nop();
+    nop();
 }
 
 #[inline(never)]
 fn frame_end_marker() {
     // Different from the start marker, so the two are never merged.
-    cortex_m::asm::nop();
-    cortex_m::asm::nop();
+    nop();
+    nop();
 }
 
 impl Probe for Markers {
@@ -172,6 +247,12 @@ impl Probe for StageProbe {
 const PAINT: u32 = 0x5ca1_ab1e;
 
 extern "C" {
+    /// The start of flash: the vector table on Cortex-M, the start of .text (riscv-rt's
+    /// `_start` first) on RISC-V.
+    #[cfg(target_arch = "arm")]
+    static __vector_table: u32;
+    #[cfg(target_arch = "riscv32")]
+    #[link_name = "__stext"]
     static __vector_table: u32;
     static mut __sheap: u32;
     static _stack_start: u32;
@@ -184,7 +265,7 @@ extern "C" {
 
 /// Fills the free RAM between the end of .bss and the current stack pointer with a pattern.
 fn paint_stack() {
-    let sp = cortex_m::register::msp::read() as usize;
+    let sp = stack_pointer();
     // SAFETY: the words between the end of .bss (`__sheap`) and 64 bytes below the live stack
     // pointer are unused: there is no heap, and the stack grows down toward them.
     unsafe {
@@ -210,7 +291,7 @@ fn stack_high_water() -> usize {
 }
 
 /// Bytes of RAM: from its start (`__sdata`) to the initial stack pointer (its end).
-#[cfg_attr(not(feature = "microbit"), allow(dead_code))]
+#[cfg_attr(not(small_part), allow(dead_code))]
 fn ram_size() -> usize {
     // Only the addresses of linker symbols are taken.
     core::ptr::addr_of!(_stack_start) as usize - core::ptr::addr_of!(__sdata) as usize
@@ -232,13 +313,13 @@ fn flash_used() -> usize {
 
 #[cfg(feature = "profile-torus")]
 const SCENES: &[Bench] = &[Bench::Torus];
-#[cfg(all(not(feature = "microbit"), not(feature = "profile-torus")))]
+#[cfg(all(not(small_part), not(feature = "profile-torus")))]
 const SCENES: &[Bench] = &Bench::ALL;
-#[cfg(feature = "microbit")]
+#[cfg(small_part)]
 const SCENES: &[Bench] = &[Bench::Cube];
 
 /// The torus mesh in flash (generated by build.rs from the library's torus, bit-identical).
-#[cfg(feature = "microbit")]
+#[cfg(small_part)]
 mod flash_torus {
     use scanline3d::fixed::types::I16F16;
     use scanline3d::Fx;
@@ -247,17 +328,17 @@ mod flash_torus {
 
 /// Side of the square frame the torus is rendered at on the 16 KB part: the largest multiple
 /// of 8 pixels that fits (the firmware prints what the next size would need).
-#[cfg(feature = "microbit")]
+#[cfg(small_part)]
 pub const MICROBIT_TORUS_SIZE: usize = scanline3d_support::demo::SMALL_PART_TORUS.0;
 /// Triangle and active capacities of that renderer: what the frame needs.
-#[cfg(feature = "microbit")]
+#[cfg(small_part)]
 const MICROBIT_CAPACITY: (usize, usize) = (
     scanline3d_support::demo::SMALL_PART_TORUS.1,
     scanline3d_support::demo::SMALL_PART_TORUS.2,
 );
 
 /// The default torus frame at `W × W` on the 16 KB part, from the flash mesh.
-#[cfg(feature = "microbit")]
+#[cfg(small_part)]
 #[inline(never)]
 fn torus_sized<const W: usize>() {
     use scanline3d_support::demo::render_torus_sized;
@@ -290,7 +371,7 @@ fn torus_sized<const W: usize>() {
 
 /// The `SIZED` line of [`torus_sized`]. Out of line: the formatting's arguments stay off the
 /// 16 KB part's deepest frame (the renderer's).
-#[cfg(feature = "microbit")]
+#[cfg(small_part)]
 #[inline(never)]
 fn report_sized(w: usize, ticks: u64, hash: u64, ram: usize, drawn: u32, written: u32) {
     hprintln!(
@@ -373,7 +454,7 @@ fn bench<S: Scalar, const DITHER: bool>(scene: Bench) {
 
 /// The torus frame (I16F16) with a strip of `LINES` lines: its renderer instructions, RAM and
 /// hash (`scripts/mcu-bench` checks that the hash equals the one-line frame's).
-#[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
+#[cfg(not(any(small_part, feature = "profile-torus")))]
 fn strip_bench<const LINES: usize>() {
     use scanline3d_support::demo::render_torus_strip;
     let mut null = NullTarget::<Rgb565>::new(240, 240);
@@ -427,7 +508,7 @@ fn bench_error<E>(e: &scanline3d_support::demo::BenchError<E>) -> &'static str {
 /// rows above the split (the first core) and of the seek and the rows below (the second core),
 /// run one after the other here (`demo::board::split_frame`; the host tests check that the
 /// split frame is the whole frame, within what `seek_row` allows).
-#[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
+#[cfg(not(any(small_part, feature = "profile-torus")))]
 fn split_bench(frame: u32) {
     use embedded_graphics_core::pixelcolor::RgbColor;
     use scanline3d_support::demo::board::{self, SplitPart};
@@ -479,6 +560,18 @@ fn main() -> ! {
     if !cfg!(feature = "profile-torus") && !assembly_matches_portable() {
         debug::exit(debug::EXIT_FAILURE);
     }
+    #[cfg(target_arch = "riscv32")]
+    {
+        let counted = timer::calibration();
+        if counted != timer::CALIBRATION_EXPECTED {
+            hprintln!(
+                "ERROR minstret counted {} over a run of {} instructions: not an exact instruction counter (QEMU needs -icount)",
+                counted,
+                timer::CALIBRATION_EXPECTED
+            );
+            debug::exit(debug::EXIT_FAILURE);
+        }
+    }
     timer::start();
     for &scene in SCENES {
         if cfg!(feature = "profile-torus") {
@@ -496,15 +589,15 @@ fn main() -> ! {
         bench::<f32, false>(scene);
     }
     // The default torus with 4×4 ordered dithering (as the Pico firmware renders it).
-    #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
+    #[cfg(not(any(small_part, feature = "profile-torus")))]
     bench::<Fx<I16F16>, true>(Bench::Torus);
-    #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
+    #[cfg(not(any(small_part, feature = "profile-torus")))]
     strip_bench::<8>();
-    #[cfg(not(any(feature = "microbit", feature = "profile-torus")))]
+    #[cfg(not(any(small_part, feature = "profile-torus")))]
     for frame in [0, 15] {
         split_bench(frame);
     }
-    #[cfg(feature = "microbit")]
+    #[cfg(small_part)]
     {
         torus_sized::<MICROBIT_TORUS_SIZE>();
         // What the next size (8 px more) would need, from the measured stack use.
@@ -549,7 +642,7 @@ fn main() -> ! {
     hprintln!("DONE");
     debug::exit(debug::EXIT_SUCCESS);
     loop {
-        cortex_m::asm::nop();
+        nop();
     }
 }
 
@@ -636,12 +729,30 @@ fn assembly_matches_portable() -> bool {
 
 /// A fault (on the 16 KB part: the stack running out of RAM) ends the run with a failure
 /// instead of hanging.
+#[cfg(target_arch = "arm")]
 #[cortex_m_rt::exception]
 unsafe fn HardFault(_frame: &cortex_m_rt::ExceptionFrame) -> ! {
     hprintln!("HARDFAULT");
     debug::exit(debug::EXIT_FAILURE);
     loop {
-        cortex_m::asm::nop();
+        nop();
+    }
+}
+
+/// The same on RISC-V: any exception (an access fault when the 16 KB part's stack runs below
+/// its RAM, an illegal instruction) prints its cause and address and ends the run.
+#[cfg(target_arch = "riscv32")]
+#[export_name = "ExceptionHandler"]
+fn exception_handler(_frame: &riscv_rt::TrapFrame) -> ! {
+    hprintln!(
+        "HARDFAULT mcause={:#x} mepc={:#x} mtval={:#x}",
+        riscv::register::mcause::read().bits(),
+        riscv::register::mepc::read(),
+        riscv::register::mtval::read()
+    );
+    debug::exit(debug::EXIT_FAILURE);
+    loop {
+        nop();
     }
 }
 
@@ -650,6 +761,6 @@ fn panic(info: &PanicInfo) -> ! {
     hprintln!("PANIC {}", info);
     debug::exit(debug::EXIT_FAILURE);
     loop {
-        cortex_m::asm::nop();
+        nop();
     }
 }

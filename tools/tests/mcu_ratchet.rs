@@ -195,9 +195,9 @@ fn the_committed_baseline_parses_and_covers_every_fixed_point_scene() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../mcu-bench/baseline.txt");
     let rows = parse(&std::fs::read_to_string(path).unwrap()).unwrap();
     let scenes = scanline3d_support::demo::Bench::ALL.map(|b| b.name());
-    // Cortex-M0 (mps2-an385), Cortex-M4F (mps2-an386) and Cortex-M33 (mps2-an505): every scene,
-    // the dithered torus and the torus with a strip of 8 lines.
-    for core in ["m0", "m4f", "m33"] {
+    // Cortex-M0 (mps2-an385), Cortex-M4F (mps2-an386), Cortex-M33 (mps2-an505) and RISC-V
+    // rv32imac (virt): every scene, the dithered torus and the torus with a strip of 8 lines.
+    for core in ["m0", "m4f", "m33", "rv32imac"] {
         for scene in scenes
             .iter()
             .copied()
@@ -207,7 +207,14 @@ fn the_committed_baseline_parses_and_covers_every_fixed_point_scene() {
             assert!(rows.iter().any(|(r, _)| *r == k), "{k} missing from {path}");
         }
     }
-    assert!(rows
-        .iter()
-        .any(|(k, _)| k.core == "microbit" && k.number == "I16F16"));
+    // The 16 KB parts: the microbit (Cortex-M0) and the FE310 (sifive_e, RISC-V), each with
+    // its cube and its sized torus.
+    for core in ["microbit", "fe310"] {
+        assert!(rows
+            .iter()
+            .any(|(k, _)| k.core == core && k.scene == "cube" && k.number == "I16F16"));
+        assert!(rows.iter().any(|(k, _)| k.core == core
+            && k.scene.starts_with("torus, ")
+            && k.scene.contains(" × ")));
+    }
 }

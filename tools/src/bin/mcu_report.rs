@@ -8,7 +8,7 @@
 //! instead; `--baseline=PATH` compares with (or updates) another file.
 //!
 //! `cargo run --release -p scanline3d-tools --bin mcu_report -- [--enforce-budget] [--update-baseline]
-//! [--baseline=PATH] m0=LOG m4f=LOG [m33=LOG] [microbit=LOG]`
+//! [--baseline=PATH] m0=LOG m4f=LOG [m33=LOG] [microbit=LOG] [rv32imac=LOG] [fe310=LOG]`
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -50,12 +50,15 @@ fn host_hash_small_part() -> Result<u64, String> {
     Ok(t.hash())
 }
 
-/// The emulated machine and core of a log label (`m0`, `m4f`, `m33`, `microbit`).
+/// The emulated machine and core of a log label (`m0`, `m4f`, `m33`, `microbit`, `rv32imac`,
+/// `fe310`).
 fn machine(label: &str) -> (&'static str, &'static str) {
     match label {
         "m4f" => ("m4f", "mps2-an386"),
         "m33" => ("m33", "mps2-an505"),
         "microbit" => ("m0", "microbit"),
+        "rv32imac" => ("rv32imac", "virt"),
+        "fe310" => ("rv32imac", "sifive_e"),
         _ => ("m0", "mps2-an385"),
     }
 }
@@ -106,7 +109,7 @@ fn run() -> Result<(), String> {
     }
     if logs.is_empty() {
         return Err(
-            "usage: mcu_report [--enforce-budget] [--update-baseline] [--baseline=PATH] m0=LOG m4f=LOG [m33=LOG] [microbit=LOG]"
+            "usage: mcu_report [--enforce-budget] [--update-baseline] [--baseline=PATH] m0=LOG m4f=LOG [m33=LOG] [microbit=LOG] [rv32imac=LOG] [fe310=LOG]"
                 .into(),
         );
     }
@@ -298,6 +301,26 @@ fn run() -> Result<(), String> {
         md.push_str(&format!(
             "\n**Cortex-M4F goal** for the same frame on `m4f`: ≤ {M4F_GOAL_INSTRUCTIONS} renderer instructions. Measured: {i} — {}.\n",
             if i <= M4F_GOAL_INSTRUCTIONS { "met" } else { "**not met**" }
+        ));
+    }
+    // RISC-V (portable kernels) beside the Cortex-M cores (assembly kernels): the same frame.
+    if let Some(rv) = torus_on("virt").and_then(|t| t["renderer_instructions"].as_u64()) {
+        let mut others = String::new();
+        for (label, m) in [
+            ("m0", "mps2-an385"),
+            ("m4f", "mps2-an386"),
+            ("m33", "mps2-an505"),
+        ] {
+            if let Some(i) = torus_on(m).and_then(|t| t["renderer_instructions"].as_u64()) {
+                let _ = write!(
+                    others,
+                    ", `{label}` {i} ({:.2}×)",
+                    rv as f64 / i.max(1) as f64
+                );
+            }
+        }
+        md.push_str(&format!(
+            "\n**RISC-V** for the same frame (torus, I16F16): `rv32imac` {rv} renderer instructions with the portable Rust kernels, against the Cortex-M cores with their Thumb assembly kernels{others} (RISC-V's count over theirs in brackets).\n"
         ));
     }
     if let Some(t) = torus {
@@ -554,6 +577,12 @@ fn markdown(
         s,
         "Exact **instruction** counts (not cycles: a Cortex-M0+ spends about 1.3 cycles per instruction on this kind of code) for one 240 × 240 RGB565 frame of each benchmark scene, measured in QEMU 7.2 with `-icount shift=7,align=off,sleep=off` (one instruction = 128 ns of virtual time, read from the board timer). `m0` is `thumbv6m-none-eabi` code (the Cortex-M0 instruction set) on `mps2-an385`; `m4f` is `thumbv7em-none-eabihf` code on `mps2-an386`; `m33` is `thumbv8m.main-none-eabihf` code (the Cortex-M33 of the RP2350) on `mps2-an505`, run in the secure state.\n"
     );
+    if rows.iter().any(|r| r["core"] == "rv32imac") {
+        let _ = writeln!(
+            s,
+            "`rv32imac` is `riscv32imac-unknown-none-elf` code on QEMU's RISC-V `virt` machine (machine mode, `-bios none`), with the library's portable Rust kernels (the Thumb assembly is Cortex-M only): instructions read from the `minstret` CSR around each frame and stage, QEMU run with `-icount shift=0,align=off,sleep=off`, where `minstret` advances exactly once per executed instruction (the same count on every run). Compressed (16-bit) and full-size instructions count alike, as Thumb and Thumb-2 ones do on Cortex-M.\n"
+        );
+    }
     let _ = writeln!(
         s,
         "*Renderer instructions* are one `Renderer::render` call drawing into a target that does nothing: everything the renderer does, up to handing each finished strip to the target, and nothing the target does (building the meshes happens before and is not counted). The stage columns come from a second, probed run into a target that hashes every pixel; they include the probe's own few instructions per stage change, and *output* is that hashing target's work (on a board: the display driver's). Renderer RAM is `size_of` the renderer instance; the hash column checks that run's frame against the same scene rendered on the host.\n"
@@ -566,9 +595,23 @@ fn markdown(
             "- `{core}` firmware: static RAM (.data + .bss) {st} B, stack high-water mark {stack} B (meshes and renderers live on the stack), flash {flash} B."
         );
     }
-    let sized = small.iter().find(|v| v.get("instructions").is_some());
-    let fit = small.iter().find(|v| v.get("next_size").is_some());
-    if let (Some(t), Some(f)) = (sized, fit) {
+    // One paragraph per 16 KB part (its log label), in the order of the logs.
+    let mut parts: Vec<&str> = Vec::new();
+    for v in small {
+        let l = v["label"].as_str().unwrap_or_default();
+        if !parts.contains(&l) {
+            parts.push(l);
+        }
+    }
+    for part in parts {
+        let of_part = |k: &str| {
+            small
+                .iter()
+                .find(|v| v["label"].as_str() == Some(part) && v.get(k).is_some())
+        };
+        let (Some(t), Some(f)) = (of_part("instructions"), of_part("next_size")) else {
+            continue;
+        };
         let (next_stack, ram) = (
             f["next_stack"].as_u64().unwrap_or(u64::MAX),
             f["ram"].as_u64().unwrap_or(0),
@@ -586,9 +629,13 @@ fn markdown(
                 f["next_size"], next_stack
             )
         };
+        let what = match part {
+            "fe310" => "Smallest RISC-V part** (`fe310` row above; QEMU `sifive_e`: the SiFive FE310-G000 of the HiFive1, rv32imac, 16 KB RAM, code in its memory-mapped SPI flash; `riscv32imac-unknown-none-elf` code, portable kernels, `minstret` instruction counts)",
+            _ => "Smallest part** (`microbit` row above; QEMU `microbit`: nRF51, Cortex-M0, 16 KB RAM, 256 KB flash)",
+        };
         let _ = writeln!(
             s,
-            "\n**Smallest part** (`microbit` row above; QEMU `microbit`: nRF51, Cortex-M0, 16 KB RAM, 256 KB flash): the cube renders at the full 240 × 240. The torus (its 18 KB mesh baked into flash by `mcu-bench/build.rs`) renders at **{0} × {0}**: {1} instructions, renderer RAM {2} B, stack high-water mark {3} of {4} B; {5}. Its hash {6} the host's. The renderer's vertex store, triangle list and active list do not shrink with the frame, so a larger torus frame on this part needs a mesh with fewer vertices and triangles.",
+            "\n**{what}: the cube renders at the full 240 × 240. The torus (its 18 KB mesh baked into flash by `mcu-bench/build.rs`) renders at **{0} × {0}**: {1} instructions, renderer RAM {2} B, stack high-water mark {3} of {4} B; {5}. Its hash {6} the host's. The renderer's vertex store, triangle list and active list do not shrink with the frame, so a larger torus frame on this part needs a mesh with fewer vertices and triangles.",
             t["size"], t["instructions"], t["renderer_ram"], f["stack"], f["ram"], next,
             if t["hash_matches_host"].as_bool() == Some(true) { "equals" } else { "DIFFERS from" }
         );
