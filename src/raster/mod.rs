@@ -62,34 +62,6 @@ pub enum DepthTest {
     Always,
 }
 
-/// `$body` with `$t` the const generic of the span loops for depth test `$test` (`span::LESS`,
-/// ...): the one place a runtime [`DepthTest`] becomes the constant the per-pixel loops are
-/// compiled for. A new test is a variant here, a constant in `span` and its comparison in
-/// `span::passes`.
-macro_rules! by_depth_test {
-    ($test:expr, $t:ident => $body:expr) => {
-        match $test {
-            $crate::raster::DepthTest::Less => {
-                const $t: u8 = $crate::raster::span::LESS;
-                $body
-            }
-            $crate::raster::DepthTest::LessEqual => {
-                const $t: u8 = $crate::raster::span::LESS_EQUAL;
-                $body
-            }
-            $crate::raster::DepthTest::Equal => {
-                const $t: u8 = $crate::raster::span::EQUAL;
-                $body
-            }
-            $crate::raster::DepthTest::Always => {
-                const $t: u8 = $crate::raster::span::ALWAYS;
-                $body
-            }
-        }
-    };
-}
-pub(crate) use by_depth_test;
-
 #[cfg(test)]
 /// `ceil(n / d)` for `d > 0`.
 #[inline]

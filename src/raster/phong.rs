@@ -18,9 +18,8 @@
 use crate::geometry::project::DEPTH_FRAC_BITS;
 use crate::num::scalar::{bitlen32, mul_wide, recip_norm};
 use crate::raster::attrs::{ActiveExtra, MODE_FAST_PHONG, POINTS};
-use crate::raster::by_depth_test;
 use crate::raster::fog::FogSpan;
-use crate::raster::span::passes;
+use crate::raster::span::{by_depth_test, passes};
 use crate::raster::{DepthTest, COLOR_FRAC_BITS};
 use crate::scene::color::TargetColor;
 use crate::scene::effects::MAX_PHONG_POINT_LIGHTS;

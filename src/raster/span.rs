@@ -526,6 +526,34 @@ pub(crate) struct Span {
     gx: [i32; 4],
 }
 
+/// `$body` with `$t` the const generic of the span loops for depth test `$test` ([`LESS`],
+/// ...): the one place a runtime [`DepthTest`] becomes the constant the per-pixel loops are
+/// compiled for. A new test is a variant here, a constant here and its comparison in
+/// [`passes`].
+macro_rules! by_depth_test {
+    ($test:expr, $t:ident => $body:expr) => {
+        match $test {
+            $crate::raster::DepthTest::Less => {
+                const $t: u8 = $crate::raster::span::LESS;
+                $body
+            }
+            $crate::raster::DepthTest::LessEqual => {
+                const $t: u8 = $crate::raster::span::LESS_EQUAL;
+                $body
+            }
+            $crate::raster::DepthTest::Equal => {
+                const $t: u8 = $crate::raster::span::EQUAL;
+                $body
+            }
+            $crate::raster::DepthTest::Always => {
+                const $t: u8 = $crate::raster::span::ALWAYS;
+                $body
+            }
+        }
+    };
+}
+pub(crate) use by_depth_test;
+
 pub(crate) const LESS: u8 = 0;
 pub(crate) const LESS_EQUAL: u8 = 1;
 pub(crate) const EQUAL: u8 = 2;

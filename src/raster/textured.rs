@@ -18,9 +18,8 @@ use crate::geometry::project::{
 };
 use crate::num::scalar::{mul_wide, recip_norm};
 use crate::raster::attrs::*;
-use crate::raster::by_depth_test;
 use crate::raster::fog::FogSpan;
-use crate::raster::span::passes;
+use crate::raster::span::{by_depth_test, passes};
 use crate::raster::*;
 use crate::scene::color::TargetColor;
 use crate::scene::texture::{Texture, TextureMode, Texturing};
