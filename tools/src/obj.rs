@@ -218,7 +218,7 @@ impl BigMesh {
             return Err(format!(
                 "{name}: {n} vertices, more than the 65536 that u16 indices address: simplify it, \
                  e.g. `--max-triangles {target}` (render) or \
-                 `cargo run --release -p scanline3d-tools --bin bake -- {name} --max-triangles {target} --obj-out smaller.obj`"
+                 `cargo run --release -p scanline3d-tools --features simplify --bin bake -- {name} --max-triangles {target} --obj-out smaller.obj`"
             ));
         }
         // Texture coordinates, if any, stay in `self.uvs`: an `ObjMesh` has none.

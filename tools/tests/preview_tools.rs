@@ -186,7 +186,7 @@ fn a_69k_triangle_scan_previews_on_the_host_in_passes() {
         "34562 vertices",
         "32768",
         "--max-triangles",
-        "example bake",
+        "--features simplify --bin bake",
     ] {
         assert!(stderr.contains(part), "{stderr:?} lacks {part:?}");
     }
@@ -225,7 +225,7 @@ fn a_model_too_large_for_one_renderer_is_drawn_in_passes_and_can_be_simplified()
         "36000 vertices",
         "32768",
         "--max-triangles",
-        "example bake",
+        "--features simplify --bin bake",
     ] {
         assert!(stderr.contains(part), "{stderr:?} lacks {part:?}");
     }

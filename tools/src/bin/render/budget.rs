@@ -37,7 +37,7 @@ pub(crate) fn capacity_message(
         "{name}: one frame needs {}{needed} {}, more than any renderer holds ({limit}, the \
          library's limit): the preview draws it in passes, a device cannot; simplify the model, \
          e.g. preview and budget it with `--max-triangles {n}`, or bake a smaller mesh with \
-         `cargo run --release -p scanline3d-tools --bin bake -- {name} --max-triangles {n} --obj-out smaller.obj`",
+         `cargo run --release -p scanline3d-tools --features simplify --bin bake -- {name} --max-triangles {n} --obj-out smaller.obj`",
         if bound { "up to " } else { "" },
         capacity_name(what),
     )
