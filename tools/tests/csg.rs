@@ -130,26 +130,12 @@ fn the_example_part_is_closed_outward_of_its_volume_and_without_slivers() {
 /// The smallest interior angle the example part may have, in degrees.
 const MIN_ANGLE: f64 = 1.0;
 
-fn example(name: &str) -> std::path::PathBuf {
-    shared::tool(name)
-}
-
 fn tmp(name: &str) -> std::path::PathBuf {
-    let d = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("csg");
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
+    shared::tmp("csg", name)
 }
 
 fn run(tool: &str, args: &[&str]) -> (i32, String, String) {
-    let out = std::process::Command::new(example(tool))
-        .args(args)
-        .output()
-        .expect("run the example (cargo test builds it; with --test csg, build it first)");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
+    shared::run(tool, args)
 }
 
 #[test]

@@ -10,7 +10,6 @@ mod baked {
 }
 
 use std::path::PathBuf;
-use std::process::Command;
 
 use common::obj::{bake, load_obj, to_obj, vertex_normals};
 use common::Frame;
@@ -22,26 +21,12 @@ use scanline3d_support::metrics::Metrics;
 
 type Q = Fx<I16F16>;
 
-fn render_bin() -> PathBuf {
-    shared::tool("render")
-}
-
 fn tmp(name: &str) -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("preview");
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
+    shared::tmp("preview", name)
 }
 
 fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(render_bin())
-        .args(args)
-        .output()
-        .expect("run the render example (built by cargo test)");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
+    shared::run("render", args)
 }
 
 #[test]

@@ -9,30 +9,15 @@ mod shared;
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use std::process::Command;
 
 use common::obj::{load_obj, parse_obj, NormalSource};
 
-fn example(name: &str) -> PathBuf {
-    shared::tool(name)
-}
-
 fn tmp(name: &str) -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("preview_tools");
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
+    shared::tmp("preview_tools", name)
 }
 
 fn run(tool: &str, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(example(tool))
-        .args(args)
-        .output()
-        .expect("run the example (built by cargo test)");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
+    shared::run(tool, args)
 }
 
 /// A closed torus of `nu × nv` vertices and twice as many triangles (no normals).

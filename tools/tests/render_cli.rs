@@ -10,28 +10,13 @@ use scanline3d_tools as common;
 mod shared;
 
 use std::path::PathBuf;
-use std::process::Command;
-
-fn render_bin() -> PathBuf {
-    shared::tool("render")
-}
 
 fn tmp(name: &str) -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("render_cli");
-    std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
+    shared::tmp("render_cli", name)
 }
 
 fn run(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(render_bin())
-        .args(args)
-        .output()
-        .expect("run the render example (built by cargo test)");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
+    shared::run("render", args)
 }
 
 /// Runs `args` writing to a fresh file `name`: exit status, stderr, and the image if written.
