@@ -4,7 +4,7 @@
 //! coverage mismatch (a textured frame: fewer than 10 % of the pixels show another texel). A
 //! regression in accuracy fails CI.
 
-mod common;
+use crate::common;
 
 use common::compare::compare;
 use scanline3d::fixed::types::I16F16;

@@ -1,7 +1,7 @@
 //! Bad input gets a defined result — a counted skip or an error naming the problem — never a
 //! panic. These run in debug (overflow checks on) and release in CI.
 
-mod common;
+use crate::common;
 
 use common::{at, screen_camera, unlit, Frame};
 use embedded_graphics::mock_display::MockDisplay;

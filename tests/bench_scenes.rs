@@ -1,7 +1,7 @@
 //! The benchmark scenes render for every number type, over a full turn, within their renderers'
 //! capacities, each exercising what it is meant to (clipping, overdraw, depth range).
 
-mod common;
+use crate::common;
 
 use common::Frame;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};

@@ -9,7 +9,7 @@
 //! `#[non_exhaustive]` structs are compile-time properties: `compile_fail` doctests on
 //! `Renderer` and `Needs` check them (`cargo test --doc`).
 
-mod common;
+use crate::common;
 
 use std::sync::Mutex;
 

@@ -4,7 +4,7 @@
 //! interpenetrating triangles (why the Z-buffer is the default); the depth lines' RAM is gone;
 //! layered effects are refused.
 
-mod common;
+use crate::common;
 
 use common::Frame;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};

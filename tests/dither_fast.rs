@@ -6,7 +6,7 @@
 //! (one closed or open object each, or random triangles at distinct depths) do not have; the
 //! comparison counts coverage mismatches too and requires none.
 
-mod common;
+use crate::common;
 
 use common::{compare565, screen_camera, Frame};
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};

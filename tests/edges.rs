@@ -2,7 +2,7 @@
 //! column or row and no gap where they join, hidden lines removed by the depth test (or shown
 //! with `see_through`), silhouettes ⊂ creases ⊂ all edges, and bad tables named.
 
-mod common;
+use crate::common;
 
 use common::Frame;
 use embedded_graphics::pixelcolor::Rgb888;

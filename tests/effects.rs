@@ -3,7 +3,7 @@
 //! fog on a floor against the view depth of each pixel's floor point, ray cast. `cargo test
 //! --test effects -- --nocapture` prints the figures.
 
-mod common;
+use crate::common;
 
 use common::textures::{floor, floor_camera, FLOOR_VIEW};
 use common::Frame;

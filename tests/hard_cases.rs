@@ -3,7 +3,7 @@
 //! concerned) and states its bound in its name or message. Worst errors are printed
 //! (`cargo test --release --test hard_cases -- --nocapture`).
 
-mod common;
+use crate::common;
 
 use common::compare::{Record, Replay};
 use common::{screen_camera, unlit, Frame};

@@ -4,7 +4,7 @@
 //! into RGB565 and Gray8 targets. Each case says what `main` did before the fix. Every render
 //! runs on a thread with a time limit, so a hang fails instead of stalling CI.
 
-mod common;
+use crate::common;
 
 use std::sync::mpsc;
 use std::time::Duration;

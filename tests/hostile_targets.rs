@@ -20,7 +20,7 @@
 //! `look_at` error texts and fixed-point conversions: `hostile_numbers.rs`; the capacities API in
 //! depth: `capacities_api.rs`); `docs/issue21-cases.md` maps every case to its test.
 
-mod common;
+use crate::common;
 
 use std::collections::HashSet;
 use std::fmt::Debug;

@@ -2,7 +2,7 @@
 //! scene, into one strip over the whole viewport, is the frame `render` draws in one pass, and
 //! its statistics add up; the preview uses it for models larger than any one renderer.
 
-mod common;
+use crate::common;
 
 use common::Frame;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};

@@ -3,7 +3,7 @@
 //! loses it), against a ray-cast sphere lit per pixel in f64 with the same light, view
 //! direction and material. `cargo test --test phong -- --nocapture` prints the figures.
 
-mod common;
+use crate::common;
 
 use common::Frame;
 use embedded_graphics::pixelcolor::Rgb565;

@@ -2,7 +2,7 @@
 //! renderer must write every pixel of the screen exactly once). Each case runs for the fixed-
 //! point type, f32 and f64.
 
-mod common;
+use crate::common;
 
 use common::{at, screen_camera, unlit};
 use embedded_graphics::mock_display::MockDisplay;

@@ -1,6 +1,6 @@
 //! Property tests (proptest) over random meshes, cameras and lights.
 
-mod common;
+use crate::common;
 
 use common::{at, screen_camera, unlit, Frame};
 use embedded_graphics::pixelcolor::Rgb565;

@@ -24,7 +24,7 @@
 //! `cargo test --test reference_raster -- --nocapture` prints the worst case
 //! per size (scene case, pixel, expected against got).
 
-mod common;
+use crate::common;
 
 use std::fmt::Write as _;
 use std::sync::OnceLock;

@@ -3,7 +3,7 @@
 //! every image before committing). Each scene runs for I16F16, f32 and f64; the fixed-point and
 //! f32 images are also compared with the f64 twin.
 
-mod common;
+use crate::common;
 
 use common::{at, check_golden, compare565, screen_camera, unlit, Frame};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};

@@ -2,7 +2,7 @@
 //! the receivers) and translucent materials (the same image in any submission order), in every
 //! number type, and the shadow benchmark scenes' golden images.
 
-mod common;
+use crate::common;
 
 use common::Frame;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};

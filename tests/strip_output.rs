@@ -3,7 +3,7 @@
 // Pixel coordinates index the frame and the lines in lockstep.
 #![allow(clippy::needless_range_loop)]
 
-mod common;
+use crate::common;
 
 use common::Frame;
 use embedded_graphics::mono_font::ascii::FONT_6X10;

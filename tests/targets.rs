@@ -4,7 +4,7 @@
 //! BinaryColor frame panicked in `pack_channels` and came out all Off in release; Gray2/Gray4
 //! without dithering panicked on a 32-bit shift of the missing green channel).
 
-mod common;
+use crate::common;
 
 use common::Frame;
 use embedded_graphics::pixelcolor::{BinaryColor, Gray2, Gray4, Gray8, GrayColor};

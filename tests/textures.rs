@@ -5,7 +5,7 @@
 //! pixel is the distance, in texels, from that coordinate to the square of the texel drawn
 //! (0 when it is inside). `cargo test --test textures -- --nocapture` prints the figures.
 
-mod common;
+use crate::common;
 
 use common::textures::{coded_texture, floor_error, floor_scene, TexError, FLOOR_VIEW};
 use embedded_graphics::pixelcolor::Rgb565;

@@ -2,7 +2,7 @@
 //! projection predicts, an object shadows itself and others, outlines are 1 px and hidden
 //! behind nearer surfaces, bad layerings are named errors, and every pixel is written once.
 
-mod common;
+use crate::common;
 
 use common::Frame;
 use embedded_graphics::pixelcolor::Rgb888;
