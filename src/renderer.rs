@@ -13,9 +13,9 @@ use heapless::Vec;
 use crate::geometry::project::{ScreenVertex, MAX_SCREEN};
 use crate::num::scalar::Scalar;
 use crate::raster::attrs::{ActiveExtra, FREE, TRI};
-use crate::raster::depth_mode::{painter_insert, painter_key, DrawOrder};
-use crate::raster::textured::{attach_pushed, is_textured, VertexExtra};
-use crate::raster::{first_pixel, ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
+use crate::raster::depth_mode::DrawOrder;
+use crate::raster::textured::VertexExtra;
+use crate::raster::{ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scene::color::TargetColor;
 use crate::scene::Scene;
 
@@ -632,16 +632,16 @@ impl<
     }
 
     /// Moves the strip pass of the prepared frame to `row` (clamped to the viewport's height):
-    /// the next strip starts there; rows above it are not drawn. The triangles that cross
-    /// `row` are set up at that row, so the strips from it on are those a whole frame has,
-    /// within one step of a channel on a few pixels: a setup computes a triangle's colours at
-    /// the seek row exactly, while the whole frame's row pass steps them down from the
-    /// triangle's first row with a rounding drift. For splitting a frame's rows between
-    /// renderers or cores that share its geometry (the Pico benchmark measures that split), or
-    /// for redrawing part of the screen from the same geometry, also after the frame was drawn.
+    /// the next strip starts there; rows above it are not drawn. The strips from `row` on are
+    /// bit for bit those of the whole frame: each triangle that crosses `row` is set up at its
+    /// first row and stepped down to `row` as the whole frame's pass steps it, and the active
+    /// list's order (which decides depth ties) is replayed. For splitting a frame's rows
+    /// between renderers or cores that share its geometry, or for redrawing part of the
+    /// screen from the same geometry, also after the frame was drawn.
     ///
-    /// Costs a look at the lowest vertex of each stored triangle that starts above `row`, and
-    /// one triangle setup for each of those that cross it.
+    /// Costs one triangle setup for each triangle that crosses `row` (and each textured one
+    /// above it), its row steps down to `row`, and a look at the vertices of every triangle
+    /// that starts above `row`.
     pub fn seek_row(&mut self, row: usize) {
         let vh = self.vh;
         let row = row.min(vh);
@@ -651,41 +651,25 @@ impl<
             return;
         }
         let (mode, painter) = self.setup_mode();
-        let verts = &self.verts;
-        for rec in &self.tris[..self.heads[row] as usize] {
-            // A triangle that ends above the row needs no setup to be skipped: its lowest
-            // vertex's first row (what setup would find) is at most `row`.
-            let [i, j, k] = rec.indices();
-            let y_max = verts[i].y.max(verts[j].y).max(verts[k].y);
-            if first_pixel(y_max as i32) <= row as i32 {
-                continue;
-            }
-            // A textured triangle as in the strip pass (constant tests without the stores).
-            let textured = XV > 0 && XA > 0 && is_textured(rec, &self.xverts);
-            let m = if textured { SpanMode::default() } else { mode };
-            let before = self.active.len();
-            // Full only under `OverflowPolicy::DrawWhatFits` (the largest number of triangles
-            // crossing one row was checked when the frame was prepared): the triangle is left
-            // out and counted.
-            if !self
-                .active
-                .push_with(|a| a.setup::<C>(rec, verts, row as i32, vh as i32, m))
-                || (textured
-                    && !attach_pushed::<C, ACTIVE>(
-                        &mut self.active,
-                        before,
-                        &mut self.xactive,
-                        rec,
-                        verts,
-                        &self.xverts,
-                    ))
-            {
-                self.active_skipped = self.active_skipped.saturating_add(1);
-            } else if painter && self.active.len() > before {
-                let ord = (ACTIVE <= H).then_some(&mut self.starts[..]);
-                painter_insert(&mut self.active, ord, painter_key(rec, verts));
-            }
-        }
+        let rows = crate::raster::seek::Rows {
+            verts: &self.verts,
+            xverts: &self.xverts,
+            tris: &self.tris,
+            heads: &self.heads,
+            vh,
+        };
+        let ord = (ACTIVE <= H).then_some(&mut self.starts[..]);
+        let skipped = crate::raster::seek::seek::<C, ACTIVE>(
+            &mut self.active,
+            &mut self.xactive,
+            ord,
+            rows,
+            row,
+            mode,
+            painter,
+            self.dither,
+        );
+        self.active_skipped = self.active_skipped.saturating_add(skipped);
     }
 
     /// How the strip pass (and [`Renderer::seek_row`]) sets up a triangle, and whether it keeps

@@ -26,6 +26,7 @@ mod pixels;
 mod properties;
 mod reference_raster;
 mod scenes;
+mod seek;
 mod shadows;
 mod strip_output;
 mod targets;

@@ -507,7 +507,7 @@ fn bench_error<E>(e: &scanline3d_support::demo::BenchError<E>) -> &'static str {
 /// between two cores at every strip boundary: the instructions of the shared geometry, of the
 /// rows above the split (the first core) and of the seek and the rows below (the second core),
 /// run one after the other here (`demo::board::split_frame`; the host tests check that the
-/// split frame is the whole frame, within what `seek_row` allows).
+/// split frame is the whole frame bit for bit: `seek_row` replays the whole frame's row steps).
 #[cfg(not(any(small_part, feature = "profile-torus")))]
 fn split_bench(frame: u32) {
     use embedded_graphics_core::pixelcolor::RgbColor;

@@ -413,6 +413,12 @@ impl<const N: usize> ActiveList<N> {
         true
     }
 
+    /// Sets the length to `n`, at most the slots set up so far (for re-inserting the
+    /// entries one at a time in another order).
+    pub(crate) fn set_len(&mut self, n: usize) {
+        self.len = n.min(self.slots.len());
+    }
+
     /// Removes entry `i` (`i < len`); the last entry takes its place.
     #[inline(always)]
     pub(crate) fn swap_remove(&mut self, i: usize) {

@@ -28,6 +28,7 @@ pub(crate) mod layer_rows;
 pub(crate) mod layers;
 pub(crate) mod no_depth;
 pub(crate) mod phong;
+pub(crate) mod seek;
 pub(crate) mod setup;
 pub(crate) mod shadow;
 pub(crate) mod span;

@@ -12,8 +12,9 @@ use embedded_graphics_core::Pixel;
 
 use crate::num::scalar::Scalar;
 use crate::raster::depth_mode::{draw_row_no_depth, painter_insert, painter_key};
+use crate::raster::seek::Rows;
 use crate::raster::textured::{attach_pushed, draw_row_textured, is_textured, TEXTURED};
-use crate::raster::SpanMode;
+use crate::raster::{ActiveList, SpanMode};
 use crate::scene::color::{rgb565_word, rgb565_words_mut, TargetColor};
 
 use crate::error::*;
@@ -283,9 +284,7 @@ impl<
         limit: usize,
         probe: &mut P,
     ) -> Option<(usize, usize)> {
-        let y0 = self.next_row;
-        let (vw, vh) = (self.vw, self.vh);
-        if y0 >= vh {
+        if self.next_row >= self.vh {
             return None;
         }
         let (mode, painter) = self.setup_mode();
@@ -297,126 +296,261 @@ impl<
             active,
             heads,
             starts,
-            color: own,
+            color,
             depth,
             depth_test,
             dither,
             background,
             stats,
-            active_skipped: skipped,
+            active_skipped,
+            next_row,
+            vw,
+            vh,
             ..
         } = self;
-        let color: &mut [[C; W]] = match ext {
-            Some(lines) => lines,
-            None => own.as_mut_slice(),
+        let frame = FrameView {
+            rows: Rows {
+                verts,
+                xverts,
+                tris,
+                heads,
+                vh: *vh,
+            },
+            vw: *vw,
+            background: *background,
+            depth_test: *depth_test,
+            dither: *dither,
+            mode,
+            painter,
         };
-        let lines = LINES.min(limit).min(color.len()).min(vh - y0);
-        for l in 0..lines {
-            if CLEAR && ZL == 0 {
-                color[l][..vw].fill(*background);
-            } else if CLEAR {
-                match (
-                    rgb565_words_mut(&mut color[l][..vw]),
-                    rgb565_word(*background),
-                ) {
-                    (Some(words), Some(bg)) => {
-                        kernel::clear_line565(words, &mut depth[l][..vw], bg)
-                    }
-                    _ => {
-                        color[l][..vw].fill(*background);
-                        depth[l][..vw].fill(u16::MAX);
-                    }
-                }
-            }
-            let row = y0 + l;
-            let end = if row + 1 < vh {
-                heads[row + 1] as usize
-            } else {
-                tris.len()
-            };
-            let bucket = heads[row] as usize..end;
-            if !bucket.is_empty() {
-                probe.enter(Stage::Setup);
-            }
-            for t in bucket {
-                let rec = tris[t];
-                let (verts, h) = (&*verts, vh as i32);
-                // A textured triangle is set up as an ordinary one (no fast path) and gets its
-                // planes after. (Constant tests: without attribute stores this is the loop it
-                // was.)
-                let textured = XV > 0 && XA > 0 && is_textured(&rec, xverts);
-                let m = if textured { SpanMode::default() } else { mode };
-                let before = active.len();
-                // Full only under `OverflowPolicy::DrawWhatFits` (the largest number of rows'
-                // overlaps was checked): the triangle is left out and counted.
-                if !active.push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, m))
-                    || (textured
-                        && !attach_pushed::<C, ACTIVE>(
-                            active, before, xactive, &rec, verts, xverts,
-                        ))
-                {
-                    *skipped = skipped.saturating_add(1);
-                } else if painter && active.len() > before {
-                    let ord = (ACTIVE <= H).then_some(&mut starts[..]);
-                    painter_insert(active, ord, painter_key(&rec, verts));
-                }
-            }
-            probe.enter(Stage::Raster);
-            if ZL == 0 {
-                // No depth lines: every fragment written, in the painter's or the list's order.
-                let ord = (ACTIVE <= H).then_some(&mut starts[..]);
-                let (frag, written) =
-                    draw_row_no_depth(active, ord, painter, row, &mut color[l][..vw], *dither);
-                stats.add_row(frag, written);
-                continue;
-            }
-            if XA > 0 {
-                draw_row_with_textures(
-                    active,
-                    xactive,
-                    row,
-                    &mut color[l][..vw],
-                    &mut depth[l][..vw],
-                    *depth_test,
-                    *dither,
-                    stats,
-                );
-                continue;
-            }
-            // (`row_loop` written out: the Pico's frame rate measured 0.06 % lower through the
-            // function when the layered frames came, and 0.025 % lower (900 cycles a frame)
-            // through the inlined `row_loop` when the loops became one.)
-            let mut i = 0;
-            loop {
-                if let Some(words) = rgb565_words_mut(&mut color[l][..vw]) {
-                    if let Some((next, frag, written)) =
-                        kernel::rows565(active, i, words, &mut depth[l][..vw], row, *dither)
-                    {
-                        stats.add_row(frag, written);
-                        i = next;
-                    }
-                }
-                if i >= active.len() {
-                    break;
-                }
-                let (frag, written, done) = active.get_mut(i).draw_row(
-                    row as i32,
-                    &mut color[l][..vw],
-                    &mut depth[l][..vw],
-                    *depth_test,
-                    *dither,
-                );
-                stats.add_row(frag, written);
-                if done {
-                    active.swap_remove(i);
-                } else {
-                    i += 1;
+        let pass = PassMut {
+            active,
+            pool: xactive,
+            ord: (ACTIVE <= H).then_some(&mut starts[..]),
+            depth,
+            next_row,
+            end_row: usize::MAX,
+            stats,
+            skipped: active_skipped,
+        };
+        let lines = match ext {
+            Some(lines) => lines,
+            None => color.as_mut_slice(),
+        };
+        strip_rows::<C, P, W, ACTIVE, LINES, XV, XA, ZL, CLEAR>(frame, pass, lines, limit, probe)
+    }
+
+    /// What a strip pass reads of the prepared frame.
+    pub(crate) fn view(&self) -> FrameView<'_, C> {
+        let (mode, painter) = self.setup_mode();
+        FrameView {
+            rows: Rows {
+                verts: &self.verts,
+                xverts: &self.xverts,
+                tris: &self.tris,
+                heads: &self.heads,
+                vh: self.vh,
+            },
+            vw: self.vw,
+            background: self.background,
+            depth_test: self.depth_test,
+            dither: self.dither,
+            mode,
+            painter,
+        }
+    }
+}
+
+/// What a strip pass reads of a prepared frame (shared by every pass of it): its rows (the
+/// vertex and attribute stores, triangles and buckets), the viewport's width, the background,
+/// and how triangles are set up and drawn.
+#[derive(Clone, Copy)]
+pub(crate) struct FrameView<'a, C> {
+    pub(crate) rows: Rows<'a>,
+    pub(crate) vw: usize,
+    pub(crate) background: C,
+    pub(crate) depth_test: crate::raster::DepthTest,
+    pub(crate) dither: bool,
+    pub(crate) mode: SpanMode,
+    pub(crate) painter: bool,
+}
+
+/// A strip pass's own state, borrowed from a renderer or a [`crate::StripPass`]: the active
+/// list, the attribute pool (the frame's lights and materials and the triangles' entries),
+/// the painter's slot order where it is kept (`ord`), the depth lines, the next row and the
+/// row it stops before, and its counts.
+pub(crate) struct PassMut<'a, const W: usize, const ACTIVE: usize> {
+    pub(crate) active: &'a mut ActiveList<ACTIVE>,
+    pub(crate) pool: &'a mut [crate::raster::attrs::ActiveExtra],
+    pub(crate) ord: Option<&'a mut [i16]>,
+    pub(crate) depth: &'a mut [[u16; W]],
+    pub(crate) next_row: &'a mut usize,
+    pub(crate) end_row: usize,
+    pub(crate) stats: &'a mut Stats,
+    pub(crate) skipped: &'a mut u32,
+}
+
+/// The strip pass: rasterizes the next strip of `frame` for `pass`, at most `limit` rows and
+/// as many as `color` has lines (at most `LINES`), stopping before `pass.end_row`. Returns its
+/// first row and height, or `None` when no row is left. `CLEAR`: see
+/// [`Renderer::draw_strip`]. (`XV`, `XA`, `ZL`: the renderer's stores and depth lines, as
+/// constants, so that a renderer without them compiles the pass without their tests.)
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn strip_rows<
+    C: TargetColor,
+    P: Probe,
+    const W: usize,
+    const ACTIVE: usize,
+    const LINES: usize,
+    const XV: usize,
+    const XA: usize,
+    const ZL: usize,
+    const CLEAR: bool,
+>(
+    frame: FrameView<'_, C>,
+    pass: PassMut<'_, W, ACTIVE>,
+    color: &mut [[C; W]],
+    limit: usize,
+    probe: &mut P,
+) -> Option<(usize, usize)> {
+    let PassMut {
+        active,
+        pool: xactive,
+        mut ord,
+        depth,
+        next_row,
+        end_row,
+        stats,
+        skipped,
+    } = pass;
+    let FrameView {
+        rows:
+            Rows {
+                verts,
+                xverts,
+                tris,
+                heads,
+                vh,
+            },
+        vw,
+        background,
+        depth_test,
+        dither,
+        mode,
+        painter,
+    } = frame;
+    let y0 = *next_row;
+    let stop = vh.min(end_row);
+    if y0 >= stop {
+        return None;
+    }
+    let lines = LINES.min(limit).min(color.len()).min(stop - y0);
+    for l in 0..lines {
+        if CLEAR && ZL == 0 {
+            color[l][..vw].fill(background);
+        } else if CLEAR {
+            match (
+                rgb565_words_mut(&mut color[l][..vw]),
+                rgb565_word(background),
+            ) {
+                (Some(words), Some(bg)) => kernel::clear_line565(words, &mut depth[l][..vw], bg),
+                _ => {
+                    color[l][..vw].fill(background);
+                    depth[l][..vw].fill(u16::MAX);
                 }
             }
         }
-        self.next_row = y0 + lines;
-        Some((y0, lines))
+        let row = y0 + l;
+        let end = if row + 1 < vh {
+            heads[row + 1] as usize
+        } else {
+            tris.len()
+        };
+        let bucket = heads[row] as usize..end;
+        if !bucket.is_empty() {
+            probe.enter(Stage::Setup);
+        }
+        for t in bucket {
+            let rec = tris[t];
+            let h = vh as i32;
+            // A textured triangle is set up as an ordinary one (no fast path) and gets its
+            // planes after. (Constant tests: without attribute stores this is the loop it
+            // was.)
+            let textured = XV > 0 && XA > 0 && is_textured(&rec, xverts);
+            let m = if textured { SpanMode::default() } else { mode };
+            let before = active.len();
+            // Full only under `OverflowPolicy::DrawWhatFits` (the largest number of rows'
+            // overlaps was checked): the triangle is left out and counted.
+            if !active.push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, m))
+                || (textured
+                    && !attach_pushed::<C, ACTIVE>(active, before, xactive, &rec, verts, xverts))
+            {
+                *skipped = skipped.saturating_add(1);
+            } else if painter && active.len() > before {
+                painter_insert(active, ord.as_deref_mut(), painter_key(&rec, verts));
+            }
+        }
+        probe.enter(Stage::Raster);
+        if ZL == 0 {
+            // No depth lines: every fragment written, in the painter's or the list's order.
+            let (frag, written) = draw_row_no_depth(
+                active,
+                ord.as_deref_mut(),
+                painter,
+                row,
+                &mut color[l][..vw],
+                dither,
+            );
+            stats.add_row(frag, written);
+            continue;
+        }
+        if XA > 0 {
+            draw_row_with_textures(
+                active,
+                xactive,
+                row,
+                &mut color[l][..vw],
+                &mut depth[l][..vw],
+                depth_test,
+                dither,
+                stats,
+            );
+            continue;
+        }
+        // (`row_loop` written out: the Pico's frame rate measured 0.06 % lower through the
+        // function when the layered frames came, and 0.025 % lower (900 cycles a frame)
+        // through the inlined `row_loop` when the loops became one.)
+        let mut i = 0;
+        loop {
+            if let Some(words) = rgb565_words_mut(&mut color[l][..vw]) {
+                if let Some((next, frag, written)) =
+                    kernel::rows565(active, i, words, &mut depth[l][..vw], row, dither)
+                {
+                    stats.add_row(frag, written);
+                    i = next;
+                }
+            }
+            if i >= active.len() {
+                break;
+            }
+            let (frag, written, done) = active.get_mut(i).draw_row(
+                row as i32,
+                &mut color[l][..vw],
+                &mut depth[l][..vw],
+                depth_test,
+                dither,
+            );
+            stats.add_row(frag, written);
+            if done {
+                active.swap_remove(i);
+            } else {
+                i += 1;
+            }
+        }
     }
+    *next_row = y0 + lines;
+    Some((y0, lines))
 }
 
 /// Draws one row of every triangle of `active` into a strip line: the RGB565 row kernel where
