@@ -162,6 +162,15 @@ pub enum Error<E> {
         /// The viewport's height.
         height: usize,
     },
+    /// A [`StripPass`](crate::StripPass) was begun on a renderer that holds no frame a strip
+    /// pass can draw: none was prepared, the last geometry stage failed, or the frame is
+    /// layered (a layered frame is drawn only by
+    /// [`Renderer::render_layered`](crate::Renderer::render_layered)). Nothing was drawn.
+    NoFrame,
+    /// The renderer began another frame after the [`StripPass`](crate::StripPass) began
+    /// (or the pass never began one): begin the pass again on the renderer's frame. Nothing
+    /// was drawn.
+    FrameChanged,
 }
 
 impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
@@ -255,6 +264,16 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
                 "drawing in passes needs one strip over the whole viewport, but the renderer's \
                  strip has {lines} lines for a viewport {height} rows high (LINES must be at \
                  least the viewport's height); nothing was drawn"
+            ),
+            Error::NoFrame => write!(
+                f,
+                "the renderer holds no frame a strip pass can draw (none prepared, the last one \
+                 failed, or it is layered); nothing was drawn"
+            ),
+            Error::FrameChanged => write!(
+                f,
+                "the renderer began another frame since the strip pass began; begin the pass \
+                 again; nothing was drawn"
             ),
         }
     }

@@ -211,6 +211,7 @@ pub use num::scalar::{Fx, FxRecip, Scalar, NDC_FRAC_BITS};
 pub use raster::depth_mode::DrawOrder;
 pub use raster::layers::Layers;
 pub use raster::no_depth::NoDepthRenderer;
+pub use raster::pass::StripPass;
 pub use raster::phong::MAX_PHONG_LIGHTS;
 pub use raster::shadow::{
     Edges, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow, BLOB_RINGS,

@@ -169,6 +169,11 @@ pub struct Renderer<
     /// are in `stats`), and those dropped from a full active list so far.
     pub(crate) store_skipped: u32,
     pub(crate) active_skipped: u32,
+    /// Which frame the renderer holds, for the [`crate::StripPass`]es drawing it: advanced by
+    /// every geometry stage; odd once a frame a strip pass can draw is prepared (by
+    /// [`Renderer::prepare`] or a render), even while none is (before the first, during a
+    /// geometry stage, after one that failed, and for a layered frame).
+    pub(crate) frame_id: u32,
     pub(crate) _s: PhantomData<S>,
 }
 
@@ -254,28 +259,11 @@ impl<
             vh: H,
             want_viewport: (W as u16, H as u16),
             background: fill,
-            stats: Stats {
-                triangles_in: 0,
-                invalid: 0,
-                outside: 0,
-                culled: 0,
-                degenerate: 0,
-                clipped: 0,
-                empty: 0,
-                drawn: 0,
-                vertices: 0,
-                color_vertices: 0,
-                fragments: 0,
-                pixels_written: 0,
-                max_active: 0,
-                attr_vertices: 0,
-                attr_active: 0,
-                max_receivers: 0,
-                max_overlays: 0,
-            },
+            stats: Stats::ZERO,
             overflow: OverflowPolicy::Error,
             store_skipped: 0,
             active_skipped: 0,
+            frame_id: 0,
             _s: PhantomData,
         }
     }

@@ -119,6 +119,27 @@ pub struct Stats {
 }
 
 impl Stats {
+    /// Every count zero (a frame not yet prepared).
+    pub(crate) const ZERO: Stats = Stats {
+        triangles_in: 0,
+        invalid: 0,
+        outside: 0,
+        culled: 0,
+        degenerate: 0,
+        clipped: 0,
+        empty: 0,
+        drawn: 0,
+        vertices: 0,
+        color_vertices: 0,
+        fragments: 0,
+        pixels_written: 0,
+        max_active: 0,
+        attr_vertices: 0,
+        attr_active: 0,
+        max_receivers: 0,
+        max_overlays: 0,
+    };
+
     /// Adds the cull loop's counts (the kernels count into their own record).
     #[inline(always)]
     pub(crate) fn add_culling(&mut self, c: &CullCounts) {

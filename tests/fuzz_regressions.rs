@@ -3,9 +3,7 @@
 //! `fuzz/regressions/layered`) — through the fuzz targets' own decoding, so that `cargo test`
 //! (debug, overflow checks on) guards them.
 
-#[path = "../fuzz/fuzz_targets/render_input.rs"]
-#[allow(dead_code)]
-mod render_input;
+use crate::render_input;
 
 #[path = "../fuzz/fuzz_targets/layered_input.rs"]
 #[allow(dead_code)]

@@ -4,6 +4,11 @@
 
 mod common;
 
+/// The fuzz target's input decoding, which `fuzz_regressions` and `properties` both use.
+#[path = "../fuzz/fuzz_targets/render_input.rs"]
+#[allow(dead_code)]
+mod render_input;
+
 mod accuracy;
 mod bad_input;
 mod bench_scenes;

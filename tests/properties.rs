@@ -235,9 +235,7 @@ proptest! {
     }
 }
 
-#[path = "../fuzz/fuzz_targets/render_input.rs"]
-#[allow(dead_code)]
-mod render_input;
+use crate::render_input;
 
 /// Random meshes with slivers (a vertex near the line through two others) and strongly
 /// different vertex colours, seen by a perspective camera; `(positions, indices, colours)`.

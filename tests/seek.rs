@@ -9,7 +9,7 @@ use crate::common::Frame;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use scanline3d::prelude::*;
-use scanline3d::{DrawOrder, NoDepthRenderer, OverflowPolicy, Shape, TexturedShape};
+use scanline3d::{DrawOrder, NoDepthRenderer, OverflowPolicy, Shape, StripPass, TexturedShape};
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;
 
@@ -220,4 +220,154 @@ fn no_depth_lines_in_every_order() {
         let g = check_every_split!(*records, &scene, format!("{order:?}, records"));
         assert_eq!(f.px, g.px);
     }
+}
+
+/// Two [`StripPass`]es over one prepared frame, split at every row, their strips drawn in
+/// turn as two cores would: the whole frame, bit for bit, with the passes' own lines
+/// (`render_strip`) and with the caller's (`render_strip_into`).
+macro_rules! check_passes {
+    ($r:expr, $scene:expr, $pass:ty, $what:expr) => {{
+        let r = &mut $r;
+        r.prepare($scene).unwrap();
+        let (w, h) = r.viewport();
+        let mut whole = Frame::new(w as u32, h as u32, SENTINEL);
+        while r.render_strip(&mut whole).unwrap().is_some() {}
+        let shared = &*r;
+        let mut top: Box<$pass> = Box::default();
+        let mut bottom: Box<$pass> = Box::default();
+        for split in 0..=h {
+            top.begin(shared, 0..split).unwrap();
+            bottom.begin(shared, split..h + 3).unwrap();
+            let mut got = Frame::new(w as u32, h as u32, SENTINEL);
+            let mut lines = [[SENTINEL; 96]; 3];
+            loop {
+                let a = top.render_strip(shared, &mut got).unwrap();
+                let b = bottom.render_strip_into(shared, &mut lines).unwrap();
+                if let Some(rows) = &b {
+                    assert!(rows.start >= split && rows.end <= h && rows.len() <= 3);
+                    for (i, y) in rows.clone().enumerate() {
+                        for x in 0..w {
+                            got.px[y * w + x] = lines[i][x];
+                        }
+                    }
+                }
+                if let Some(rows) = &a {
+                    assert!(rows.end <= split);
+                }
+                if a.is_none() && b.is_none() {
+                    break;
+                }
+            }
+            assert!(top.rows_left().is_empty() && bottom.rows_left().is_empty());
+            assert_eq!(got.px, whole.px, "{}: split {split}", $what);
+        }
+        whole
+    }};
+}
+
+#[test]
+fn two_strip_passes_draw_the_whole_frame_at_every_split() {
+    let sphere = Shape::<Q, 642, 1280>::icosphere(1.0, 3).unwrap();
+    let objects = [Object {
+        mesh: sphere.mesh(),
+        transform: Mat4::rotate_y(Q::from_f64(0.4)),
+        material: Material::matte([200, 60, 60], Q::from_f64(0.1), Q::from_f64(0.8)),
+    }];
+    let scene = Scene::new(&objects, camera([0.0, 0.5, 3.0]), light());
+    for dither in [false, true] {
+        let mut r: Box<Renderer<Q, Rgb565, 96, 96, 1300, 1300, 96>> = Box::default();
+        r.set_dither(dither);
+        let f = check_passes!(*r, &scene, StripPass<Rgb565, 96, 96, 4>, "sphere");
+        assert!(drawn(&f) > 3000);
+    }
+    // Textured and Phong triangles: each pass copies the frame's lights and materials.
+    let shape = TexturedShape::<Q, 24, 12>::cube(1.0).unwrap();
+    for shading in [Shading::Gouraud, Shading::Phong] {
+        let objects = textured_cube_scene(&shape, shading);
+        let scene = Scene::new(&objects, camera([0.0, 1.5, 3.0]), light());
+        let mut r: Box<Renderer<Q, Rgb565, 96, 96, 64, 64, 16, 1, 64, 16>> = Box::default();
+        let f = check_passes!(*r, &scene, StripPass<Rgb565, 96, 16, 2, 16>, "textured");
+        assert!(drawn(&f) > 1500);
+    }
+    // No depth lines, the painter's order (the renderer keeps slots; a pass, records).
+    let cube = Shape::<Q, 24, 12>::cube(1.0).unwrap();
+    let m = Material::matte([220, 60, 60], Q::from_f64(0.2), Q::from_f64(0.8));
+    let objects = [
+        Object {
+            mesh: cube.mesh(),
+            transform: Mat4::translate([0.3, 0.0, 1.0].map(Q::from_f64)),
+            material: m,
+        },
+        Object {
+            mesh: cube.mesh(),
+            transform: Mat4::rotate_y(Q::from_f64(0.9))
+                .then(&Mat4::translate([-0.4, 0.2, -1.5].map(Q::from_f64))),
+            material: m,
+        },
+    ];
+    let scene = Scene::new(&objects, camera([0.3, 0.8, 4.0]), light());
+    let mut r: Box<NoDepthRenderer<Q, Rgb565, 96, 96, 64, 64, 32>> = Box::default();
+    let f = check_passes!(*r, &scene, StripPass<Rgb565, 96, 32, 2, 0, 0>, "no depth");
+    assert!(drawn(&f) > 1500);
+}
+
+/// A pass refuses a renderer without a frame, a frame prepared after it began, and a target
+/// smaller than the viewport; a dithering change between strips is followed.
+#[test]
+fn a_strip_pass_refuses_a_stale_frame() {
+    let sphere = Shape::<Q, 642, 1280>::icosphere(1.0, 2).unwrap();
+    let objects = [Object {
+        mesh: sphere.mesh(),
+        transform: Mat4::identity(),
+        material: Material::matte([60, 200, 90], Q::from_f64(0.2), Q::from_f64(0.8)),
+    }];
+    let scene = Scene::new(&objects, camera([0.0, 0.5, 3.0]), light());
+    let mut r: Box<Renderer<Q, Rgb565, 96, 96, 700, 700, 64>> = Box::default();
+    let mut pass: Box<StripPass<Rgb565, 96, 64, 4>> = Box::default();
+    assert_eq!(pass.begin(&*r, 0..96), Err(scanline3d::Error::NoFrame));
+    let mut lines = [[SENTINEL; 96]; 4];
+    assert_eq!(
+        pass.render_strip_into(&*r, &mut lines),
+        Err(scanline3d::Error::FrameChanged)
+    );
+    r.prepare(&scene).unwrap();
+    pass.begin(&*r, 10..50).unwrap();
+    assert_eq!(pass.rows_left(), 10..50);
+    let mut small = Frame::new(50, 50, SENTINEL);
+    assert!(matches!(
+        pass.render_strip(&*r, &mut small),
+        Err(scanline3d::Error::TargetTooSmall { .. })
+    ));
+    assert_eq!(
+        pass.render_strip_into(&*r, &mut lines).unwrap(),
+        Some(10..14)
+    );
+    // A frame prepared after the pass began is refused.
+    r.prepare(&scene).unwrap();
+    assert_eq!(
+        pass.render_strip_into(&*r, &mut lines),
+        Err(scanline3d::Error::FrameChanged)
+    );
+    // Dithering switched on between strips: the pass follows as the renderer does.
+    let mut want = Frame::new(96, 96, SENTINEL);
+    r.seek_row(30);
+    for _ in 0..4 {
+        // The renderer's strips are one line (its `LINES`).
+        assert!(r.render_strip_into(&mut lines).is_some());
+    }
+    assert_eq!(r.next_row(), 34);
+    r.set_dither(true);
+    while r.render_strip(&mut want).unwrap().is_some() {}
+    r.set_dither(false);
+    pass.begin(&*r, 30..96).unwrap();
+    assert_eq!(
+        pass.render_strip_into(&*r, &mut lines).unwrap(),
+        Some(30..34)
+    );
+    r.set_dither(true);
+    let mut got = Frame::new(96, 96, SENTINEL);
+    while pass.render_strip(&*r, &mut got).unwrap().is_some() {}
+    assert_eq!(got.px[34 * 96..], want.px[34 * 96..]);
+    assert!(got.px[34 * 96..].iter().all(|&c| c != SENTINEL) || drawn(&got) > 1000);
+    assert!(pass.stats().fragments > 0);
 }

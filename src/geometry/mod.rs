@@ -83,7 +83,10 @@ impl<
         for (index, obj) in scene.objects.iter().enumerate() {
             self.frame_object(&c, &mut f, scene, obj, index, probe)?;
         }
-        self.frame_end(scene, &c, &mut f, ACTIVE)
+        let stats = self.frame_end(scene, &c, &mut f, ACTIVE)?;
+        // A frame for strip passes too (odd).
+        self.frame_id |= 1;
+        Ok(stats)
     }
 
     /// The geometry stage's start: the stores emptied, every object checked for what its
@@ -96,6 +99,8 @@ impl<
         scene: &Scene<'_, S, L>,
         layered: bool,
     ) -> Result<FrameConst<S>, Error<E>> {
+        // A new frame, none a strip pass can draw yet (even).
+        self.frame_id = (self.frame_id | 1).wrapping_add(1);
         self.verts.clear();
         self.tris.clear();
         self.clear_active();

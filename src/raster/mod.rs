@@ -27,6 +27,7 @@ pub(crate) mod fog;
 pub(crate) mod layer_rows;
 pub(crate) mod layers;
 pub(crate) mod no_depth;
+pub(crate) mod pass;
 pub(crate) mod phong;
 pub(crate) mod seek;
 pub(crate) mod setup;
