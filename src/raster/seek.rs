@@ -77,6 +77,9 @@ pub(crate) fn seek<C: TargetColor, const N: usize>(
     let h = rows.vh as i32;
     let target = row as i32;
     let mut skipped = 0u32;
+    // The first row a listed triangle ends before (its `row_end`): rows above it remove
+    // nothing, so the list is looked through only on rows where a triangle ends.
+    let mut next_end = i32::MAX;
     for b in 0..row {
         for t in rows.bucket(b) {
             let rec = &rows.tris[t];
@@ -109,6 +112,9 @@ pub(crate) fn seek<C: TargetColor, const N: usize>(
                     true
                 })
             };
+            if active.len() > before {
+                next_end = next_end.min(end);
+            }
             if !kept {
                 skipped += u32::from(crosses);
             } else if painter && active.len() > before {
@@ -119,10 +125,15 @@ pub(crate) fn seek<C: TargetColor, const N: usize>(
         }
         // The row's end: the triangles whose last row it was leave the list as in the row
         // loop (a textured one frees its pool entry).
+        if next_end > b as i32 + 1 {
+            continue;
+        }
+        next_end = i32::MAX;
         let mut i = 0;
         while i < active.len() {
             let a = active.get_mut(i);
             if a.row_end as i32 > b as i32 + 1 {
+                next_end = next_end.min(a.row_end as i32);
                 i += 1;
                 continue;
             }

@@ -677,33 +677,37 @@ pub mod board {
         Some(rows)
     }
 
+    /// A strip pass of the board's renderer ([`scanline3d::StripPass`]), one per core: its
+    /// active list and [`STRIP_LINES`] depth lines (the strips go to the caller's buffers).
+    pub type BoardPass = scanline3d::StripPass<Rgb565, SIZE, 64, STRIP_LINES>;
+
     /// The parts of a frame split between two cores at row `split` ([`split_frame`]).
     #[derive(Copy, Clone, Debug, PartialEq, Eq)]
     pub enum SplitPart {
         /// Geometry (shared: one core prepares it for both).
         Geometry,
-        /// Rows `0..split`, the first core's strips.
+        /// Rows `0..split`, the first core's strips (its pass begun at row 0).
         Top,
-        /// [`scanline3d::Renderer::seek_row`] to `split` and rows `split..240`, the second core's.
+        /// Rows `split..240`, the second core's strips (its pass begun at `split`: the
+        /// triangles crossing it set up and stepped down to it).
         Bottom,
     }
 
-    /// Renders frame `frame` as two cores would share it: the geometry once, then rows
-    /// `0..split` (the first core) and, from a [`scanline3d::Renderer::seek_row`], rows
-    /// `split..240` (the second core). Here the parts run one after the other on one core,
-    /// and `mark` is called at the end of each, so a benchmark can time them; `split` is
-    /// rounded down to a multiple of [`STRIP_LINES`]. Returns the strips drawn.
-    ///
-    /// On a real two-core firmware each core needs its own active list, depth lines and strip
-    /// buffers over the shared vertex store and triangle list; the renderer keeps those in one
-    /// value today, so this measures the split's work, it does not run it on two cores.
+    /// Renders frame `frame` as two cores share it: the geometry once, then rows `0..split`
+    /// through the first core's pass `top` and rows `split..240` through the second core's
+    /// pass `bottom`, both reading the same prepared frame ([`scanline3d::StripPass`]). Here
+    /// the parts run one after the other on one core, and `mark` is called at the end of
+    /// each, so a benchmark can time them; `split` is rounded down to a multiple of
+    /// [`STRIP_LINES`]. Returns the strips drawn; the frame is the whole frame's, bit for bit.
     ///
     /// # Errors
     ///
     /// The renderer's error when the frame does not fit its capacities.
+    #[allow(clippy::too_many_arguments)]
     pub fn split_frame<S: Scalar>(
         scene: &BoardScene<S>,
         renderer: &mut BoardRenderer<S>,
+        passes: [&mut BoardPass; 2],
         frame: u32,
         split: usize,
         buffer: &mut StripBuffer,
@@ -712,16 +716,16 @@ pub mod board {
         let split = split.min(SIZE) / STRIP_LINES * STRIP_LINES;
         scene.prepare(renderer, frame)?;
         mark(SplitPart::Geometry);
+        let shared: &BoardRenderer<S> = renderer;
+        let [top, bottom] = passes;
         let mut strips = 0;
-        while renderer.next_row() < split {
-            if renderer.render_strip_into(buffer).is_none() {
-                break;
-            }
+        top.begin(shared, 0..split)?;
+        while top.render_strip_into(shared, buffer)?.is_some() {
             strips += 1;
         }
         mark(SplitPart::Top);
-        renderer.seek_row(split);
-        while renderer.render_strip_into(buffer).is_some() {
+        bottom.begin(shared, split..SIZE)?;
+        while bottom.render_strip_into(shared, buffer)?.is_some() {
             strips += 1;
         }
         mark(SplitPart::Bottom);
@@ -760,11 +764,18 @@ pub mod board {
             let scene = BoardScene::<Q>::new().unwrap();
             let mut r = renderer::<Q>();
             let mut buffer = [[Rgb565::BLACK; SIZE]; STRIP_LINES];
+            let (mut top, mut bottom) = (BoardPass::new(), BoardPass::new());
             for split in [0, 8, 100, 120, 240, 999] {
                 let mut parts = heapless::Vec::<SplitPart, 3>::new();
-                let strips = split_frame(&scene, &mut r, 5, split, &mut buffer, |p| {
-                    parts.push(p).unwrap()
-                })
+                let strips = split_frame(
+                    &scene,
+                    &mut r,
+                    [&mut top, &mut bottom],
+                    5,
+                    split,
+                    &mut buffer,
+                    |p| parts.push(p).unwrap(),
+                )
                 .unwrap();
                 assert_eq!(strips, SIZE / STRIP_LINES, "split {split}");
                 assert_eq!(

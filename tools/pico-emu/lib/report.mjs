@@ -105,11 +105,11 @@ export function benchmarksBlock(r, profile = null) {
       `The panel's own limit, the SPI time of one frame (${240 * 240 * 2} bytes): ${tc.panel_cycles_per_frame} cycles, ` +
         `${tc.panel_fps.toFixed(1)} fps; the one-core firmware above reaches ${((100 * tc.panel_cycles_per_frame) / r.cycles_per_frame).toFixed(0)} % of that frame rate.`,
       '',
-      '**Two cores (estimate, not measured: the emulator runs one core).** The QEMU benchmark',
+      '**Two cores (estimate, not measured: the firmware runs on one core; the emulator models both).** The QEMU benchmark',
       `measures the board frame split at each strip boundary (\`demo::board::split_frame\`). For the`,
       `least favourable measured frame (frame ${tc.frame}), the best split is at row ${tc.split}: the first core prepares the`,
       `geometry (${tc.geometry_instructions} instructions) and draws the rows above (${tc.core0_instructions - tc.geometry_instructions}), the second`,
-      `core draws the rows below after a seek (${tc.core1_instructions - tc.geometry_instructions}); a frame takes ${tc.frame_instructions} Cortex-M0 instructions`,
+      `core draws the rows below with its own strip pass begun at the split (${tc.core1_instructions - tc.geometry_instructions}); a frame takes ${tc.frame_instructions} Cortex-M0 instructions`,
       `instead of ${tc.one_core_instructions}. Scaled to the measured cycles: **${tc.cycles_per_frame} cycles per frame, ${tc.fps.toFixed(1)} fps**`,
       '(the larger of that and the panel\'s limit). Overlapping the next frame\'s geometry with the',
       'second core\'s rows (a second vertex store and triangle list) would shorten it further.',
