@@ -87,7 +87,9 @@ fn render(kind: Kind) -> Result<Vec<u8>, String> {
             f.0
         }
         Kind::Board(frame, us) => {
-            let scene = board::BoardScene::<Q>::new()?;
+            let shape =
+                scanline3d_support::demo::torus::<Q>().map_err(|e| format!("torus: {e}"))?;
+            let scene = board::BoardScene::new(&shape)?;
             let glyphs = board::glyphs().map_err(|e| format!("glyphs: {e:?}"))?;
             let mut renderer = Box::new(board::renderer::<Q>());
             scene

@@ -39,7 +39,8 @@ fn torus_scene_render(frame: u32, dither: bool) -> Frame<Rgb565> {
 fn strips_into_caller_lines_equal_render() {
     for (frame, dither) in [(0, false), (7, true), (50, true)] {
         let want = torus_scene_render(frame, dither);
-        let scene = board::BoardScene::<Q>::new().unwrap();
+        let shape = scanline3d_support::demo::torus::<Q>().unwrap();
+        let scene = board::BoardScene::new(&shape).unwrap();
         let mut r = Box::new(board::renderer::<Q>());
         r.set_dither(dither);
         scene.prepare(&mut r, frame).unwrap();
@@ -78,7 +79,8 @@ fn strips_into_caller_lines_equal_render() {
 #[test]
 fn strips_as_big_endian_bytes_equal_render() {
     let want = torus_scene_render(3, true);
-    let scene = board::BoardScene::<Q>::new().unwrap();
+    let shape = scanline3d_support::demo::torus::<Q>().unwrap();
+    let scene = board::BoardScene::new(&shape).unwrap();
     let mut r = Box::new(board::renderer::<Q>());
     assert_eq!(
         r.render_strip_be(&mut [0u8; 10]),
@@ -125,7 +127,8 @@ fn board_frame_is_render_plus_label() {
     )
     .draw(&mut want)
     .unwrap();
-    let scene = board::BoardScene::<Q>::new().unwrap();
+    let shape = scanline3d_support::demo::torus::<Q>().unwrap();
+    let scene = board::BoardScene::new(&shape).unwrap();
     let glyphs = board::glyphs().unwrap();
     let mut r = Box::new(board::renderer::<Q>());
     scene.prepare(&mut r, 9).unwrap();
@@ -148,7 +151,8 @@ fn board_frame_is_render_plus_label() {
 fn seek_row_splits_a_frame_exactly_at_every_row() {
     for (frame, dither) in [(0, false), (11, true), (40, false), (77, true)] {
         let want = torus_scene_render(frame, dither);
-        let scene = board::BoardScene::<Q>::new().unwrap();
+        let shape = scanline3d_support::demo::torus::<Q>().unwrap();
+        let scene = board::BoardScene::new(&shape).unwrap();
         let mut r = Box::new(board::renderer::<Q>());
         r.set_dither(dither);
         for split in (0usize..=240).chain([500]) {

@@ -512,7 +512,11 @@ fn bench_error<E>(e: &scanline3d_support::demo::BenchError<E>) -> &'static str {
 fn split_bench(frame: u32) {
     use embedded_graphics_core::pixelcolor::RgbColor;
     use scanline3d_support::demo::board::{self, SplitPart};
-    let Ok(scene) = board::BoardScene::<Fx<I16F16>>::new() else {
+    let Ok(shape) = scanline3d_support::demo::torus::<Fx<I16F16>>() else {
+        hprintln!("ERROR split: torus");
+        return;
+    };
+    let Ok(scene) = board::BoardScene::new(&shape) else {
         hprintln!("ERROR split: scene");
         return;
     };

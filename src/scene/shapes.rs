@@ -199,6 +199,13 @@ pub(crate) fn at_least(
     }
 }
 
+impl<S: Scalar, const V: usize, const T: usize> Default for Shape<S, V, T> {
+    /// [`Shape::new`]: an empty shape.
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
     /// Checks that the shape's largest coordinate in magnitude, `extent` (finite and > 0, from
     /// already checked parameters), and its negation are valid values of `S` and that `extent`
@@ -229,13 +236,16 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
         vertices: Option<usize>,
         triangles: Option<usize>,
     ) -> Result<Self, ShapeError> {
+        Self::check_capacity(vertices, triangles)?;
+        Ok(Self::new())
+    }
+
+    /// `Ok` when `vertices` vertices and `triangles` triangles (`None`: more than
+    /// `usize::MAX`) fit `V`, `T` and `u16` indices, else [`ShapeError::Capacity`].
+    fn check_capacity(vertices: Option<usize>, triangles: Option<usize>) -> Result<(), ShapeError> {
         let vertex_capacity = V.min(MAX_INDEXED);
         match (vertices, triangles) {
-            (Some(v), Some(t)) if v <= vertex_capacity && t <= T => Ok(Shape {
-                positions: Vec::new(),
-                normals: Vec::new(),
-                indices: Vec::new(),
-            }),
+            (Some(v), Some(t)) if v <= vertex_capacity && t <= T => Ok(()),
             _ => Err(ShapeError::Capacity {
                 vertices,
                 triangles,
@@ -313,6 +323,36 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
     /// `big_r + r` is not a valid value of `S` or rounds to 0 there; [`ShapeError::Capacity`] if
     /// `nu·nv` exceeds `V` or 65 536, or `2·nu·nv` exceeds `T`.
     pub fn torus(big_r: f64, r: f64, nu: usize, nv: usize) -> Result<Self, ShapeError> {
+        let mut s = Self::new();
+        s.set_torus(big_r, r, nu, nv)?;
+        Ok(s)
+    }
+
+    /// An empty shape (no vertex, no triangle), as a `const fn`: storage for a shape that is
+    /// then built in place ([`Shape::set_torus`]), e.g. in a `static` on a part whose stack
+    /// cannot hold a shape returned by value.
+    #[must_use]
+    pub const fn new() -> Self {
+        Shape {
+            positions: Vec::new(),
+            normals: Vec::new(),
+            indices: Vec::new(),
+        }
+    }
+
+    /// Makes this shape [`Shape::torus`]`(big_r, r, nu, nv)` in place: the same vertices and
+    /// triangles, with no copy of the shape on the stack.
+    ///
+    /// # Errors
+    ///
+    /// As [`Shape::torus`]; the shape is then left unchanged.
+    pub fn set_torus(
+        &mut self,
+        big_r: f64,
+        r: f64,
+        nu: usize,
+        nv: usize,
+    ) -> Result<(), ShapeError> {
         positive("big_r", big_r)?;
         positive("r", r)?;
         if r > big_r {
@@ -328,12 +368,16 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
         let vertices = nu.checked_mul(nv);
         let triangles = vertices.and_then(|n| n.checked_mul(2));
         // After this, nu·nv ≤ 65 536: the loops below are bounded by the capacity.
-        let mut s = Self::with_capacity_for(vertices, triangles)?;
+        Self::check_capacity(vertices, triangles)?;
+        // Emptied in place (a new shape assigned here would be built on the stack first).
+        self.positions.clear();
+        self.normals.clear();
+        self.indices.clear();
         for i in 0..nu {
             let (su, cu) = libm::sincos(2.0 * PI * i as f64 / nu as f64);
             for j in 0..nv {
                 let (sv, cv) = libm::sincos(2.0 * PI * j as f64 / nv as f64);
-                s.vertex(
+                self.vertex(
                     [(big_r + r * cv) * cu, (big_r + r * cv) * su, r * sv],
                     [cv * cu, cv * su, sv],
                 );
@@ -342,11 +386,11 @@ impl<S: Scalar, const V: usize, const T: usize> Shape<S, V, T> {
         for i in 0..nu {
             for j in 0..nv {
                 let id = |i: usize, j: usize| (i % nu) * nv + (j % nv);
-                s.tri(id(i, j), id(i + 1, j), id(i + 1, j + 1));
-                s.tri(id(i, j), id(i + 1, j + 1), id(i, j + 1));
+                self.tri(id(i, j), id(i + 1, j), id(i + 1, j + 1));
+                self.tri(id(i, j), id(i + 1, j + 1), id(i, j + 1));
             }
         }
-        Ok(s)
+        Ok(())
     }
 
     /// A sphere of `radius` made by subdividing an icosahedron `subdivisions` times:

@@ -26,7 +26,18 @@ pub type TorusShape<S> = Shape<S, 512, 1024>;
 
 /// The default torus: R = 1.0, r = 0.4, 32 × 16 segments.
 pub fn torus<S: Scalar>() -> Result<TorusShape<S>, ShapeError> {
-    Shape::torus(1.0, 0.4, 32, 16)
+    let mut shape = Shape::new();
+    build_torus(&mut shape)?;
+    Ok(shape)
+}
+
+/// Makes `shape` the default torus ([`torus`]) in place, with no copy of it on the stack.
+///
+/// # Errors
+///
+/// Never for the built-in parameters (the shape is then left as it was).
+pub fn build_torus<S: Scalar>(shape: &mut TorusShape<S>) -> Result<(), ShapeError> {
+    shape.set_torus(1.0, 0.4, 32, 16)
 }
 
 /// The default model transform: 30° about X, then 20° about Y ([`torus_tilt`]), then
@@ -599,12 +610,14 @@ pub mod board {
     }
 
     /// The firmware's scene, built once: the default torus mesh ([`super::torus`], 18 KB for
-    /// `Fx<I16F16>`), the camera, the material and light, the fixed part of the model
-    /// transform and the sine and cosine of every frame's spin ([`TURN_FRAMES`] pairs, 960 B
-    /// for `Fx<I16F16>`: a frame then computes no sine, cosine or `f64` conversion).
+    /// `Fx<I16F16>`, borrowed: the caller keeps it where it fits, e.g. a `static` built in place
+    /// with [`super::build_torus`] on a part whose stack cannot hold it twice), the
+    /// camera, the material and light, the fixed part of the model transform and the sine and
+    /// cosine of every frame's spin ([`TURN_FRAMES`] pairs, 960 B for `Fx<I16F16>`: a frame then
+    /// computes no sine, cosine or `f64` conversion).
     #[derive(Debug)]
-    pub struct BoardScene<S: Scalar> {
-        shape: super::TorusShape<S>,
+    pub struct BoardScene<'a, S: Scalar> {
+        shape: &'a super::TorusShape<S>,
         camera: scanline3d::Camera<S>,
         tilt: scanline3d::Mat4<S>,
         material: scanline3d::Material<S>,
@@ -612,19 +625,19 @@ pub mod board {
         spins: [(S, S); TURN_FRAMES],
     }
 
-    impl<S: Scalar> BoardScene<S> {
-        /// Generates the mesh and the camera.
+    impl<'a, S: Scalar> BoardScene<'a, S> {
+        /// The scene around `shape`, the board's torus ([`super::torus`] or [`super::build_torus`]).
         ///
         /// # Errors
         ///
         /// Never for the built-in parameters; a message naming the part that failed otherwise.
-        pub fn new() -> Result<Self, &'static str> {
+        pub fn new(shape: &'a super::TorusShape<S>) -> Result<Self, &'static str> {
             let mut spins = [(S::ZERO, S::ZERO); TURN_FRAMES];
             for (k, sc) in spins.iter_mut().enumerate() {
                 *sc = super::deg::<S>(spin(k as u32)).sin_cos();
             }
             Ok(BoardScene {
-                shape: super::torus().map_err(|_| "torus mesh")?,
+                shape,
                 camera: super::camera().map_err(|_| "camera")?,
                 tilt: super::torus_tilt(),
                 material: super::torus_material(),
@@ -643,15 +656,18 @@ pub mod board {
         }
 
         /// Prepares frame `frame` of the animation in `renderer` (geometry only; the strips
-        /// follow with [`draw_strip`]).
+        /// follow with [`draw_strip`] or the strip passes, [`BoardPass`]). `renderer` is a
+        /// [`BoardRenderer`] or the same renderer with other strip lines `L` of its own (the
+        /// two-core firmware's renderers keep one line: their rows are drawn by the cores'
+        /// passes, whose strips are [`STRIP_LINES`] rows whatever `L` is).
         ///
         /// # Errors
         ///
         /// The renderer's error when the frame does not fit its capacities (it always does: the
         /// capacities hold for a full turn).
-        pub fn prepare(
+        pub fn prepare<const L: usize>(
             &self,
-            renderer: &mut BoardRenderer<S>,
+            renderer: &mut scanline3d::Renderer<S, Rgb565, 240, 240, 512, 480, 64, L>,
             frame: u32,
         ) -> Result<scanline3d::Stats, scanline3d::Error<core::convert::Infallible>> {
             let objects = [Object {
@@ -705,7 +721,7 @@ pub mod board {
     /// The renderer's error when the frame does not fit its capacities.
     #[allow(clippy::too_many_arguments)]
     pub fn split_frame<S: Scalar>(
-        scene: &BoardScene<S>,
+        scene: &BoardScene<'_, S>,
         renderer: &mut BoardRenderer<S>,
         passes: [&mut BoardPass; 2],
         frame: u32,
@@ -750,7 +766,8 @@ pub mod board {
         #[test]
         fn cached_tilt_gives_the_same_transform() {
             type Q = scanline3d::Fx<scanline3d::fixed::types::I16F16>;
-            let scene = BoardScene::<Q>::new().unwrap();
+            let shape = super::super::torus::<Q>().unwrap();
+            let scene = BoardScene::new(&shape).unwrap();
             for frame in [0, 1, 7, 119, 120, 1000, u32::MAX] {
                 let a = scene.transform(frame);
                 let b = super::super::torus_transform::<Q>(spin(frame));
@@ -761,7 +778,8 @@ pub mod board {
         #[test]
         fn split_frame_draws_every_strip_once() {
             type Q = scanline3d::Fx<scanline3d::fixed::types::I16F16>;
-            let scene = BoardScene::<Q>::new().unwrap();
+            let shape = super::super::torus::<Q>().unwrap();
+            let scene = BoardScene::new(&shape).unwrap();
             let mut r = renderer::<Q>();
             let mut buffer = [[Rgb565::BLACK; SIZE]; STRIP_LINES];
             let (mut top, mut bottom) = (BoardPass::new(), BoardPass::new());

@@ -21,12 +21,12 @@ import {
   FRAME_W,
   FRAME_H,
 } from './lib/frames.mjs';
-import { benchmarksBlock, updateBenchmarks, twoCoreEstimate } from './lib/report.mjs';
+import { benchmarksBlock, updateBenchmarks } from './lib/report.mjs';
 import { profileFrames } from './profile.mjs';
 
 const USAGE = `usage: pico-emu.mjs [--frames N] [--max-cycles N] [--min-fps X]
        [--host-tool PATH | --no-host] [--elf PATH] [--bootrom PATH] [--out DIR]
-       [--benchmarks PATH | --no-benchmarks] [--mcu-report PATH] [--profile-frames N]`;
+       [--benchmarks PATH | --no-benchmarks] [--one-core-report PATH] [--profile-frames N]`;
 
 function parseArgs(argv) {
   const o = {
@@ -39,7 +39,7 @@ function parseArgs(argv) {
     bootrom: 'target/pico-emu/bootrom.bin',
     out: 'target/pico-emu',
     benchmarks: 'BENCHMARKS.md',
-    mcuReport: 'target/mcu-bench/report.json',
+    oneCoreReport: null,
     profileFrames: 2,
   };
   const num = (name, v) => {
@@ -81,8 +81,8 @@ function parseArgs(argv) {
       case '--no-benchmarks':
         o.benchmarks = null;
         break;
-      case '--mcu-report':
-        o.mcuReport = argv[++i];
+      case '--one-core-report':
+        o.oneCoreReport = argv[++i];
         break;
       case '--profile-frames':
         o.profileFrames = num(a, argv[++i]);
@@ -143,11 +143,22 @@ function main() {
     elf,
     onByte: (value, dc, start, end) => {
       display.byte(value, dc, start, end);
-      // The decoder opened a new frame with this byte: note the last timer read before it.
+      // The decoder opened a new frame with this byte: note the timer read that belongs to it
+      // (the firmware's rule, see `labelMicrosPerFrame`): for frame 0 the last read before its
+      // first pixel byte, for frame K the K-th read after that byte (the firmware reads the
+      // timer once per frame; drawing runs ahead of the SPI, so a later frame's read may come
+      // before this frame's first byte).
       if (display.frameStart && display.frameStart !== frameStartSeen) {
         frameStartSeen = display.frameStart;
-        const t = machine.lastTimerRead;
-        display.frameStart.timerBefore = t && t.cycle <= start ? { ...t } : null;
+        const k = frames.length;
+        let t = null;
+        if (k === 0) {
+          t = machine.lastTimerRead && machine.lastTimerRead.cycle <= start ? machine.lastTimerRead : null;
+          machine.timerLog = [];
+        } else {
+          t = machine.timerLog?.[k - 1] ?? null;
+        }
+        display.frameStart.timerBefore = t ? { ...t } : null;
         display.frameStart.timerReads = machine.stats.timerReads;
         display.frameStart.spiBusy = machine.stats.spiBusyCycles;
       }
@@ -327,24 +338,23 @@ function main() {
   if (opts.minFps !== null && (report.fps === null || report.fps < opts.minFps)) {
     fpsFailure = `frame rate ${report.fps === null ? 'unknown' : report.fps.toFixed(2)} fps is below --min-fps ${opts.minFps}`;
   }
-  // Where the cycles go (a second run of the same firmware, cycles charged to functions), and
-  // what a second core would bring (the QEMU benchmark's split-frame measurement, if present).
+  // Where the cycles go (a second run of the same firmware, cycles charged to functions).
   let profile = null;
   if (n >= 2 && !failure && opts.profileFrames > 0) {
     profile = profileFrames(elf, bootrom, opts.profileFrames);
     writeAtomic(path.join(opts.out, 'profile.json'), `${JSON.stringify(profile, null, 2)}\n`);
   }
-  let mcu = null;
-  if (opts.mcuReport && fs.existsSync(opts.mcuReport)) {
-    mcu = JSON.parse(fs.readFileSync(opts.mcuReport, 'utf8'));
+  // The one-core build's run (its report.json), for the BENCHMARKS.md section.
+  let oneCore = null;
+  if (opts.oneCoreReport && fs.existsSync(opts.oneCoreReport)) {
+    oneCore = JSON.parse(fs.readFileSync(opts.oneCoreReport, 'utf8'));
   }
   report.profile_top = profile ? profile.functions.slice(0, 12) : null;
-  report.two_core = twoCoreEstimate(report, mcu);
   writeAtomic(path.join(opts.out, 'report.json'), `${JSON.stringify(report, null, 2)}\n`);
   if (opts.benchmarks && n && !failure) {
     updateBenchmarks(
       opts.benchmarks,
-      benchmarksBlock({ ...report, rp2040js_version: rp2040jsVersion }, profile),
+      benchmarksBlock({ ...report, rp2040js_version: rp2040jsVersion }, profile, oneCore),
     );
   }
 
@@ -361,6 +371,10 @@ function main() {
   console.log(`  boot_cycles        ${fmt(report.boot_cycles)}`);
   console.log(`  cycles_per_frame   ${fmt(report.cycles_per_frame)}  [${frameCycles.join(', ')}]`);
   console.log(`  fps                ${fmt(report.fps, 2)} (at ${CLOCK_HZ / 1e6} MHz)`);
+  if (frameCycles.length) {
+    const worst = Math.max(...frameCycles);
+    console.log(`  worst_frame        ${worst} cycles (${(CLOCK_HZ / worst).toFixed(2)} fps)`);
+  }
   console.log(`  spi_busy_fraction  ${fmt(report.spi_busy_fraction, 3)}`);
   console.log(`  spi_cycles_per_byte ${fmt(report.spi_cycles_per_byte)}`);
   for (const c of cores) {
@@ -371,19 +385,10 @@ function main() {
   }
   console.log(`  matches_host       ${matchesHost === null ? 'not compared (--no-host)' : matchesHost}`);
   if (profile) {
-    console.log(`  profile (cycles per frame, share; target/pico-emu/profile.json):`);
+    console.log(`  profile (cycles per frame, share; ${path.join(opts.out, 'profile.json')}):`);
     for (const f of profile.functions.slice(0, 12)) {
       console.log(`    ${String(f.cycles_per_frame).padStart(9)} ${(100 * f.share).toFixed(1).padStart(5)}%  ${f.function}`);
     }
-  }
-  const tc = report.two_core;
-  if (tc && tc.measured) {
-    console.log(
-      `  two cores (estimate): ${tc.cycles_per_frame} cycles per frame, ${tc.fps.toFixed(1)} fps ` +
-        `(split at row ${tc.split}; panel limit ${tc.panel_fps.toFixed(1)} fps)`,
-    );
-  } else if (tc) {
-    console.log(`  two cores: ${tc.why}`);
   }
   for (const w of warnings.slice(0, 10)) console.log(`  warning: ${w}`);
   console.log(`  report: ${path.join(opts.out, 'report.json')}`);

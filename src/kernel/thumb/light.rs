@@ -449,7 +449,7 @@ pub(crate) fn light_run(
     let mut ctx = LightCtx {
         v: run.start,
         end: run.end,
-        n: normals.as_ptr() as *const [i32; 3],
+        n: normals.as_ptr(),
         dir_lo: dir.map(lo),
         dir_hi: dir.map(|v| v >> 16),
         diffuse_lo: lo(diffuse),

@@ -8,14 +8,15 @@ export const FRAME_BYTES = FRAME_W * FRAME_H * 2;
 
 /**
  * The frame time (us) the firmware's on-screen label shows in each frame, from the timer values
- * the firmware read. The firmware's rule (examples/pico_st7789.rs): it reads the 64-bit timer
- * once per frame, at the top of its loop before rendering, and frame K's label shows
- * T_K - T_{K-1}; frame 0 shows no label (0).
+ * the firmware read. The firmware's rule (examples/pico/firmware.rs): it reads the 64-bit timer
+ * once before its first frame's geometry and once after drawing each frame's rows (so before the
+ * next frame's geometry); frame K's label shows T_K - T_{K-1}; frame 0 shows no label (0).
  *
- * So T_K is the last timer value read before frame K's first pixel byte, and
- * US_K = T_K - T_{K-1} for K >= 1, US_0 = 0. (The firmware before that rule read the timer after
- * rendering; the same formula gives its labels too: frame K shows the time between the reads
- * that preceded frames K-1 and K.) Adapt this one function if the rule changes.
+ * The caller gives each frame its T_K as `timerBefore`: for frame 0 the last read before its first
+ * pixel byte, for frame K >= 1 the K-th read after that byte (pico-emu.mjs). Counting reads, not
+ * "the last read before frame K's first byte", because the cores draw ahead of the SPI: the read
+ * after frame K's rows may come before frame K's first byte goes out. Adapt this function and that
+ * assignment together if the rule changes.
  *
  * @param {Array<{timerBefore: {value:number}|null}>} frames in order, from frame 0
  * @returns {number[]} us per frame

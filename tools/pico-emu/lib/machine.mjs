@@ -161,6 +161,8 @@ export class Machine {
     };
     /** The last value the firmware read from the timer's low word, when, and on which core. */
     this.lastTimerRead = null;
+    /** When an array: every timer read from then on is appended to it ({cycle, value, core}). */
+    this.timerLog = null;
     this.breakCode = null;
     this.breakCore = null;
     /** The core being stepped (SEV, timer reads); the core a failure happened on. */
@@ -297,6 +299,7 @@ export class Machine {
           if (offset === TIMELR) timer.latchedTimeHigh = Math.floor(us / 2 ** 32);
           m.lastTimerRead = { cycle: m.cycles, value: us, core: m.current };
           m.stats.timerReads++;
+          if (m.timerLog) m.timerLog.push(m.lastTimerRead);
           return us >>> 0;
         }
         case TIMERAWH:

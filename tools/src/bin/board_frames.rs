@@ -54,7 +54,8 @@ fn parse_frame(s: &str) -> Result<(u32, u64), String> {
 
 /// Frame `frame` with the label for `us`, as big-endian RGB565 bytes.
 fn render(frame: u32, us: u64) -> Result<Vec<u8>, String> {
-    let scene = board::BoardScene::<Q>::new()?;
+    let shape = scanline3d_support::demo::torus::<Q>().map_err(|e| format!("torus: {e}"))?;
+    let scene = board::BoardScene::new(&shape)?;
     let glyphs = board::glyphs().map_err(|e| format!("glyphs: {e:?}"))?;
     let mut renderer = Box::new(board::renderer::<Q>());
     scene
