@@ -39,7 +39,6 @@ use mipidsi::interface::Interface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
 use mipidsi::Builder;
-use panic_halt as _;
 use rp_pico::entry;
 use rp_pico::hal::fugit::RateExtU32;
 use rp_pico::hal::multicore::{Multicore, Stack};
@@ -165,6 +164,59 @@ fn strips_between(from: u32, to: u32) -> u32 {
         to - from
     } else {
         to + WRAP - from
+    }
+}
+
+/// The Pico's LED (GP25): it blinks a failure code when the firmware stops.
+pub const LED_PIN: usize = 25;
+
+/// Why the firmware stopped, as the LED blinks it: that many short flashes, then a pause,
+/// repeated (the backlight may be off: the LED is what shows it).
+#[derive(Clone, Copy, Debug)]
+pub enum Failure {
+    /// A panic: a failed `unwrap` or assertion, on either core (one flash).
+    Panic = 1,
+    /// The start-up self-test of the interpolator row routine found a mismatch (two flashes).
+    SelfTest = 2,
+}
+
+/// Any panic, on either core: the LED blinks [`Failure::Panic`]. (Under the emulator the
+/// harness stops at this handler, `rust_begin_unwind`, and reports where.)
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    blink(Failure::Panic)
+}
+
+/// Stops the calling core and blinks `failure` on the LED forever. Works at any point of the
+/// start-up: it takes the GPIO blocks out of reset itself and drives the pin through the SIO.
+fn blink(failure: Failure) -> ! {
+    cortex_m::interrupt::disable();
+    // SAFETY: the core stops here; these writes only make GP25 an SIO output and drive it.
+    unsafe {
+        let resets = &*pac::RESETS::ptr();
+        resets
+            .reset()
+            .modify(|_, w| w.io_bank0().clear_bit().pads_bank0().clear_bit());
+        while resets.reset_done().read().io_bank0().bit_is_clear()
+            || resets.reset_done().read().pads_bank0().bit_is_clear()
+        {}
+        // FUNCSEL 5: the SIO drives the pin.
+        (*pac::IO_BANK0::ptr())
+            .gpio(LED_PIN)
+            .gpio_ctrl()
+            .write(|w| w.bits(5));
+        let sio = &*pac::SIO::ptr();
+        sio.gpio_oe_set().write(|w| w.bits(1 << LED_PIN));
+        // Cycle counts at 125 MHz (slower before the clocks are set up: still readable).
+        loop {
+            for _ in 0..failure as u32 {
+                sio.gpio_out_set().write(|w| w.bits(1 << LED_PIN));
+                cortex_m::asm::delay(25_000_000);
+                sio.gpio_out_clr().write(|w| w.bits(1 << LED_PIN));
+                cortex_m::asm::delay(25_000_000);
+            }
+            cortex_m::asm::delay(125_000_000);
+        }
     }
 }
 
@@ -528,8 +580,11 @@ fn main() -> ! {
     // renderers, strip passes and strip buffers are statics too.
     // The dithered row routine with the interpolators (feature `rp2040`) against the portable
     // rows on 25 random strips of four triangles: it can only run on an RP2040 (the QEMU
-    // benchmark's Cortex-M0 has no SIO). A mismatch stops the firmware before its first frame.
-    assert!(scanline3d::selftest::dither_rows_self_test(25).is_none());
+    // benchmark's Cortex-M0 has no SIO). A mismatch stops the firmware before its first frame,
+    // the LED blinking `Failure::SelfTest`.
+    if scanline3d::selftest::dither_rows_self_test(25).is_some() {
+        blink(Failure::SelfTest);
+    }
     // SAFETY: the only reference to SHAPE ever made mutable, before any shared one.
     let shape = unsafe { &mut *SHAPE.0.get() };
     demo::build_torus(shape).unwrap();
