@@ -9,15 +9,20 @@
 //! `scanline3d_no_clz` (no count-leading-zeros instruction), all three ARMv6-M whatever the
 //! features. This is the one place the target's architecture is looked at.
 //!
-//! Also puts the Raspberry Pi Pico's `memory.x` on the linker path — only for this package's
-//! examples (the firmware example `pico_st7789`) and only when building for the RP2040's target,
-//! `thumbv6m-none-eabi`. The library itself links nothing, and crates that depend on it (such as
-//! the QEMU benchmark firmware with its own memory layouts) never see this file.
+//! Also puts the firmware examples' memory layout on the linker path as `memory-chip.x` (which
+//! the root `memory.x` includes) — only for this package's examples and only for the two chips'
+//! targets: `memory-rp2040.x` for the Raspberry Pi Pico's RP2040 (`thumbv6m-none-eabi`:
+//! `pico_st7789`, `pico_st7789_one_core`) and `memory-rp2350.x` for the Pico 2's RP2350
+//! (`thumbv8m.main-none-eabihf`: `pico2_st7789`). The library itself links nothing, and crates
+//! that depend on it (such as the QEMU benchmark firmware with its own memory layouts) never see
+//! these files.
 use std::{env, fs, path::PathBuf};
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=memory.x");
+    println!("cargo:rerun-if-changed=memory-rp2040.x");
+    println!("cargo:rerun-if-changed=memory-rp2350.x");
     println!("cargo::rustc-check-cfg=cfg(scanline3d_thumb)");
     println!("cargo::rustc-check-cfg=cfg(scanline3d_thumb_v6m)");
     println!("cargo::rustc-check-cfg=cfg(scanline3d_no_divide)");
@@ -52,11 +57,15 @@ fn main() {
             println!("cargo::rustc-cfg=scanline3d_thumb_geometry");
         }
     }
-    if target != "thumbv6m-none-eabi" {
-        return;
-    }
+    // The firmware examples' memory layouts: the Pico's RP2040 (thumbv6m) and the Pico 2's
+    // RP2350 (thumbv8m.main), each copied as memory-chip.x, which memory.x includes.
+    let layout = match target.as_str() {
+        "thumbv6m-none-eabi" => "memory-rp2040.x",
+        "thumbv8m.main-none-eabihf" => "memory-rp2350.x",
+        _ => return,
+    };
     let out = PathBuf::from(env::var("OUT_DIR").expect("OUT_DIR"));
-    fs::copy("memory.x", out.join("memory.x")).expect("copy memory.x");
+    fs::copy(layout, out.join("memory-chip.x")).expect("copy the memory layout");
     println!("cargo:rustc-link-arg-examples=-L{}", out.display());
     println!("cargo:rustc-link-arg-examples=--nmagic");
     println!("cargo:rustc-link-arg-examples=-Tlink.x");

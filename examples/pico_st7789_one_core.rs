@@ -12,6 +12,10 @@
 const CORES: usize = 1;
 
 #[cfg(target_os = "none")]
+#[path = "pico/rp2040.rs"]
+mod chip;
+
+#[cfg(target_os = "none")]
 #[path = "pico/firmware.rs"]
 mod firmware;
 

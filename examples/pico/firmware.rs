@@ -28,6 +28,7 @@ use core::convert::Infallible;
 use core::ops::Range;
 use core::sync::atomic::{AtomicU32, Ordering};
 
+use super::chip::{self, entry, hal};
 use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::SYST;
 use embedded_graphics::pixelcolor::raw::RawU16;
@@ -35,15 +36,14 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiBus;
+use hal::fugit::RateExtU32;
+use hal::multicore::Multicore;
+use hal::pac::interrupt;
+use hal::{gpio, pac, Clock};
 use mipidsi::interface::Interface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
 use mipidsi::Builder;
-use rp_pico::entry;
-use rp_pico::hal::fugit::RateExtU32;
-use rp_pico::hal::multicore::{Multicore, Stack};
-use rp_pico::hal::pac::interrupt;
-use rp_pico::hal::{self, gpio, pac, Clock};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::{renderer_type, Capacities, Fx};
 use scanline3d_support::demo::{self, board, TorusShape};
@@ -60,13 +60,14 @@ type Spi1 = hal::spi::Spi<hal::spi::Enabled, pac::SPI1, (MosiPin, ClkPin), 8>;
 /// The panel's data/command line, GPIO 8 (`DcPin`), as a bit of the SIO's GPIO registers: the
 /// DMA interrupt sets it for `RAMWR` between frames.
 const DC_BIT: u32 = 1 << 8;
-/// SPI clock: the RP2040's peripheral clock (125 MHz) divided by 2, the fastest it allows.
+/// SPI clock: the peripheral clock (125 MHz on both chips, see `chip::clocks`) divided by 2,
+/// the fastest the PL022 allows and the ST7789's rated write clock.
 const SPI_HZ: u32 = 62_500_000;
 /// DMA channel that sends the strips (its completion raises `DMA_IRQ_0` on core 0).
 pub const DMA_CH: usize = 0;
-/// The DMA request the channel is paced by: SPI1's transmit FIFO (RP2040 datasheet 2.5.3.1,
-/// DREQ_SPI1_TX = 18).
-pub const DREQ_SPI1_TX: u8 = 18;
+/// The DMA request the channel is paced by: SPI1's transmit FIFO (`chip::DREQ_SPI1_TX`, 18 on
+/// the RP2040, 26 on the RP2350).
+pub const DREQ_SPI1_TX: u8 = chip::DREQ_SPI1_TX;
 /// ST7789 memory write: the address counter back to the window's start, pixels follow.
 const RAMWR: u32 = 0x2c;
 
@@ -144,9 +145,10 @@ static PASSES: Shared<[board::BoardPass; CORES]> = Shared(UnsafeCell::new(
 /// The torus mesh (18 KB), built in place at start-up (`demo::build_torus`): a shape returned
 /// by value would pass through the stack, which does not have room for it beside the statics.
 static SHAPE: Shared<TorusShape<Q>> = Shared(UnsafeCell::new(TorusShape::new()));
-/// In SRAM4/5 (`.core1_stack`, memory.x), apart from the statics and core 0's stack.
+/// In SRAM4/5 on the RP2040, SRAM8/9 on the RP2350 (`.core1_stack` in the chip's layout,
+/// memory-rp2040.x or memory-rp2350.x), apart from the statics and core 0's stack.
 #[link_section = ".core1_stack"]
-static CORE1_STACK: Shared<Stack<2048>> = Shared(UnsafeCell::new(Stack::new()));
+static CORE1_STACK: Shared<chip::Core1Stack> = Shared(UnsafeCell::new(chip::Core1Stack::new()));
 
 /// `g + n` in the stream's numbering (`g < WRAP`, `n < WRAP`).
 fn later(g: u32, n: u32) -> u32 {
@@ -201,6 +203,7 @@ fn blink(failure: Failure) -> ! {
             || resets.reset_done().read().pads_bank0().bit_is_clear()
         {}
         // FUNCSEL 5: the SIO drives the pin.
+        chip::led_pad_enable(LED_PIN);
         (*pac::IO_BANK0::ptr())
             .gpio(LED_PIN)
             .gpio_ctrl()
@@ -483,13 +486,14 @@ impl Interface for PanelBus {
 }
 
 extern "C" {
-    // `.ram_code` (memory.x): its SRAM range and its load address in flash.
+    // `.ram_code` (the chip's layout, memory-rp2040.x or memory-rp2350.x): its SRAM range and
+    // its load address in flash.
     static mut __sram_code: u32;
     static mut __eram_code: u32;
     static __siram_code: u32;
 }
 
-/// Copies the renderer's code from flash to SRAM (`.ram_code` in memory.x), word by word with
+/// Copies the renderer's code from flash to SRAM (`.ram_code` in the chip's layout), word by word with
 /// volatile accesses (no call into code that is not there yet). Must run before anything
 /// calls into that code: the HAL's clock set-up divides through the hardware-divider
 /// helpers, which `.ram_code` holds, so this is `main`'s first statement.
@@ -514,25 +518,24 @@ fn main() -> ! {
     let mut pac = pac::Peripherals::take().unwrap();
     let mut core = cortex_m::Peripherals::take().unwrap();
     let mut watchdog = hal::Watchdog::new(pac.WATCHDOG);
-    let clocks = hal::clocks::init_clocks_and_plls(
-        rp_pico::XOSC_CRYSTAL_FREQ,
+    let clocks = chip::clocks(
         pac.XOSC,
         pac.CLOCKS,
         pac.PLL_SYS,
         pac.PLL_USB,
         &mut pac.RESETS,
         &mut watchdog,
-    )
-    .ok()
-    .unwrap();
+    );
     let mut sio = hal::Sio::new(pac.SIO);
-    let pins = rp_pico::Pins::new(
+    let pins = gpio::Pins::new(
         pac.IO_BANK0,
         pac.PADS_BANK0,
         sio.gpio_bank0,
         &mut pac.RESETS,
     );
-    let mut timer = hal::Timer::new(pac.TIMER, &mut pac.RESETS, &clocks);
+    let mut timer = chip::timer(&mut pac.RESETS, &clocks);
+    // The DMA request number above is the HAL's.
+    assert!(DREQ_SPI1_TX == <pac::SPI1 as hal::spi::SpiDevice>::tx_dreq());
     systick_start(&mut core.SYST);
     // The DMA block out of reset; channel DMA_CH's completion raises DMA_IRQ_0 (core 0).
     pac.RESETS.reset().modify(|_, w| w.dma().clear_bit());
@@ -578,11 +581,9 @@ fn main() -> ! {
 
     // The scene: the default torus, generated once into RAM (`SHAPE`, 18 KB, in place); the
     // renderers, strip passes and strip buffers are statics too.
-    // The dithered row routine with the interpolators (feature `rp2040`) against the portable
-    // rows on 25 random strips of four triangles: it can only run on an RP2040 (the QEMU
-    // benchmark's Cortex-M0 has no SIO). A mismatch stops the firmware before its first frame,
-    // the LED blinking `Failure::SelfTest`.
-    if scanline3d::selftest::dither_rows_self_test(25).is_some() {
+    // The chip's start-up self-test (`chip::self_test_passes`): a failure stops the firmware
+    // before its first frame, the LED blinking `Failure::SelfTest`.
+    if !chip::self_test_passes() {
         blink(Failure::SelfTest);
     }
     // SAFETY: the only reference to SHAPE ever made mutable, before any shared one.
@@ -607,9 +608,7 @@ fn main() -> ! {
         let cores = mc.cores();
         // SAFETY: the stack is given to core 1 once, here.
         let stack = unsafe { &mut *CORE1_STACK.0.get() };
-        cores[1]
-            .spawn(&mut stack.mem, move || core1_main(&mut pass1[0]))
-            .unwrap();
+        chip::spawn_core1(&mut cores[1], stack, move || core1_main(&mut pass1[0]));
     }
 
     // The address window and RAMWR through mipidsi, then the SPI in 16-bit data mode for good.

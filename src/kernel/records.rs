@@ -219,6 +219,25 @@ impl EdgeDda {
         }
     }
 
+    /// Moves `n` rows at once, exactly as `n` calls of [`EdgeDda::step`] would (`dy` is this
+    /// edge's; `n·sr` < 2³¹, true for any `n` below 2¹⁶), and returns how many of those steps
+    /// carried (moved by `sq + 1`). One multiply and one divide instead of `n` additions: for a
+    /// seek, not for the row loop. The column must stay in range as [`C_BIAS`] says, which it
+    /// does on every row the edge is used.
+    pub(crate) fn jump(&mut self, n: u32, dy: u16) -> u32 {
+        let e = (self.w >> 16) as i32;
+        let sr = ((self.sq() as u32).wrapping_sub(self.s) >> 16) as i32;
+        let dy = i32::from(dy);
+        // Each step takes sr from the remainder and adds dy (one carry) when it goes below 0:
+        // after n steps the remainder is e − n·sr + k·dy in 0..dy, k the carries.
+        let t = e - n as i32 * sr;
+        let k = if t >= 0 { 0 } else { (dy - 1 - t) / dy };
+        let e = t + k * dy;
+        let c = self.c() + n as i32 * self.sq() + k;
+        self.w = ((e as u32) << 16) | ((c + C_BIAS) as u32 & 0xffff);
+        k as u32
+    }
+
     /// The column and carry [`EdgeDda::step`] would give, in 32 bits, without moving (one row
     /// past the edge's end the column may leave the range of the packed half).
     #[inline(always)]

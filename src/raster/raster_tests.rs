@@ -435,3 +435,74 @@ fn floor_division_both_paths() {
         assert_eq!((q as i64, r as i64), (n.div_euclid(dd), n.rem_euclid(dd)));
     }
 }
+
+/// `EdgeDda::jump` against `n` calls of `EdgeDda::step` on pseudo-random edges: the same words
+/// and the same number of carries, for every distance within the edge's rows.
+#[test]
+fn edge_jump_equals_steps() {
+    let mut rnd = xorshift32(0x5eed_1234);
+    for _ in 0..2_000 {
+        let ya = (rnd() % 4_000) as i32;
+        let yb = ya + 1 + (rnd() % 4_000) as i32;
+        let xa = (rnd() % 8_000) as i32 - 2_000;
+        let xb = (rnd() % 8_000) as i32 - 2_000;
+        let first = (ya + 8) >> 4;
+        let last = (yb - 1 + 8) >> 4;
+        if last <= first {
+            continue;
+        }
+        let (start, dy) = Edge::new(xa, ya, xb, yb, first).dda();
+        let mut stepped = start;
+        let mut carries = 0u32;
+        for n in 1..=(last - first) as u32 {
+            carries += u32::from(stepped.step(dy));
+            let mut jumped = start;
+            let k = jumped.jump(n, dy);
+            assert_eq!(
+                (jumped.w, k),
+                (stepped.w, carries),
+                "edge ({xa}, {ya}) → ({xb}, {yb}), {n} rows"
+            );
+        }
+    }
+}
+
+/// `ActiveTri::advance_to` against `advance` row by row on pseudo-random triangles (Gouraud,
+/// flat and the fast path, across the short edge's switch): the same state on every row.
+#[test]
+fn advance_to_equals_row_steps() {
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    let mut rnd = xorshift32(0x0fac_e0ff);
+    let mut checked = 0;
+    for case in 0..400 {
+        let mut v = [ScreenVertex::default(); 3];
+        for p in v.iter_mut() {
+            p.x = (rnd() % 4_400) as i16 - 200;
+            p.y = (rnd() % 3_900) as i16;
+            p.set_color([0; 3].map(|_: u16| (rnd() % 1024) as u16));
+        }
+        let flat = if case % 3 == 0 { FLAT_BIT } else { 0 };
+        let t = TriRecord { v: [flat, 1, 2] };
+        let mode = SpanMode::new::<Rgb565>(DepthTest::Less, case % 2 == 0);
+        let mut base = ActiveList::<1>::new();
+        let top = (v.iter().map(|p| p.y).min().unwrap() as i32 + 8) >> 4;
+        if !base.push_with(|a| a.setup::<Rgb565>(&t, &v, top, 240, mode)) {
+            continue;
+        }
+        let a0 = base.slots[0].clone();
+        let mut stepped = a0.clone();
+        for target in top + 1..a0.row_end as i32 {
+            stepped.advance(target);
+            let mut jumped = a0.clone();
+            jumped.advance_to(top, target);
+            assert!(
+                jumped.edges == stepped.edges
+                    && jumped.row == stepped.row
+                    && jumped.inc == stepped.inc,
+                "case {case}, row {target}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 1_000, "{checked} rows checked");
+}

@@ -9,9 +9,10 @@
 //! drawing: triangles that end above the row keep a place in the list only as long as they
 //! would (a record with their last row; a textured one is set up and attached, so that the
 //! attribute pool fills as it would), and those that cross the row are set up at their first
-//! row and stepped to it. Costs one setup for each triangle that crosses the row (and each
-//! textured one above it), its steps down to the row, and a look at the vertices of every
-//! triangle that starts above it.
+//! row and stepped to it (the steps between the rows where the short edge takes over jumped at
+//! once, exactly: [`crate::raster::ActiveTri::advance_to`]). Costs one setup and a few jumps
+//! for each triangle that crosses the row (and a setup for each textured one above it), and a
+//! look at the vertices of every triangle that starts above it.
 
 use crate::kernel::records::{first_pixel, ActiveList, ScreenVertex, TriRecord};
 use crate::raster::attrs::{ActiveExtra, FREE};
@@ -96,9 +97,7 @@ pub(crate) fn seek<C: TargetColor, const N: usize>(
                         return false;
                     }
                     if crosses {
-                        for r in b as i32 + 1..=target {
-                            a.advance(r);
-                        }
+                        a.advance_to(b as i32, target);
                         a.set_routine_rows(target, dither && C::can_dither());
                     }
                     true

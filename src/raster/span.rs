@@ -141,6 +141,48 @@ impl ActiveTri {
         }
     }
 
+    /// Moves from `row` (a row the triangle has been set up or stepped to) to `target`, exactly
+    /// as [`ActiveTri::advance`] for each row in between would: the rows where the short edge
+    /// takes over are stepped one by one, the runs between them are jumped ([`EdgeDda::jump`]:
+    /// a multiply and a divide per edge, and per attribute its increments times the rows and
+    /// the carries). For a seek: its cost does not grow with the distance.
+    pub(crate) fn advance_to(&mut self, row: i32, target: i32) {
+        let mut r = row;
+        while r < target {
+            let mid = self.row_mid as i32;
+            // The last row to reach by plain steps: before the switch if it is on the way.
+            let plain_end = if mid > r && mid <= target {
+                mid - 1
+            } else {
+                target
+            };
+            if plain_end > r {
+                self.jump_rows((plain_end - r) as u32);
+                r = plain_end;
+            }
+            if r < target {
+                self.advance(r + 1);
+                r += 1;
+            }
+        }
+    }
+
+    /// `n` plain rows at once (no switch among them): both edges jumped, the attributes moved
+    /// by `n` increments plus one `gx` per carry of the left edge.
+    fn jump_rows(&mut self, n: u32) {
+        let [left, right] = &mut self.edges;
+        let [left_dy, right_dy] = self.dy;
+        // The attributes follow the left edge's carries (the short edge when the middle vertex
+        // is on the left, the long one otherwise: [`ActiveTri::advance`]).
+        let carries = left.jump(n, left_dy) as i32;
+        right.jump(n, right_dy);
+        for k in 0..self.n_attrs() {
+            self.row[k] = self.row[k]
+                .wrapping_add(self.inc[k].wrapping_mul(n as i32))
+                .wrapping_add(self.gx[k].wrapping_mul(carries));
+        }
+    }
+
     #[inline(always)]
     pub(crate) fn step_attrs(&mut self, carry: bool) {
         // Unrolled for the three attribute counts.

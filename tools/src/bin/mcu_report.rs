@@ -329,6 +329,7 @@ fn run() -> Result<(), String> {
         });
         md.push_str(&breakdown(t, strip)?);
     }
+    md.push_str(&board_frames(&strips));
     // scripts/pico-emu writes its own section (the emulated Pico's figures): keep it, unchanged,
     // at the end of the regenerated file.
     if let Ok(old) = std::fs::read_to_string("BENCHMARKS.md") {
@@ -437,6 +438,73 @@ fn ratchet_counts(rows: &[Value], small: &[Value], strips: &[Value]) -> ratchet:
         ));
     }
     out
+}
+
+/// The Pico boards' frame on every core (the `SPLIT` rows: `demo::board::split_frame`, the
+/// frame the firmware draws through `StripPass`es, split at every strip boundary): the whole
+/// frame on one core (geometry, then every row: split 240), and the best split for two cores
+/// where one prepares the next frame while the other draws (frame = the larger of geometry +
+/// top and bottom). The RP2350's figure is the `m33` row; the RP2040's cycles are the emulator's
+/// (`scripts/pico-emu`).
+fn board_frames(strips: &[Value]) -> String {
+    let splits: Vec<&Value> = strips.iter().filter(|v| v["kind"] == "split").collect();
+    let mut s = String::new();
+    let mut rows = String::new();
+    let mut cores: Vec<&str> = Vec::new();
+    for v in &splits {
+        let c = v["core"].as_str().unwrap_or_default();
+        if !cores.contains(&c) {
+            cores.push(c);
+        }
+    }
+    for core in cores {
+        let mut frames: Vec<u64> = splits
+            .iter()
+            .filter(|v| v["core"] == core)
+            .filter_map(|v| v["frame"].as_u64())
+            .collect();
+        frames.dedup();
+        for frame in frames {
+            let of_frame: Vec<&&Value> = splits
+                .iter()
+                .filter(|v| v["core"] == core && v["frame"].as_u64() == Some(frame))
+                .collect();
+            let field = |v: &Value, k: &str| v[k].as_u64().unwrap_or(0);
+            let Some(whole) = of_frame.iter().find(|v| v["split"].as_u64() == Some(240)) else {
+                continue;
+            };
+            let one = field(whole, "geometry") + field(whole, "top");
+            let best = of_frame
+                .iter()
+                .map(|v| {
+                    let busier = (field(v, "geometry") + field(v, "top")).max(field(v, "bottom"));
+                    (busier, field(v, "split"))
+                })
+                .min();
+            if let Some((busier, split)) = best {
+                let _ = writeln!(
+                    rows,
+                    "| `{core}` | {frame} | {} | {} | {one} | {split} | {busier} |",
+                    field(whole, "geometry"),
+                    field(whole, "top"),
+                );
+            }
+        }
+    }
+    if rows.is_empty() {
+        return s;
+    }
+    let _ = writeln!(
+        s,
+        "\n**The Pico boards' frame** (`demo::board`: the dithered torus with its 8-line strips, drawn through strip passes as the firmware draws it; `m33` is the Pico 2's Cortex-M33 code path, `m0` the Pico's without its interpolators, which QEMU lacks): instructions for the geometry, the rows and the whole frame on one core, and for two cores the best split row and the busier core's instructions, where one core prepares the next frame and draws the rows above the split while the other draws the rows below (as `examples/pico/firmware.rs` does).\n"
+    );
+    let _ = writeln!(
+        s,
+        "| core | frame | geometry | rows | one core | best split | two cores (busier core) |"
+    );
+    let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|");
+    s.push_str(&rows);
+    s
 }
 
 /// The section of BENCHMARKS.md that `scripts/pico-emu` generates, markers included.
