@@ -145,7 +145,10 @@ impl ActiveTri {
     /// as [`ActiveTri::advance`] for each row in between would: the rows where the short edge
     /// takes over are stepped one by one, the runs between them are jumped ([`EdgeDda::jump`]:
     /// a multiply and a divide per edge, and per attribute its increments times the rows and
-    /// the carries). For a seek: its cost does not grow with the distance.
+    /// the carries). For a seek: its cost does not grow with the distance. Inlined into the
+    /// seek: as a function of its own, its call of [`ActiveTri::advance`] changed how the
+    /// compiler inlines `advance` into the portable row loop (+4.5 % on the RISC-V torus).
+    #[inline(always)]
     pub(crate) fn advance_to(&mut self, row: i32, target: i32) {
         let mut r = row;
         while r < target {
