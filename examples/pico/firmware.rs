@@ -65,9 +65,9 @@ const DC_BIT: u32 = 1 << 8;
 const SPI_HZ: u32 = 62_500_000;
 /// DMA channel that sends the strips (its completion raises `DMA_IRQ_0` on core 0).
 pub const DMA_CH: usize = 0;
-/// The DMA request the channel is paced by: SPI1's transmit FIFO (`chip::DREQ_SPI1_TX`, 18 on
-/// the RP2040, 26 on the RP2350).
-pub const DREQ_SPI1_TX: u8 = chip::DREQ_SPI1_TX;
+/// The DMA request the channel is paced by: SPI1's transmit FIFO (the chip's constant: 18 on
+/// the RP2040, 26 on the RP2350; checked against the HAL's number at start-up).
+pub use chip::DREQ_SPI1_TX;
 /// ST7789 memory write: the address counter back to the window's start, pixels follow.
 const RAMWR: u32 = 0x2c;
 

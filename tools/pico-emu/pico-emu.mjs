@@ -210,7 +210,8 @@ function main() {
       png,
     };
   });
-  // Timer reads between consecutive frames' first pixel bytes (the firmware's rule: one).
+  // Timer reads between consecutive frames' first pixel bytes (information only: the label rule
+  // counts reads from frame 0's first byte on, see `labelMicrosPerFrame`).
   for (let k = 1; k < frames.length; k++) {
     framesOut[k - 1].timer_reads_until_next_frame = frames[k].timerReads - frames[k - 1].timerReads;
   }
