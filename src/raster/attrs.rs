@@ -60,6 +60,8 @@ pub(crate) const POINTS: u8 = 5;
 pub(crate) const MODE_PHONG: u8 = 4;
 /// [`VertexExtra::mode`] of a vertex of a [`crate::Shading::FastPhong`] object.
 pub(crate) const MODE_FAST_PHONG: u8 = 5;
+/// [`VertexExtra::mode`] of a vertex of a [`crate::Shading::Toon`] object.
+pub(crate) const MODE_TOON: u8 = 6;
 
 impl ActiveExtra {
     pub(crate) const EMPTY: ActiveExtra = ActiveExtra {

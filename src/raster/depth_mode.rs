@@ -13,6 +13,9 @@
 //! insertion or removal: dearer).
 
 use crate::kernel::records::{ActiveList, ScreenVertex, TriRecord};
+use crate::raster::kind::draw_row;
+use crate::raster::span::NONE;
+use crate::raster::DepthTest;
 use crate::scene::color::TargetColor;
 
 /// The order in which a renderer without depth lines ([`crate::NoDepthRenderer`]) draws the
@@ -72,9 +75,15 @@ pub(crate) fn draw_row_no_depth<C: TargetColor, const N: usize>(
         Some(ord) if painter => {
             while i < active.len() {
                 let slot = ord[i] as usize;
-                let (f, w, done) = active
-                    .get_mut(slot)
-                    .draw_row_no_depth(row as i32, colors, dither);
+                let (f, w, done) = draw_row::<C, NONE, false>(
+                    active.get_mut(slot),
+                    &mut [],
+                    row as i32,
+                    colors,
+                    &mut [],
+                    DepthTest::Always,
+                    dither,
+                );
                 sum = (sum.0 + f, sum.1 + w);
                 if !done {
                     i += 1;
@@ -94,9 +103,15 @@ pub(crate) fn draw_row_no_depth<C: TargetColor, const N: usize>(
         }
         _ => {
             while i < active.len() {
-                let (f, w, done) = active
-                    .get_mut(i)
-                    .draw_row_no_depth(row as i32, colors, dither);
+                let (f, w, done) = draw_row::<C, NONE, false>(
+                    active.get_mut(i),
+                    &mut [],
+                    row as i32,
+                    colors,
+                    &mut [],
+                    DepthTest::Always,
+                    dither,
+                );
                 sum = (sum.0 + f, sum.1 + w);
                 match (done, painter) {
                     (false, _) => i += 1,

@@ -19,7 +19,7 @@ use crate::raster::layer_rows::{
 };
 use crate::raster::shadow::{blob_disc, Edges, Layering, ShadowLight, ShadowMethod, BLOB_FAN};
 use crate::raster::strip::draw_list_row;
-use crate::raster::textured::{attach_pushed, is_textured};
+use crate::raster::kind::enter;
 use crate::raster::volume::{volume_sign, Lines, Pick};
 use crate::raster::SpanMode;
 use crate::renderer::*;
@@ -649,12 +649,9 @@ impl<
         let v = rec.v[1] as usize;
         if v >= layers.bounds[1] as usize {
             // A shadow polygon or a translucent triangle: unpacked rows (no fast path).
-            let m = SpanMode::default();
             let before = layers.post.len();
-            if !layers
-                .post
-                .push_with(|a| a.setup::<C>(rec, verts, row as i32, h, m))
-            {
+            let m = SpanMode::default();
+            if !enter::<C, PA>(false, &mut layers.post, &mut [], rec, verts, &[], row as i32, h, m, |_| {}) {
                 return false;
             }
             if layers.post.len() > before {
@@ -681,22 +678,22 @@ impl<
             }
             return true;
         }
-        let textured = XV > 0 && XA > 0 && is_textured(rec, &self.xverts);
-        let m = if textured { SpanMode::default() } else { mode };
+        let pooled = XV > 0 && XA > 0;
         macro_rules! push {
-            ($list:expr, $n:ident) => {{
-                let before = $list.len();
-                $list.push_with(|a| a.setup::<C>(rec, verts, row as i32, h, m))
-                    && (!textured
-                        || attach_pushed::<C, $n>(
-                            &mut $list,
-                            before,
-                            &mut self.xactive,
-                            rec,
-                            verts,
-                            &self.xverts,
-                        ))
-            }};
+            ($list:expr, $n:ident) => {
+                enter::<C, $n>(
+                    pooled,
+                    &mut $list,
+                    &mut self.xactive,
+                    rec,
+                    verts,
+                    &self.xverts,
+                    row as i32,
+                    h,
+                    mode,
+                    |_| {},
+                )
+            };
         }
         if v < layers.bounds[0] as usize {
             push!(layers.receivers, RA)

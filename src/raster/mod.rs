@@ -24,6 +24,7 @@
 pub(crate) mod attrs;
 pub(crate) mod depth_mode;
 pub(crate) mod fog;
+pub(crate) mod kind;
 pub(crate) mod layer_rows;
 pub(crate) mod layers;
 pub(crate) mod no_depth;

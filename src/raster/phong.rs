@@ -15,12 +15,13 @@
 //! Formats: directions and normals Q1.14 (`i32`, step 2⁻¹⁴); coefficients Q8.14 (ambient,
 //! diffuse and specular up to 255); the lit channel Q8.14 (0..=255·2¹⁴).
 
-use crate::geometry::project::DEPTH_FRAC_BITS;
+use crate::geometry::project::{DEPTH_FRAC_BITS, DEPTH_MAX};
 use crate::num::scalar::{bitlen32, mul_wide, recip_norm};
-use crate::raster::attrs::{ActiveExtra, MODE_FAST_PHONG, POINTS};
+use crate::raster::attrs::{ActiveExtra, POINTS};
+use crate::raster::kind::FAST_PHONG;
 use crate::raster::fog::FogSpan;
 use crate::raster::span::{by_depth_test, passes};
-use crate::raster::{DepthTest, COLOR_FRAC_BITS};
+use crate::raster::{ActiveTri, DepthTest, COLOR_FRAC_BITS};
 use crate::scene::color::TargetColor;
 use crate::scene::effects::MAX_PHONG_POINT_LIGHTS;
 
@@ -551,33 +552,43 @@ fn channels(v: [i32; 3], f: &[i32; 3]) -> [i32; 3] {
     [0, 1, 2].map(|c| (mul_wide(v[c], f[c]) >> 16) as i32)
 }
 
-/// A Phong triangle's span: pixels `x0..` of `row` (the length of `zs` and `cs`) from its
-/// pool entry `slot`, depth `z` (16.12 with its rounding bias, and its step). Returns the
-/// pixels written.
+/// The span of the [`PHONG`](crate::raster::kind::PHONG), [`FAST_PHONG`] and
+/// [`TOON`](crate::raster::kind::TOON) kinds (`kind`): triangle `rec`'s
+/// pixels from column `xs` of `row` (`lc`: its left edge's column), `zs` and `cs` the span's
+/// depth and colours, its planes and material in its pool entries. Returns the pixels written.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn fill<C: TargetColor>(
+pub(crate) fn span<C: TargetColor>(
+    rec: &ActiveTri,
+    kind: u8,
     pool: &[ActiveExtra],
-    slot: usize,
-    x0: i32,
+    lc: i32,
+    xs: i32,
     row: i32,
-    z: [i32; 2],
     zs: &mut [u16],
     cs: &mut [C],
     test: DepthTest,
 ) -> u32 {
-    by_depth_test!(test, T => fill_t::<C, T>(pool, slot, x0, row, z, zs, cs))
+    let z = rec.row[0].wrapping_add(rec.gx[0].wrapping_mul(xs - lc));
+    let z = z.clamp(0, DEPTH_MAX << DEPTH_FRAC_BITS) + (1 << (DEPTH_FRAC_BITS - 1));
+    let seg = if kind == FAST_PHONG { FAST_SEGMENT } else { 1 };
+    let slot = rec.spare as usize;
+    by_depth_test!(test, T => fill_t::<C, T>(pool, slot, seg, xs, row, [z, rec.gx[0]], zs, cs))
 }
 
+#[allow(clippy::too_many_arguments)]
 fn fill_t<C: TargetColor, const T: u8>(
     pool: &[ActiveExtra],
     slot: usize,
+    seg: i32,
     x0: i32,
     row: i32,
     z: [i32; 2],
     zs: &mut [u16],
     cs: &mut [C],
 ) -> u32 {
-    let e = &pool[slot];
+    let Some(e) = pool.get(slot) else {
+        return 0;
+    };
     let entry = |i: i32| usize::try_from(i).ok().and_then(|i| pool.get(i));
     let Some(m) = pool.get(e.key as usize).map(PhongMaterial::load) else {
         return 0;
@@ -585,6 +596,7 @@ fn fill_t<C: TargetColor, const T: u8>(
     let ctx = ShadeCtx::from_entries(entry(e.base[0]), &m);
     let span = Span {
         e,
+        seg,
         x0,
         row,
         z,
@@ -605,6 +617,8 @@ fn fill_t<C: TargetColor, const T: u8>(
 /// and lighting.
 struct Span<'a> {
     e: &'a ActiveExtra,
+    /// Pixels per lit segment: 1, or [`FAST_SEGMENT`] for fast Phong.
+    seg: i32,
     x0: i32,
     row: i32,
     z: [i32; 2],
@@ -623,11 +637,7 @@ impl Span<'_> {
     ) -> u32 {
         let e = self.e;
         let n = zs.len().min(cs.len()) as i32;
-        let seg = if e.mode == MODE_FAST_PHONG {
-            FAST_SEGMENT
-        } else {
-            1
-        };
+        let seg = self.seg;
         // The planes stepped: the normal's, and with `FX` the position's (integer parts: Q1.14
         // and 2^-bits units), from the span's first pixel.
         let planes = if FX { 6 } else { 3 };

@@ -17,7 +17,8 @@
 use crate::kernel::records::{first_pixel, ActiveList, ScreenVertex, TriRecord};
 use crate::raster::attrs::{ActiveExtra, FREE};
 use crate::raster::depth_mode::{painter_insert, painter_key};
-use crate::raster::textured::{attach_pushed, is_textured, VertexExtra, TEXTURED};
+use crate::raster::kind::{enter, needs_pool};
+use crate::raster::textured::VertexExtra;
 use crate::raster::SpanMode;
 use crate::scene::color::TargetColor;
 
@@ -88,21 +89,26 @@ pub(crate) fn seek<C: TargetColor, const N: usize>(
                 continue;
             };
             let crosses = end > target;
-            let textured = !pool.is_empty() && is_textured(rec, rows.xverts);
+            let pooled = !pool.is_empty() && needs_pool(rec, rows.xverts);
             let before = active.len();
-            let kept = if crosses || textured {
-                let m = if textured { SpanMode::default() } else { mode };
-                active.push_with(|a| {
-                    if !a.setup::<C>(rec, rows.verts, b as i32, h, m) {
-                        return false;
-                    }
-                    if crosses {
-                        a.advance_to(b as i32, target);
-                        a.set_routine_rows(target, dither && C::can_dither());
-                    }
-                    true
-                }) && (!textured
-                    || attach_pushed::<C, N>(active, before, pool, rec, rows.verts, rows.xverts))
+            let kept = if crosses || pooled {
+                enter::<C, N>(
+                    pooled,
+                    active,
+                    pool,
+                    rec,
+                    rows.verts,
+                    rows.xverts,
+                    b as i32,
+                    h,
+                    mode,
+                    |a| {
+                        if crosses {
+                            a.advance_to(b as i32, target);
+                            a.set_routine_rows(target, dither && C::can_dither());
+                        }
+                    },
+                )
             } else {
                 // Only its place in the list until its last row: nothing of it is drawn.
                 active.push_with(|a| {
@@ -136,7 +142,7 @@ pub(crate) fn seek<C: TargetColor, const N: usize>(
                 i += 1;
                 continue;
             }
-            if a.flags & TEXTURED != 0 {
+            if a.has_pool_entry() {
                 if let Some(e) = pool.get_mut(a.spare as usize) {
                     e.kind = FREE;
                 }

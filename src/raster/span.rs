@@ -50,7 +50,8 @@ impl ActiveTri {
     #[inline(always)]
     pub(crate) fn set_routine_rows(&mut self, row: i32, dithered: bool) {
         let mut k = 0;
-        self.flags &= !(LAST_IN_ROUTINE | SWITCH_IN_ROUTINE);
+        // (Clears the routine's bits of a fast kind only: a pool kind keeps its code there.)
+        self.flags &= !((self.flags & FAST) * 6);
         if self.flags & (FAST | FLAT) == FAST && (!dithered || self.flags & DITHER_OK != 0) {
             let last = self.row_end as i32 - 1;
             let mid = self.row_mid as i32 - 1;
@@ -209,136 +210,108 @@ impl ActiveTri {
         }
     }
 
-    /// Draws this triangle's span on `row` into one line of the strip and moves to the next
-    /// row. Returns `(fragments tested, pixels written, finished)`.
-    #[inline(never)]
-    pub(crate) fn draw_row<C: TargetColor>(
-        &mut self,
-        row: i32,
-        colors: &mut [C],
-        depth: &mut [u16],
-        test: DepthTest,
-        dither: bool,
-    ) -> (u32, u32, bool) {
-        self.draw_row_in::<C, LESS>(row, colors, depth, test, dither)
-    }
-
-    /// [`ActiveTri::draw_row`] for a renderer without depth lines: every fragment is written.
-    #[inline(never)]
-    pub(crate) fn draw_row_no_depth<C: TargetColor>(
-        &mut self,
-        row: i32,
-        colors: &mut [C],
-        dither: bool,
-    ) -> (u32, u32, bool) {
-        self.draw_row_in::<C, NONE>(row, colors, &mut [], DepthTest::Always, dither)
-    }
-
-    /// The row of [`ActiveTri::draw_row`] (`Z` = [`LESS`]: with the depth line `depth` and
-    /// `test`; its fast triangles' spans are `Less`) or of
-    /// [`ActiveTri::draw_row_no_depth`] (`Z` = [`NONE`]: `depth` empty, `test` unused).
+    /// The span of a [`FAST`] kind on columns `xs..xe` of `row` (`lc`: the left edge's
+    /// column; depth test `Less`, or none for `Z` = [`NONE`]); returns the pixels written.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn draw_row_in<C: TargetColor, const Z: u8>(
-        &mut self,
+    pub(crate) fn fast_span<C: TargetColor, const Z: u8>(
+        &self,
+        lc: i32,
+        xs: i32,
+        xe: i32,
+        row: i32,
+        colors: &mut [C],
+        depth: &mut [u16],
+        dither: bool,
+    ) -> u32 {
+        // The common case, without clamps, dispatch or a span record.
+        let (x0, x1) = (xs as usize, xe as usize);
+        let skip = xs - lc;
+        let mut v = [self.row[0], self.row[1], self.row[2]];
+        if skip != 0 {
+            for k in 0..3 {
+                v[k] = v[k].wrapping_add(self.gx[k].wrapping_mul(skip));
+            }
+        }
+        let (zs, cs) = (zline::<Z>(depth, x0, x1), &mut colors[x0..x1]);
+        if self.flags & FLAT != 0 {
+            let c = C::from_channels(self.flat_channels());
+            span_flat::<C, Z>(zs, cs, v[0], self.gx[0], c)
+        } else if dither {
+            let (z, rb, g) = (
+                [v[0], self.gx[0]],
+                [v[1] as u32, self.gx[1] as u32],
+                [v[2], self.gx[2]],
+            );
+            if self.flags & DITHER_OK != 0 {
+                span_packed_dither::<C, Z>(zs, cs, z, rb, g, x0, row)
+            } else {
+                span_packed_dither_clamped::<C, Z>(zs, cs, z, rb, g, x0, row)
+            }
+        } else {
+            span_packed::<C, Z>(
+                zs,
+                cs,
+                [v[0], self.gx[0]],
+                [v[1] as u32, self.gx[1] as u32],
+                [v[2], self.gx[2]],
+            )
+        }
+    }
+
+    /// The span of the [`GOURAUD`](crate::raster::kind::GOURAUD) and
+    /// [`FLAT_KIND`](crate::raster::kind::FLAT_KIND) kinds on columns `xs..xe` of `row`
+    /// (`lc`: the left edge's column): the attribute rows clamped to their ranges at the span's
+    /// start, depth test `test` (none for `Z` = [`NONE`]); returns the pixels written.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(crate) fn span<C: TargetColor, const Z: u8>(
+        &self,
+        lc: i32,
+        xs: i32,
+        xe: i32,
         row: i32,
         colors: &mut [C],
         depth: &mut [u16],
         test: DepthTest,
         dither: bool,
-    ) -> (u32, u32, bool) {
-        let width = if Z == NONE {
-            colors.len()
-        } else {
-            colors.len().min(depth.len())
-        } as i32;
-        let (lc, rc) = (self.edges[0].c(), self.edges[1].c());
-        let xs = lc.max(0);
-        let xe = rc.min(width);
+    ) -> u32 {
         let flat = self.flags & FLAT != 0;
-        let mut counts = (0, 0);
-        if self.flags & FAST != 0 {
-            if xs < xe {
-                // The common case, without clamps, dispatch or a span record.
-                let (x0, x1) = (xs as usize, xe as usize);
-                let skip = xs - lc;
-                let mut v = [self.row[0], self.row[1], self.row[2]];
-                if skip != 0 {
-                    for k in 0..3 {
-                        v[k] = v[k].wrapping_add(self.gx[k].wrapping_mul(skip));
-                    }
-                }
-                let (zs, cs) = (zline::<Z>(depth, x0, x1), &mut colors[x0..x1]);
-                let written = if flat {
-                    let c = C::from_channels(self.flat_channels());
-                    span_flat::<C, Z>(zs, cs, v[0], self.gx[0], c)
-                } else if dither && C::can_dither() {
-                    let (z, rb, g) = (
-                        [v[0], self.gx[0]],
-                        [v[1] as u32, self.gx[1] as u32],
-                        [v[2], self.gx[2]],
-                    );
-                    if self.flags & DITHER_OK != 0 {
-                        span_packed_dither::<C, Z>(zs, cs, z, rb, g, x0, row)
-                    } else {
-                        span_packed_dither_clamped::<C, Z>(zs, cs, z, rb, g, x0, row)
-                    }
-                } else {
-                    span_packed::<C, Z>(
-                        zs,
-                        cs,
-                        [v[0], self.gx[0]],
-                        [v[1] as u32, self.gx[1] as u32],
-                        [v[2], self.gx[2]],
-                    )
-                };
-                counts = ((xe - xs) as u32, written);
-            }
-        } else if xs < xe {
-            let skip = xs - lc;
-            let mut start = [0i32; 4];
-            for k in 0..self.n_attrs() {
-                let max = if k == 0 {
-                    DEPTH_MAX << DEPTH_FRAC_BITS
-                } else {
-                    (C::CHANNEL_MAX[k - 1] as i32) << COLOR_FRAC_BITS
-                };
-                let v = if skip == 0 {
-                    self.row[k]
-                } else {
-                    self.row[k].wrapping_add(self.gx[k].wrapping_mul(skip))
-                };
-                start[k] = v.clamp(0, max);
-            }
-            let span = Span {
-                x0: xs as usize,
-                x1: xe as usize,
-                row,
-                start,
-                gx: self.gx,
-            };
-            let dither = dither && C::can_dither();
-            let written = if Z == NONE {
-                if flat {
-                    let c = C::from_channels(self.flat_channels());
-                    span.fill_flat::<C, NONE>(colors, depth, c)
-                } else {
-                    span.fill_gouraud::<C, NONE>(colors, depth, dither)
-                }
-            } else if flat {
-                let c = C::from_channels(self.flat_channels());
-                by_depth_test!(test, T => span.fill_flat::<C, T>(colors, depth, c))
+        let skip = xs - lc;
+        let mut start = [0i32; 4];
+        for k in 0..self.n_attrs() {
+            let max = if k == 0 {
+                DEPTH_MAX << DEPTH_FRAC_BITS
             } else {
-                by_depth_test!(test, T => span.fill_gouraud::<C, T>(colors, depth, dither))
+                (C::CHANNEL_MAX[k - 1] as i32) << COLOR_FRAC_BITS
             };
-            counts = ((xe - xs) as u32, written);
+            let v = if skip == 0 {
+                self.row[k]
+            } else {
+                self.row[k].wrapping_add(self.gx[k].wrapping_mul(skip))
+            };
+            start[k] = v.clamp(0, max);
         }
-        let next = row + 1;
-        if next >= self.row_end as i32 {
-            return (counts.0, counts.1, true);
+        let span = Span {
+            x0: xs as usize,
+            x1: xe as usize,
+            row,
+            start,
+            gx: self.gx,
+        };
+        if Z == NONE {
+            if flat {
+                let c = C::from_channels(self.flat_channels());
+                span.fill_flat::<C, NONE>(colors, depth, c)
+            } else {
+                span.fill_gouraud::<C, NONE>(colors, depth, dither)
+            }
+        } else if flat {
+            let c = C::from_channels(self.flat_channels());
+            by_depth_test!(test, T => span.fill_flat::<C, T>(colors, depth, c))
+        } else {
+            by_depth_test!(test, T => span.fill_gouraud::<C, T>(colors, depth, dither))
         }
-        self.advance(next);
-        self.set_routine_rows(next, dither && C::can_dither());
-        (counts.0, counts.1, false)
     }
 }
 

@@ -13,7 +13,8 @@ use embedded_graphics_core::Pixel;
 use crate::num::scalar::Scalar;
 use crate::raster::depth_mode::{draw_row_no_depth, painter_insert, painter_key};
 use crate::raster::seek::Rows;
-use crate::raster::textured::{attach_pushed, draw_row_textured, is_textured, TEXTURED};
+use crate::raster::kind::{draw_row, enter};
+use crate::raster::span::LESS;
 use crate::raster::{ActiveList, SpanMode};
 use crate::scene::color::{rgb565_word, rgb565_words_mut, TargetColor};
 
@@ -476,19 +477,24 @@ pub(crate) fn strip_rows<
         }
         for t in bucket {
             let rec = tris[t];
-            let h = vh as i32;
-            // A textured triangle is set up as an ordinary one (no fast path) and gets its
-            // planes after. (Constant tests: without attribute stores this is the loop it
-            // was.)
-            let textured = XV > 0 && XA > 0 && is_textured(&rec, xverts);
-            let m = if textured { SpanMode::default() } else { mode };
             let before = active.len();
             // Full only under `OverflowPolicy::DrawWhatFits` (the largest number of rows'
-            // overlaps was checked): the triangle is left out and counted.
-            if !active.push_with(|a| a.setup::<C>(&rec, verts, row as i32, h, m))
-                || (textured
-                    && !attach_pushed::<C, ACTIVE>(active, before, xactive, &rec, verts, xverts))
-            {
+            // overlaps was checked): the triangle is left out and counted. (`XV`, `XA`:
+            // constant tests, so that a renderer without attribute stores compiles the
+            // setup without the pool.)
+            let h = vh as i32;
+            if !enter::<C, ACTIVE>(
+                XV > 0 && XA > 0,
+                active,
+                xactive,
+                &rec,
+                verts,
+                xverts,
+                row as i32,
+                h,
+                mode,
+                |_| {},
+            ) {
                 *skipped = skipped.saturating_add(1);
             } else if painter && active.len() > before {
                 painter_insert(active, ord.as_deref_mut(), painter_key(&rec, verts));
@@ -508,61 +514,26 @@ pub(crate) fn strip_rows<
             stats.add_row(frag, written);
             continue;
         }
-        if XA > 0 {
-            draw_row_with_textures(
-                active,
-                xactive,
-                row,
-                &mut color[l][..vw],
-                &mut depth[l][..vw],
-                depth_test,
-                dither,
-                stats,
-            );
-            continue;
-        }
-        // (`row_loop` written out: the Pico's frame rate measured 0.06 % lower through the
-        // function when the layered frames came, and 0.025 % lower (900 cycles a frame)
-        // through the inlined `row_loop` when the loops became one.)
-        let mut i = 0;
-        loop {
-            if let Some(words) = rgb565_words_mut(&mut color[l][..vw]) {
-                if let Some((next, frag, written)) =
-                    kernel::rows565(active, i, words, &mut depth[l][..vw], row, dither)
-                {
-                    stats.add_row(frag, written);
-                    i = next;
-                }
-            }
-            if i >= active.len() {
-                break;
-            }
-            let (frag, written, done) = active.get_mut(i).draw_row(
-                row as i32,
-                &mut color[l][..vw],
-                &mut depth[l][..vw],
-                depth_test,
-                dither,
-            );
-            stats.add_row(frag, written);
-            if done {
-                active.swap_remove(i);
-            } else {
-                i += 1;
-            }
-        }
+        draw_list_row::<C, ACTIVE, XA>(
+            active,
+            xactive,
+            row,
+            &mut color[l][..vw],
+            &mut depth[l][..vw],
+            depth_test,
+            dither,
+            stats,
+        );
     }
     *next_row = y0 + lines;
     Some((y0, lines))
 }
 
-/// Draws one row of every triangle of `active` into a strip line: the RGB565 row kernel where
-/// it runs, then each remaining triangle's row, a textured one's by [`draw_row_textured`] (only
-/// when the renderer has a textured triangles' pool, `XA > 0`, so that a renderer without it
-/// compiles the loop without the test). Removes the triangles whose last row this was. The one
-/// row loop of every strip pass (opaque, layered); inlined where it is called (the Pico's frame
-/// rate measured 0.06 % lower through a call), except for a renderer with the pool, whose loop
-/// is [`draw_row_with_textures`], apart.
+/// Draws one row of every triangle of `active` into a strip line ([`row_loop`]), with the pool
+/// kinds' arms only when the renderer has a pool (`XA > 0`), out of line then, so that the
+/// strip pass of a renderer without the pool stays as small as it was. Removes the triangles
+/// whose last row this was. The one row loop of every strip pass with depth lines (opaque,
+/// layered).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn draw_list_row<C: TargetColor, const N: usize, const XA: usize>(
@@ -576,17 +547,16 @@ pub(crate) fn draw_list_row<C: TargetColor, const N: usize, const XA: usize>(
     stats: &mut Stats,
 ) {
     if XA > 0 {
-        draw_row_with_textures(active, pool, row, colors, depth, test, dither, stats);
+        draw_row_pooled(active, pool, row, colors, depth, test, dither, stats);
     } else {
         row_loop::<C, N, false>(active, pool, row, colors, depth, test, dither, stats);
     }
 }
 
-/// [`draw_list_row`] for a renderer with a textured triangles' pool: out of line, so that the
-/// strip pass of a renderer without the pool stays as small as it was.
+/// [`draw_list_row`] for a renderer with the attribute pool.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
-fn draw_row_with_textures<C: TargetColor, const N: usize>(
+fn draw_row_pooled<C: TargetColor, const N: usize>(
     active: &mut crate::raster::ActiveList<N>,
     pool: &mut [crate::raster::attrs::ActiveExtra],
     row: usize,
@@ -599,11 +569,11 @@ fn draw_row_with_textures<C: TargetColor, const N: usize>(
     row_loop::<C, N, true>(active, pool, row, colors, depth, test, dither, stats);
 }
 
-/// The row loop: the row kernel, then each active triangle's row (`TEXTURES`: a textured
-/// triangle's by [`draw_row_textured`]).
+/// The row loop: the row kernel, then each active triangle's row by its kind
+/// ([`draw_row`]; `POOLED`: with the pool kinds' arms).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn row_loop<C: TargetColor, const N: usize, const TEXTURES: bool>(
+fn row_loop<C: TargetColor, const N: usize, const POOLED: bool>(
     active: &mut crate::raster::ActiveList<N>,
     pool: &mut [crate::raster::attrs::ActiveExtra],
     row: usize,
@@ -626,12 +596,15 @@ fn row_loop<C: TargetColor, const N: usize, const TEXTURES: bool>(
         if i >= active.len() {
             break;
         }
-        let a = active.get_mut(i);
-        let (frag, written, done) = if TEXTURES && a.flags & TEXTURED != 0 {
-            draw_row_textured(a, pool, row as i32, colors, depth, test)
-        } else {
-            a.draw_row(row as i32, colors, depth, test, dither)
-        };
+        let (frag, written, done) = draw_row::<C, LESS, POOLED>(
+            active.get_mut(i),
+            pool,
+            row as i32,
+            colors,
+            depth,
+            test,
+            dither,
+        );
         stats.add_row(frag, written);
         if done {
             active.swap_remove(i);

@@ -119,39 +119,21 @@ pub(crate) fn q_from_depth(depth: u32, k24: u32) -> u32 {
     ((1u64 << 24) - dk.min(1 << 24)) as u32
 }
 
-/// Flag of [`ActiveTri::flags`]: the triangle is textured; [`ActiveTri::spare`] is its pool
-/// entry.
-pub(crate) const TEXTURED: u8 = 64;
-
-/// Whether triangle `t` is textured (its first vertex has a texture; a flat triangle's
-/// colour vertex has the attributes of the vertex it copies).
-#[inline(always)]
-pub(crate) fn is_textured(t: &TriRecord, xverts: &[VertexExtra]) -> bool {
-    let i = (t.v[0] & !FLAT_BIT) as usize;
-    xverts
-        .get(i)
-        .is_some_and(|x| x.texture.is_some() || x.mode >= MODE_PHONG)
-}
-
-/// Gives textured triangle `t`, just set up in `rec` (as an ordinary triangle, with the
-/// default [`SpanMode`]), its planes in the free entry of `pool` (the entry's index in
-/// `rec.spare`). Returns false, leaving `rec` as it was, when the pool is full or the vertices'
-/// attributes are missing.
+/// Gives triangle `t`, just set up in `rec` (as an ordinary triangle, with the default
+/// [`SpanMode`]), its planes in a free entry of `pool`: a textured triangle's texture planes,
+/// a per-pixel lit one's normal and position planes. Returns the entry's index, or `None` when
+/// the pool is full or the vertices' attributes are missing (the entry is then left free).
 pub(crate) fn attach_textured<C: TargetColor>(
-    rec: &mut ActiveTri,
+    rec: &ActiveTri,
     pool: &mut [ActiveExtra],
     t: &TriRecord,
     verts: &[ScreenVertex],
     xverts: &[VertexExtra],
-) -> bool {
-    let Some(slot) = pool.iter().position(|e| e.kind == FREE) else {
-        return false;
-    };
+) -> Option<usize> {
+    let slot = pool.iter().position(|e| e.kind == FREE)?;
     let [i0, i1, i2] = t.indices();
     let x0 = xverts[(t.v[0] & !FLAT_BIT) as usize];
-    let (Some(x1), Some(x2)) = (xverts.get(i1), xverts.get(i2)) else {
-        return false;
-    };
+    let (x1, x2) = (xverts.get(i1)?, xverts.get(i2)?);
     let p = [&verts[i0], &verts[i1], &verts[i2]];
     let e = &mut pool[slot];
     *e = ActiveExtra::EMPTY;
@@ -165,7 +147,7 @@ pub(crate) fn attach_textured<C: TargetColor>(
         };
         let (mut normals, mut positions) = (ActiveExtra::EMPTY, ActiveExtra::EMPTY);
         if !set_planes(&mut normals, p, planes(0)) || !set_planes(&mut positions, p, planes(1)) {
-            return false;
+            return None;
         }
         e.set_planes32(&normals, &positions);
         e.mode = x0.mode;
@@ -178,13 +160,9 @@ pub(crate) fn attach_textured<C: TargetColor>(
         let e = &mut pool[slot];
         let index = |i: Option<usize>| i.map_or(-1, |i| i as i32);
         e.base = [index(lights), index(points)];
-        rec.flags |= TEXTURED;
-        rec.spare = slot as i16;
-        return true;
+        return Some(slot);
     }
-    let Some(texture) = x0.texture else {
-        return false;
-    };
+    let texture = x0.texture?;
     e.texture = Some(texture);
     e.key = x0.key;
     e.has_key = x0.has_key;
@@ -230,11 +208,10 @@ pub(crate) fn attach_textured<C: TargetColor>(
     });
     let vals = |d: [i64; 3]| [0, 1, 2].map(|i| (d[i] >> (16 - f)) * qn[i]);
     if !set_planes(e, p, [vals(du), vals(dv), qn]) {
-        return false;
+        *e = ActiveExtra::EMPTY;
+        return None;
     }
-    rec.flags |= TEXTURED;
-    rec.spare = slot as i16;
-    true
+    Some(slot)
 }
 
 /// Sets `e`'s planes through the values `planes[k]` at the vertices `p` (|values| < 2³¹),
@@ -274,99 +251,52 @@ fn set_planes(e: &mut ActiveExtra, p: [&ScreenVertex; 3], planes: [[i64; 3]; 3])
     true
 }
 
-/// After the caller set up textured triangle `t` with [`ActiveList::push_with`] and the
-/// default [`SpanMode`] (its own setup call, so that the ordinary setup keeps its call sites),
-/// `before` being the list's length before: attaches its planes, or leaves it out when the
-/// pool is full. False when it was left out (to be counted).
-pub(crate) fn attach_pushed<C: TargetColor, const N: usize>(
-    active: &mut ActiveList<N>,
-    before: usize,
-    pool: &mut [ActiveExtra],
-    t: &TriRecord,
-    verts: &[ScreenVertex],
-    xverts: &[VertexExtra],
-) -> bool {
-    if active.len() == before {
-        return true; // nothing to draw from this row on
-    }
-    let ok = attach_textured::<C>(active.get_mut(before), pool, t, verts, xverts);
-    if !ok {
-        active.swap_remove(before);
-    }
-    ok
-}
-
-/// A textured triangle's row: draws it like [`ActiveTri::draw_row`] and moves to the next
-/// row; frees its pool entry when it ends. Returns `(fragments, written, finished)`.
-pub(crate) fn draw_row_textured<C: TargetColor>(
-    rec: &mut ActiveTri,
-    pool: &mut [ActiveExtra],
+/// The span of the [`TEXTURED`](crate::raster::kind::TEXTURED) kind (with or without
+/// [`FLAT`]): triangle `rec`'s pixels from column `xs` of `row` (`lc`: its left edge's column),
+/// `zs` and `cs` the span's depth and colours, its planes in its pool entry. Returns the pixels
+/// written.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn span<C: TargetColor>(
+    rec: &ActiveTri,
+    pool: &[ActiveExtra],
+    lc: i32,
+    xs: i32,
     row: i32,
-    colors: &mut [C],
-    depth: &mut [u16],
+    zs: &mut [u16],
+    cs: &mut [C],
     test: DepthTest,
-) -> (u32, u32, bool) {
-    let slot = rec.spare as usize;
-    let width = colors.len().min(depth.len()) as i32;
-    let (lc, rc) = (rec.edges[0].c(), rec.edges[1].c());
-    let (xs, xe) = (lc.max(0), rc.min(width));
-    let mut counts = (0, 0);
-    if xs < xe && pool.get(slot).is_some_and(|e| e.mode >= MODE_PHONG) {
-        let z = rec.row[0].wrapping_add(rec.gx[0].wrapping_mul(xs - lc));
-        let z = z.clamp(0, DEPTH_MAX << DEPTH_FRAC_BITS) + (1 << (DEPTH_FRAC_BITS - 1));
-        let (zs, cs) = (
-            &mut depth[xs as usize..xe as usize],
-            &mut colors[xs as usize..xe as usize],
-        );
-        let written =
-            crate::raster::phong::fill::<C>(pool, slot, xs, row, [z, rec.gx[0]], zs, cs, test);
-        counts = ((xe - xs) as u32, written);
-    } else if xs < xe {
-        if let Some(e) = pool.get(slot) {
-            let e = *e;
-            let skip = xs - lc;
-            let flat = rec.flags & FLAT != 0;
-            let at = |k: usize| rec.row[k].wrapping_add(rec.gx[k].wrapping_mul(skip));
-            let z = at(0).clamp(0, DEPTH_MAX << DEPTH_FRAC_BITS) + (1 << (DEPTH_FRAC_BITS - 1));
-            let mut light = [[0i32; 2]; 3];
-            for k in 0..3 {
-                let (v, g) = if flat {
-                    (e.flat[k], 0)
-                } else {
-                    (at(k + 1), rec.gx[k + 1])
-                };
-                light[k] = modulation::<C>(k, v, g);
-            }
-            let fog = FogSpan::entry(pool);
-            let span = TexSpan {
-                e: &e,
-                x0: xs,
-                row,
-                z: [z, rec.gx[0]],
-                light,
-                fog,
-            };
-            let (zs, cs) = (
-                &mut depth[xs as usize..xe as usize],
-                &mut colors[xs as usize..xe as usize],
-            );
-            let written = if fog.is_some() {
-                by_depth_test!(test, T => span.fill::<C, T, true>(zs, cs))
-            } else {
-                by_depth_test!(test, T => span.fill::<C, T, false>(zs, cs))
-            };
-            counts = ((xe - xs) as u32, written);
-        }
+) -> u32 {
+    let Some(e) = pool.get(rec.spare as usize) else {
+        return 0;
+    };
+    let e = *e;
+    let skip = xs - lc;
+    let flat = rec.flags & FLAT != 0;
+    let at = |k: usize| rec.row[k].wrapping_add(rec.gx[k].wrapping_mul(skip));
+    let z = at(0).clamp(0, DEPTH_MAX << DEPTH_FRAC_BITS) + (1 << (DEPTH_FRAC_BITS - 1));
+    let mut light = [[0i32; 2]; 3];
+    for k in 0..3 {
+        let (v, g) = if flat {
+            (e.flat[k], 0)
+        } else {
+            (at(k + 1), rec.gx[k + 1])
+        };
+        light[k] = modulation::<C>(k, v, g);
     }
-    // The edges and the depth and colour planes move on in the triangle's own row routine,
-    // called for no pixel (its call sites stay those of an ordinary triangle).
-    let (_, _, done) = rec.draw_row::<C>(row, &mut [], &mut [], test, false);
-    if done {
-        if let Some(e) = pool.get_mut(slot) {
-            e.kind = FREE;
-        }
+    let fog = FogSpan::entry(pool);
+    let span = TexSpan {
+        e: &e,
+        x0: xs,
+        row,
+        z: [z, rec.gx[0]],
+        light,
+        fog,
+    };
+    if fog.is_some() {
+        by_depth_test!(test, T => span.fill::<C, T, true>(zs, cs))
+    } else {
+        by_depth_test!(test, T => span.fill::<C, T, false>(zs, cs))
     }
-    (counts.0, counts.1, done)
 }
 
 /// Texel maxima of the RGB565 channels.

@@ -1,0 +1,220 @@
+//! The span seam: each active triangle's **span kind**, decided once when the triangle becomes
+//! active ([`enter`], the one setup-and-attach path of every strip pass, layered pass and
+//! seek), and the one place where a row of a triangle is drawn by its kind ([`draw_row`],
+//! called once per triangle and row by every row loop). A new way of filling spans is a new
+//! kind: a constant here, its arm in [`draw_row`] and its choice in [`kind_of_mode`] — no flag
+//! in the row loops, no depth-test `match` of its own (its span loop takes the test as a const
+//! parameter through [`by_depth_test`](crate::raster::span::by_depth_test)).
+//!
+//! A kind is a value of the bits of [`ActiveTri::flags`] that are not row state. The setup
+//! writes the attribute layout's bits ([`FLAT`]: one attribute, [`FAST`]: packed, with
+//! [`DITHER_OK`] for a dithered fast Gouraud triangle; the Thumb setup kernel writes the same
+//! constants); a triangle with a pool entry (its index in [`ActiveTri::spare`]) gets
+//! [`POOL`] and its code at [`enter`]. Row state: [`MID_LEFT`] always, and
+//! [`LAST_IN_ROUTINE`] and [`SWITCH_IN_ROUTINE`] for the [`FAST`] kinds only, which the Cortex-M
+//! row routine draws; a pool kind (never fast) has those two bits, [`DITHER_OK`]'s and bit 7
+//! for its code: 16 codes, each with and without [`FLAT`].
+
+use crate::geometry::project::ScreenVertex;
+use crate::raster::attrs::{ActiveExtra, FREE, MODE_FAST_PHONG, MODE_PHONG, MODE_TOON};
+use crate::raster::span::{LESS, NONE};
+use crate::raster::textured::{attach_textured, VertexExtra};
+use crate::raster::*;
+use crate::scene::color::TargetColor;
+
+/// Bit of a pool kind: the triangle has an entry in the attribute pool, [`ActiveTri::spare`].
+pub(crate) const POOL: u8 = 64;
+/// The bits of a pool kind's code (besides [`POOL`] and [`FLAT`]): free in a triangle that is
+/// not [`FAST`].
+const CODE_BITS: u8 = LAST_IN_ROUTINE | SWITCH_IN_ROUTINE | DITHER_OK | 128;
+/// A pool kind's code `n` (0..16) as flag bits.
+const fn code(n: u8) -> u8 {
+    POOL | ((n & 3) << 3) | ((n & 4) << 3) | ((n & 8) << 4)
+}
+const _: () = assert!(code(15) & !POOL == CODE_BITS && LAST_IN_ROUTINE == 8);
+const _: () = assert!(SWITCH_IN_ROUTINE == 16 && DITHER_OK == 32 && FAST == 4);
+
+// The kinds. Without a pool entry (the setup decides among these):
+/// Gouraud, 20-bit attribute rows, any depth test and colour type (`Span::fill_gouraud`).
+pub(crate) const GOURAUD: u8 = 0;
+/// Flat, any depth test and colour type (`Span::fill_flat`).
+pub(crate) const FLAT_KIND: u8 = FLAT;
+/// Fast Gouraud: packed rows, `Less`, channels of at most 6 bits (`span_packed`, or dithered
+/// by `span_packed_dither_clamped`), and the Cortex-M row routine.
+pub(crate) const FAST_GOURAUD: u8 = FAST;
+/// Fast Gouraud that may be dithered without clamping (`span_packed_dither`).
+pub(crate) const FAST_GOURAUD_DITHER: u8 = FAST | DITHER_OK;
+/// Fast flat: `Less` (`span_flat`).
+pub(crate) const FAST_FLAT: u8 = FAST | FLAT;
+// [`draw_row`] tells the fast kinds by their bit.
+const _: () = assert!(FAST_GOURAUD & FAST_GOURAUD_DITHER & FAST_FLAT & FAST != 0);
+// With a pool entry (chosen at [`enter`] from the first vertex's attribute mode):
+/// Textured, the texture modulated by the Gouraud rows (with [`FLAT`]: by the face colour).
+pub(crate) const TEXTURED: u8 = code(0);
+/// Textured, modulated by the face colour.
+pub(crate) const TEXTURED_FLAT: u8 = TEXTURED | FLAT;
+/// Phong: lit per pixel from the interpolated normal.
+pub(crate) const PHONG: u8 = code(1);
+/// Fast Phong: lit every 8th pixel, linear in between.
+pub(crate) const FAST_PHONG: u8 = code(2);
+/// Toon: lit per pixel from the interpolated normal, the diffuse term in bands.
+pub(crate) const TOON: u8 = code(3);
+
+impl ActiveTri {
+    /// The span kind: the flag bits without the row state.
+    #[inline(always)]
+    pub(crate) fn kind(&self) -> u8 {
+        // (FAST = 4: times 6 is LAST_IN_ROUTINE | SWITCH_IN_ROUTINE for a fast triangle.)
+        self.flags & !(MID_LEFT | ((self.flags & FAST) * 6))
+    }
+
+    /// Whether the triangle has an entry in the attribute pool ([`ActiveTri::spare`]).
+    #[inline(always)]
+    pub(crate) fn has_pool_entry(&self) -> bool {
+        self.flags & POOL != 0
+    }
+}
+
+/// The pool kind of a triangle whose first vertex has attribute mode `mode` (a texture mode's
+/// index, or a lighting mode), without [`FLAT`].
+fn kind_of_mode(mode: u8) -> u8 {
+    match mode {
+        MODE_PHONG => PHONG,
+        MODE_FAST_PHONG => FAST_PHONG,
+        MODE_TOON => TOON,
+        _ => TEXTURED,
+    }
+}
+
+/// Whether triangle `t` needs a pool entry: its first vertex has attributes (a texture or a
+/// per-pixel lighting mode; a flat triangle's colour vertex has the attributes of the vertex
+/// it copies).
+#[inline(always)]
+pub(crate) fn needs_pool(t: &TriRecord, xverts: &[VertexExtra]) -> bool {
+    let i = (t.v[0] & !FLAT_BIT) as usize;
+    xverts
+        .get(i)
+        .is_some_and(|x| x.texture.is_some() || x.mode >= MODE_PHONG)
+}
+
+/// Makes triangle `t` active at `row` in `active`: set up for the strip's `mode` (its kind
+/// decided), and, when it needs one (`pooled`: the renderer has attribute stores, a constant
+/// where it is called, else never),
+/// given its planes in a free entry of `pool` and its pool kind. `then` runs on the record
+/// once it is kept (a seek moves it to its row there). Returns false when it was left out (the
+/// list or the pool full: the caller counts it); true also when it covers no row and was not
+/// added (the list's length tells).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn enter<C: TargetColor, const N: usize>(
+    pooled: bool,
+    active: &mut ActiveList<N>,
+    pool: &mut [ActiveExtra],
+    t: &TriRecord,
+    verts: &[ScreenVertex],
+    xverts: &[VertexExtra],
+    row: i32,
+    height: i32,
+    mode: SpanMode,
+    then: impl FnOnce(&mut ActiveTri),
+) -> bool {
+    let pooled = pooled && needs_pool(t, xverts);
+    // A pool kind is set up as an ordinary triangle (no fast path).
+    let m = if pooled { SpanMode::default() } else { mode };
+    let before = active.len();
+    if !active.push_with(|a| a.setup::<C>(t, verts, row, height, m)) {
+        return false;
+    }
+    if active.len() == before {
+        return true; // nothing to draw from this row on
+    }
+    let a = active.get_mut(before);
+    if pooled {
+        let x0 = xverts[(t.v[0] & !FLAT_BIT) as usize];
+        match attach_textured::<C>(a, pool, t, verts, xverts) {
+            Some(slot) => {
+                a.flags |= kind_of_mode(x0.mode);
+                a.spare = slot as i16;
+            }
+            None => {
+                active.swap_remove(before);
+                return false;
+            }
+        }
+    }
+    then(active.get_mut(before));
+    true
+}
+
+/// Draws row `row` of triangle `a` by its kind into one line of the strip (`colors`, and
+/// `depth` unless `Z` is [`NONE`]: a renderer without depth lines) and moves it to the next
+/// row; frees its pool entry when this was its last row. `POOLED`: the renderer has attribute
+/// stores (without them, the pool kinds' arms are compiled out). Returns `(fragments tested,
+/// pixels written, finished)`. The one dispatch on the kind.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+pub(crate) fn draw_row<C: TargetColor, const Z: u8, const POOLED: bool>(
+    a: &mut ActiveTri,
+    pool: &mut [ActiveExtra],
+    row: i32,
+    colors: &mut [C],
+    depth: &mut [u16],
+    test: DepthTest,
+    dither: bool,
+) -> (u32, u32, bool) {
+    let width = if Z == NONE {
+        colors.len()
+    } else {
+        colors.len().min(depth.len())
+    } as i32;
+    let lc = a.edges[0].c();
+    let (xs, xe) = (lc.max(0), a.edges[1].c().min(width));
+    let dither = dither && C::can_dither();
+    let mut counts = (0, 0);
+    if xs < xe {
+        let k = a.kind();
+        let (x0, x1) = (xs as usize, xe as usize);
+        let written = match k {
+            // The common case first, by its bit.
+            _ if k & FAST != 0 => a.fast_span::<C, Z>(lc, xs, xe, row, colors, depth, dither),
+            GOURAUD | FLAT_KIND => a.span::<C, Z>(lc, xs, xe, row, colors, depth, test, dither),
+            TEXTURED | TEXTURED_FLAT if POOLED => {
+                let (zs, cs) = (&mut depth[x0..x1], &mut colors[x0..x1]);
+                crate::raster::textured::span::<C>(a, pool, lc, xs, row, zs, cs, test)
+            }
+            PHONG | FAST_PHONG | TOON if POOLED => {
+                let (zs, cs) = (&mut depth[x0..x1], &mut colors[x0..x1]);
+                crate::raster::phong::span::<C>(a, k, pool, lc, xs, row, zs, cs, test)
+            }
+            _ => 0,
+        };
+        counts = ((xe - xs) as u32, written);
+    }
+    let next = row + 1;
+    if next >= a.row_end as i32 {
+        if POOLED && a.has_pool_entry() {
+            if let Some(e) = pool.get_mut(a.spare as usize) {
+                e.kind = FREE;
+            }
+        }
+        return (counts.0, counts.1, true);
+    }
+    a.advance(next);
+    a.set_routine_rows(next, dither);
+    (counts.0, counts.1, false)
+}
+
+impl ActiveTri {
+    /// Row `row` of a triangle without a pool entry, with depth test `Less` (the self-tests'
+    /// and unit tests' entry; the strip passes call [`draw_row`]).
+    pub(crate) fn draw_row<C: TargetColor>(
+        &mut self,
+        row: i32,
+        colors: &mut [C],
+        depth: &mut [u16],
+        test: DepthTest,
+        dither: bool,
+    ) -> (u32, u32, bool) {
+        draw_row::<C, LESS, false>(self, &mut [], row, colors, depth, test, dither)
+    }
+}
