@@ -263,11 +263,38 @@ fn phong_frames_match_their_golden_images() {
         f.assert_each_written_once();
         common::check_golden(&format!("{}_{ty}", b.name()), &f);
     }
-    for b in [Bench::Phong, Bench::PhongFast, Bench::PhongGouraud] {
+    for b in [Bench::Phong, Bench::PhongFast, Bench::PhongGouraud, Bench::Toon] {
         one::<Q>(b, "I16F16");
         one::<f32>(b, "f32");
         one::<f64>(b, "f64");
     }
+}
+
+/// The toon frame with the renderer's dithering on: its golden image (looked at), and the
+/// dithering changes pixels within a tone only, by at most one RGB565 step a channel.
+#[test]
+fn toon_with_dithering_matches_its_golden_image() {
+    use scanline3d_support::demo::{render_bench, Bench};
+    let frame = |dither: bool| {
+        let mut f = Frame::new(240, 240, Rgb565::BLACK);
+        render_bench::<Q, Rgb565, _, _>(Bench::Toon, 0.0, dither, &mut f, &mut scanline3d::NoProbe)
+            .unwrap();
+        f.assert_each_written_once();
+        f
+    };
+    let (plain, dithered) = (frame(false), frame(true));
+    common::check_golden("toon_dithered_I16F16", &dithered);
+    let mut changed = 0;
+    for (a, b) in plain.px.iter().zip(&dithered.px) {
+        let d = [
+            a.r().abs_diff(b.r()),
+            a.g().abs_diff(b.g()),
+            a.b().abs_diff(b.b()),
+        ];
+        assert!(d.iter().all(|&d| d <= 1), "{a:?} {b:?}");
+        changed += usize::from(a != b);
+    }
+    assert!(changed > 1000, "dithering changed {changed} pixels");
 }
 
 /// The reference rasterizer's approach (`tests/reference_raster.rs`) extended to normals:
@@ -289,6 +316,18 @@ mod reference {
     /// The largest difference (RGB565 steps, red and green) over the drawn pixels inside the
     /// triangle, and those pixels.
     fn check(p: [[i32; 2]; 3], normals: [[f64; 3]; 3]) -> (f64, u32) {
+        check_shading(p, normals, None).0
+    }
+
+    /// [`check`] for Phong (`bands` `None`) or toon shading in `bands` tones, whose reference
+    /// is `255·⌈N̂·L·bands⌉/bands`; returns also the pixels left out because `N̂·L·bands` is
+    /// within 0.002 of a whole number (a band's edge, where the Q1.14 normal may fall either
+    /// side).
+    fn check_shading(
+        p: [[i32; 2]; 3],
+        normals: [[f64; 3]; 3],
+        bands: Option<u8>,
+    ) -> ((f64, u32), u32) {
         let area = |p: &[[i32; 2]; 3]| {
             let [a, b, c] = p.map(|q| q.map(i64::from));
             (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])
@@ -300,7 +339,7 @@ mod reference {
         }
         let det = area(&p);
         if det == 0 {
-            return (0.0, 0);
+            return ((0.0, 0), 0);
         }
         let pos: Vec<[f32; 3]> = p
             .iter()
@@ -314,7 +353,12 @@ mod reference {
         let objects = [Object {
             mesh,
             transform: Mat4::identity(),
-            material: Material::matte([255; 3], 0.0, 1.0).phong(),
+            material: Material::matte([255; 3], 0.0, 1.0).shading(match bands {
+                None => Shading::Phong,
+                Some(b) => Shading::Toon {
+                    bands: core::num::NonZeroU8::new(b).unwrap(),
+                },
+            }),
         }];
         let scene = Scene::new(
             &objects,
@@ -324,7 +368,7 @@ mod reference {
         let mut r: Box<Renderer<f32, Rgb565, 64, 64, 8, 8, 8, 1, 8, 8>> = Box::default();
         let mut f = Frame::new(SIZE, SIZE, Rgb565::BLACK);
         r.render_probed(&scene, &mut f, &mut Snap(&p)).unwrap();
-        let (mut worst, mut seen) = (0.0f64, 0);
+        let (mut worst, mut seen, mut edges) = (0.0f64, 0, 0);
         for y in 0..SIZE {
             for x in 0..SIZE {
                 let (cx, cy) = (16 * x as i64 + 8, 16 * y as i64 + 8);
@@ -340,7 +384,18 @@ mod reference {
                 if dot(n, n) < 1e-4 {
                     continue; // opposite normals cancel: no direction to compare
                 }
-                let want = 255.0 * dot(unit(n), L).max(0.0);
+                let d = dot(unit(n), L).max(0.0);
+                let want = match bands {
+                    None => 255.0 * d,
+                    Some(b) => {
+                        let t = d * b as f64;
+                        if d > 0.0 && (t - t.round()).abs() < 0.002 * b as f64 {
+                            edges += 1;
+                            continue;
+                        }
+                        255.0 * t.ceil() / b as f64
+                    }
+                };
                 let c = f.get(x, y);
                 let e = (c.r() as f64 - want * 31.0 / 255.0)
                     .abs()
@@ -349,7 +404,7 @@ mod reference {
                 seen += 1;
             }
         }
-        (worst, seen)
+        ((worst, seen), edges)
     }
 
     #[test]
@@ -386,5 +441,41 @@ mod reference {
             worst.get()
         );
         assert!(total.get() > 20_000, "{}", total.get());
+    }
+
+    /// Toon shading against the same reference, banded: every pixel off a band's edge has its
+    /// band's colour (within the 5/6-bit rounding).
+    #[test]
+    fn toon_bands_match_the_f64_normal_interpolation() {
+        let coord = -16..(SIZE as i32 * 16 + 16);
+        let tri = [
+            [coord.clone(), coord.clone()],
+            [coord.clone(), coord.clone()],
+            [coord.clone(), coord],
+        ];
+        let n = || [-1.0f64..1.0, -1.0f64..1.0, 0.05f64..1.0];
+        let mut runner = TestRunner::new_with_rng(
+            Config {
+                cases: 120,
+                ..Config::default()
+            },
+            TestRng::from_seed(RngAlgorithm::ChaCha, &SEED),
+        );
+        let (total, edges) = (std::cell::Cell::new(0u32), std::cell::Cell::new(0u32));
+        runner
+            .run(&(tri, [n(), n(), n()], 1u8..9), |(p, ns, bands)| {
+                let ((w, seen), e) = check_shading(p, ns, Some(bands));
+                total.set(total.get() + seen);
+                edges.set(edges.get() + e);
+                prop_assert!(w <= 0.75, "{bands} bands: {w} RGB565 steps off");
+                Ok(())
+            })
+            .unwrap();
+        println!(
+            "toon against the f64 normal interpolation: {} pixels, {} at a band's edge left out",
+            total.get(),
+            edges.get()
+        );
+        assert!(total.get() > 10_000 && edges.get() < total.get() / 50);
     }
 }

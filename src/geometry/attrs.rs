@@ -7,7 +7,7 @@ use crate::geometry::project::ScreenVertex;
 use crate::geometry::ObjectSetup;
 use crate::num::math::{normalize, sub, Vec3};
 use crate::num::scalar::Scalar;
-use crate::raster::attrs::{FREE, LIGHTS, MATERIAL};
+use crate::raster::attrs::{lit_mode, FREE, LIGHTS, MATERIAL, MODE_PHONG};
 use crate::raster::fog::FogSpan;
 use crate::raster::phong::{
     PhongLight, PhongLights, PhongMaterial, PhongPoint, PhongPoints, MAX_PHONG_LIGHTS, TONE_FILMIC,
@@ -59,7 +59,7 @@ impl<
                     o.phong_normal(ns[i - base]),
                     bits.map_or([0; 3], |b| o.phong_position(mesh.positions()[i - base], b)),
                     o.phong_material(),
-                    phong == Shading::FastPhong,
+                    lit_mode(phong).unwrap_or(MODE_PHONG),
                 ),
                 (Some(map), Some(uvs), _) => {
                     let st = uvs[i - base].map(|c| c.to_fixed_i32(16));
@@ -112,8 +112,8 @@ impl<
             let x = x.map(|v| v.map(|c| c.clamp(-32768, 32767) as i64));
             let n = [0, 1, 2].map(|j| mix(n[0][j], n[1][j], n[2][j]));
             let x = [0, 1, 2].map(|j| mix(x[0][j], x[1][j], x[2][j]));
-            let fast = material.shading == Shading::FastPhong;
-            self.xverts[at] = VertexExtra::phong(n, x, o.phong_material(), fast);
+            let mode = lit_mode(material.shading).unwrap_or(MODE_PHONG);
+            self.xverts[at] = VertexExtra::phong(n, x, o.phong_material(), mode);
             return;
         }
         let (Some(map), Some(uvs)) = (&material.texture, o.obj.mesh.uvs()) else {
@@ -263,6 +263,10 @@ impl<
                 v,
                 lv,
                 tone,
+                bands: match m.shading {
+                    Shading::Toon { bands } => bands.get(),
+                    _ => 0,
+                },
             };
             pm.store(&mut self.xactive[slot]);
             self.xactive[slot].kind = MATERIAL;

@@ -63,6 +63,17 @@ pub(crate) const MODE_FAST_PHONG: u8 = 5;
 /// [`VertexExtra::mode`] of a vertex of a [`crate::Shading::Toon`] object.
 pub(crate) const MODE_TOON: u8 = 6;
 
+/// [`VertexExtra::mode`] of a vertex of an object lit per pixel with `shading` (the pool kind
+/// its triangles get, `kind::enter`); `None` for a shading lit per vertex or face.
+pub(crate) fn lit_mode(shading: crate::Shading) -> Option<u8> {
+    match shading {
+        crate::Shading::Phong => Some(MODE_PHONG),
+        crate::Shading::FastPhong => Some(MODE_FAST_PHONG),
+        crate::Shading::Toon { .. } => Some(MODE_TOON),
+        _ => None,
+    }
+}
+
 impl ActiveExtra {
     pub(crate) const EMPTY: ActiveExtra = ActiveExtra {
         val: [0; 3],

@@ -184,7 +184,7 @@ pub(crate) fn draw_row<C: TargetColor, const Z: u8, const POOLED: bool>(
             }
             PHONG | FAST_PHONG | TOON if POOLED => {
                 let (zs, cs) = (&mut depth[x0..x1], &mut colors[x0..x1]);
-                crate::raster::phong::span::<C>(a, k, pool, lc, xs, row, zs, cs, test)
+                crate::raster::phong::span::<C>(a, k, pool, lc, xs, row, zs, cs, test, dither)
             }
             _ => 0,
         };

@@ -14,12 +14,12 @@ use crate::error::{LayerError, MAX_TRANSLUCENT};
 use crate::kernel;
 use crate::kernel::records::{first_pixel, ActiveList, ScreenVertex, TriRecord};
 use crate::num::scalar::Scalar;
+use crate::raster::kind::enter;
 use crate::raster::layer_rows::{
     blend, darken_span, div255, outline_row, shadow_row, translucent_row, volume_row, Darken, Post,
 };
 use crate::raster::shadow::{blob_disc, Edges, Layering, ShadowLight, ShadowMethod, BLOB_FAN};
 use crate::raster::strip::draw_list_row;
-use crate::raster::kind::enter;
 use crate::raster::volume::{volume_sign, Lines, Pick};
 use crate::raster::SpanMode;
 use crate::renderer::*;
@@ -651,7 +651,18 @@ impl<
             // A shadow polygon or a translucent triangle: unpacked rows (no fast path).
             let before = layers.post.len();
             let m = SpanMode::default();
-            if !enter::<C, PA>(false, &mut layers.post, &mut [], rec, verts, &[], row as i32, h, m, |_| {}) {
+            if !enter::<C, PA>(
+                false,
+                &mut layers.post,
+                &mut [],
+                rec,
+                verts,
+                &[],
+                row as i32,
+                h,
+                m,
+                |_| {},
+            ) {
                 return false;
             }
             if layers.post.len() > before {

@@ -18,11 +18,12 @@
 use crate::geometry::project::{DEPTH_FRAC_BITS, DEPTH_MAX};
 use crate::num::scalar::{bitlen32, mul_wide, recip_norm};
 use crate::raster::attrs::{ActiveExtra, POINTS};
-use crate::raster::kind::FAST_PHONG;
 use crate::raster::fog::FogSpan;
+use crate::raster::kind::{FAST_PHONG, TOON};
 use crate::raster::span::{by_depth_test, passes};
 use crate::raster::{ActiveTri, DepthTest, COLOR_FRAC_BITS};
 use crate::scene::color::TargetColor;
+use crate::scene::color::BAYER;
 use crate::scene::effects::MAX_PHONG_POINT_LIGHTS;
 
 /// The most directional lights Phong shading takes (more are left out of it).
@@ -64,6 +65,8 @@ pub(crate) struct PhongMaterial {
     /// map, `k` holds the coefficients times the exposure (ambient) or times the intensity and
     /// the exposure (diffuse, specular).
     pub(crate) tone: u8,
+    /// [`crate::Shading::Toon`]'s bands (1..=255), 0 for Phong.
+    pub(crate) bands: u8,
 }
 
 /// [`PhongMaterial::tone`]: the lit channel clamped to 255 (no tone map, or the clamp curve).
@@ -221,7 +224,8 @@ impl PhongMaterial {
             | (self.color[1] as i64) << 8
             | (self.color[2] as i64) << 16
             | (self.shininess as i64) << 24
-            | (self.tone as i64) << 32;
+            | (self.tone as i64) << 32
+            | (self.bands as i64) << 40;
         words[4] = pack3(self.v);
         for k in 0..MAX_PHONG_LIGHTS {
             words[5 + k] = self.lv[k] as i64;
@@ -238,6 +242,7 @@ impl PhongMaterial {
             v: unpack3(w[4]),
             lv: [w[5] as i32, w[6] as i32, w[7] as i32, w[8] as i32],
             tone: (w[3] >> 32) as u8,
+            bands: (w[3] >> 40) as u8,
         }
     }
 }
@@ -293,6 +298,9 @@ pub(crate) struct ShadeCtx {
     /// Where the specular sums saturate (Q8.14): white, or with a tone curve
     /// [`HDR_MAX14`].
     spec_cap: i32,
+    /// Toon: the bands (0 for Phong) and one band's step of `N·L`, `⌊1/bands⌋` in Q1.14.
+    bands: i32,
+    band_step: i32,
 }
 
 /// The point lights of a span in the forms [`shade`] uses ([`PhongPoints`]), their count
@@ -345,6 +353,8 @@ impl ShadeCtx {
             shininess: m.shininess,
             lv: m.lv,
             tone: m.tone,
+            bands: m.bands as i32,
+            band_step: ONE / (m.bands as i32).max(1),
             spec_cap: if m.tone == TONE_NONE {
                 WHITE14
             } else {
@@ -421,12 +431,40 @@ fn point_dir(p: &PointCtx, x: [i32; 3], bits: u32) -> Option<([i32; 3], i32)> {
     Some((dir, att.min(1 << 16)))
 }
 
+/// `N·L` (Q1.14, > 0) as the diffuse term takes it: as it is for Phong; for toon (`TOON`)
+/// rounded up to the next of `c.bands` equal steps, `⌈N·L·bands⌉/bands` (the top step exactly
+/// 1, the others `i·⌊1/bands⌋`, below 2⁻¹⁴ under `i/bands`).
+#[inline(always)]
+fn band<const TOON: bool>(nl: i32, c: &ShadeCtx) -> i32 {
+    if !TOON {
+        return nl;
+    }
+    // nl ≤ 2^14 + 2^10 and bands ≤ 255: the product fits.
+    let i = (nl * c.bands + ONE - 1) >> 14;
+    if i >= c.bands {
+        ONE
+    } else {
+        i * c.band_step
+    }
+}
+
+/// The specular power `p` (Q1.14, 0..=1) as the specular term takes it: as it is for Phong;
+/// for toon (`TOON`) all or nothing, 1 from ½ on.
+#[inline(always)]
+fn hard<const TOON: bool>(p: i32) -> i32 {
+    match (TOON, p >= ONE / 2) {
+        (false, _) => p,
+        (true, true) => ONE,
+        (true, false) => 0,
+    }
+}
+
 /// The lit colour (Q8.14 per channel, clamped to 0..=255) of a point with the interpolated
 /// normal `n` (Q1.14, at most unit length plus the planes' rounding; zero lights ambient
 /// only) at position `x` (read for point lights only: `POINTS`, [`PointsCtx`]). No division: `1/|n|`
 /// is a normalized reciprocal ([`recip_norm`]) of `⌊√(n·n)⌋`; 64-bit products are 32 × 32-bit
 /// ones ([`mul_wide`]).
-pub(crate) fn shade<const POINTS: bool>(
+pub(crate) fn shade<const POINTS: bool, const TOON: bool>(
     n: [i32; 3],
     x: [i32; 3],
     c: &ShadeCtx,
@@ -453,14 +491,15 @@ pub(crate) fn shade<const POINTS: bool>(
                 continue;
             }
             // diffuse · light/255 · N·L (Q8.14; below 2^22 · 4 lights · 1).
-            let d = (mul_wide(diffuse, nl) >> 14) as i32;
+            let d = (mul_wide(diffuse, band::<TOON>(nl, c)) >> 14) as i32;
             for ch in 0..3 {
                 light[ch] += (mul_wide(d, c.frac[k][ch]) >> 16) as i32;
             }
             if specular > 0 {
                 let rv = ((2 * mul_wide(nl, nv)) >> 14) as i32 - c.lv[k];
                 if rv > 0 {
-                    let p = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
+                    let p = hard::<TOON>(pow14(rv.min(ONE), c.shininess));
+                    let p = (mul_wide(specular, p) >> 14) as i32;
                     for ch in 0..3 {
                         // Saturating: the channel is clamped at 255 (the tone curves read
                         // at most 128 × white) anyway.
@@ -470,7 +509,7 @@ pub(crate) fn shade<const POINTS: bool>(
             }
         }
         if POINTS {
-            add_points(&mut light, &mut spec, c, pts, x, n, (m, e), nv);
+            add_points::<TOON>(&mut light, &mut spec, c, pts, x, n, (m, e), nv);
         }
     }
     if c.tone != TONE_NONE {
@@ -497,7 +536,7 @@ fn toned(c: &ShadeCtx, light: &[i32; 3], spec: &[i32; 3]) -> [i32; 3] {
 /// channels, Q8.14) for the normal `n` (clamped) with `1/|n| = m·2^-e`, `N̂·V = nv`, at
 /// position `x`: as a directional light's, toward each light and scaled by its attenuation.
 #[allow(clippy::too_many_arguments)]
-fn add_points(
+fn add_points<const TOON: bool>(
     light: &mut [i32; 3],
     spec: &mut [i32; 3],
     c: &ShadeCtx,
@@ -517,7 +556,7 @@ fn add_points(
         if nl <= 0 {
             continue;
         }
-        let d = (mul_wide(diffuse, nl) >> 14) as i32;
+        let d = (mul_wide(diffuse, band::<TOON>(nl, c)) >> 14) as i32;
         let d = (mul_wide(d, att) >> 16) as i32;
         for ch in 0..3 {
             light[ch] += (mul_wide(d, p.frac[ch]) >> 16) as i32;
@@ -526,7 +565,8 @@ fn add_points(
             let lv = dot(dir, c.v) >> 14;
             let rv = ((2 * mul_wide(nl, nv)) >> 14) as i32 - lv;
             if rv > 0 {
-                let q = (mul_wide(specular, pow14(rv.min(ONE), c.shininess)) >> 14) as i32;
+                let q = hard::<TOON>(pow14(rv.min(ONE), c.shininess));
+                let q = (mul_wide(specular, q) >> 14) as i32;
                 let q = (mul_wide(q, att) >> 16) as i32;
                 for ch in 0..3 {
                     spec[ch] = (spec[ch] + q * p.full[ch]).min(c.spec_cap);
@@ -567,19 +607,26 @@ pub(crate) fn span<C: TargetColor>(
     zs: &mut [u16],
     cs: &mut [C],
     test: DepthTest,
+    dither: bool,
 ) -> u32 {
     let z = rec.row[0].wrapping_add(rec.gx[0].wrapping_mul(xs - lc));
     let z = z.clamp(0, DEPTH_MAX << DEPTH_FRAC_BITS) + (1 << (DEPTH_FRAC_BITS - 1));
     let seg = if kind == FAST_PHONG { FAST_SEGMENT } else { 1 };
     let slot = rec.spare as usize;
-    by_depth_test!(test, T => fill_t::<C, T>(pool, slot, seg, xs, row, [z, rec.gx[0]], zs, cs))
+    let z = [z, rec.gx[0]];
+    if kind == TOON {
+        let dither = dither && C::can_dither();
+        return by_depth_test!(test, T => fill_t::<C, T, true>(pool, slot, 1, dither, xs, row, z, zs, cs));
+    }
+    by_depth_test!(test, T => fill_t::<C, T, false>(pool, slot, seg, false, xs, row, z, zs, cs))
 }
 
 #[allow(clippy::too_many_arguments)]
-fn fill_t<C: TargetColor, const T: u8>(
+fn fill_t<C: TargetColor, const T: u8, const TOON: bool>(
     pool: &[ActiveExtra],
     slot: usize,
     seg: i32,
+    dither: bool,
     x0: i32,
     row: i32,
     z: [i32; 2],
@@ -597,6 +644,7 @@ fn fill_t<C: TargetColor, const T: u8>(
     let span = Span {
         e,
         seg,
+        dither,
         x0,
         row,
         z,
@@ -607,9 +655,9 @@ fn fill_t<C: TargetColor, const T: u8>(
     let fog = FogSpan::load(pool);
     if fog.is_some() || e.base[1] >= 0 {
         let pts = PointsCtx::load(entry(e.base[1]));
-        span.fill::<C, T, true>(&pts, fog.as_ref(), zs, cs)
+        span.fill::<C, T, true, TOON>(&pts, fog.as_ref(), zs, cs)
     } else {
-        span.fill::<C, T, false>(&PointsCtx::NONE, None, zs, cs)
+        span.fill::<C, T, false, TOON>(&PointsCtx::NONE, None, zs, cs)
     }
 }
 
@@ -619,6 +667,8 @@ struct Span<'a> {
     e: &'a ActiveExtra,
     /// Pixels per lit segment: 1, or [`FAST_SEGMENT`] for fast Phong.
     seg: i32,
+    /// Toon only: dither the colour into the target's channels.
+    dither: bool,
     x0: i32,
     row: i32,
     z: [i32; 2],
@@ -628,7 +678,7 @@ struct Span<'a> {
 impl Span<'_> {
     /// Tests and writes the span's pixels; returns how many it wrote. With `FX`, lit with the
     /// point lights `pts` at the interpolated position, and fogged by `fog`.
-    fn fill<C: TargetColor, const T: u8, const FX: bool>(
+    fn fill<C: TargetColor, const T: u8, const FX: bool, const TOON: bool>(
         &self,
         pts: &PointsCtx,
         fog: Option<&FogSpan>,
@@ -651,10 +701,10 @@ impl Span<'_> {
         let lit = |nv: &[i32; 6], z: i32| {
             let n = [nv[0] >> 16, nv[1] >> 16, nv[2] >> 16];
             if !FX {
-                return channels(shade::<false>(n, [0; 3], self.ctx, pts), &factors);
+                return channels(shade::<false, TOON>(n, [0; 3], self.ctx, pts), &factors);
             }
             let x = [nv[3] >> 16, nv[4] >> 16, nv[5] >> 16];
-            let c = shade::<true>(n, x, self.ctx, pts);
+            let c = shade::<true, TOON>(n, x, self.ctx, pts);
             let c = match fog {
                 // Toward the fog colour (Q8.14) by the factor at this depth.
                 Some(f) => {
@@ -677,6 +727,31 @@ impl Span<'_> {
         let [mut z, gz] = self.z;
         let mut written = 0;
         let mut i = 0;
+        if TOON && self.dither {
+            // As the dithered Gouraud spans: ((2·b + 1)/32 of a channel unit, b the Bayer
+            // entry) added before the channel is truncated.
+            let bayer = &BAYER[(self.row & 3) as usize];
+            while i < n {
+                let k = i as usize;
+                let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+                if passes::<T>(z16, zs[k]) {
+                    zs[k] = z16;
+                    let c = lit(&nv, z);
+                    let t = (2 * bayer[((self.x0 + i) & 3) as usize] as i32 + 1)
+                        << (COLOR_FRAC_BITS - 5);
+                    cs[k] = C::from_channels([0, 1, 2].map(|ch| {
+                        ((c[ch] + t) >> COLOR_FRAC_BITS).clamp(0, C::CHANNEL_MAX[ch] as i32) as u8
+                    }));
+                    written += 1;
+                }
+                z = z.wrapping_add(gz);
+                for k in 0..planes {
+                    nv[k] = nv[k].wrapping_add(step[k]);
+                }
+                i += 1;
+            }
+            return written;
+        }
         if seg == 1 {
             while i < n {
                 let k = i as usize;
@@ -778,13 +853,14 @@ mod tests {
             v: q(vd),
             lv: [(lv * ONE as f64).round() as i32, 0, 0, 0],
             tone: TONE_NONE,
+            bands: 0,
         };
         let mut worst = 0.0f64;
         for i in 0..200 {
             let a = i as f64 * 0.1;
             let n = unit([a.sin(), (a * 0.7).cos(), 0.5 + (a * 1.3).sin().abs()]);
             // A shorter normal (as interpolation gives) must light the same.
-            let got = shade::<false>(
+            let got = shade::<false, false>(
                 q(n.map(|c| c * 0.8)),
                 [0; 3],
                 &ShadeCtx::new(&lights, &m),
@@ -838,9 +914,41 @@ mod tests {
             v: [-16384, 5, 16383],
             lv: [-12000, 16384, 0, -1],
             tone: TONE_FILMIC,
+            bands: 255,
         };
         m.store(&mut e);
         assert_eq!(PhongMaterial::load(&e), m);
+    }
+
+    /// Toon's diffuse steps against `⌈N·L·bands⌉/bands` in f64: the same step for every `N·L`
+    /// of the lit side, its value within `bands` units of 2⁻¹⁴ below (exact at the top), never
+    /// decreasing; Phong's `N·L` unchanged. The specular term is 0 below ½ and 1 from ½ on.
+    #[test]
+    fn toon_bands_follow_the_definition() {
+        for bands in [1u8, 2, 3, 4, 5, 7, 16, 255] {
+            let m = PhongMaterial {
+                bands,
+                ..PhongMaterial::default()
+            };
+            let c = ShadeCtx::new(&PhongLights::default(), &m);
+            let mut last = 0;
+            for nl in 1..=ONE + 1024 {
+                let got = band::<true>(nl, &c);
+                let x = nl.min(ONE) as f64 / ONE as f64;
+                let want = (x * bands as f64).ceil() / bands as f64;
+                let err = want * ONE as f64 - got as f64;
+                assert!(
+                    (0.0..=bands as f64).contains(&err),
+                    "{bands} {nl}: {got} {want}"
+                );
+                assert!(got >= last, "{bands} {nl}");
+                last = got;
+                assert_eq!(band::<false>(nl, &c), nl);
+            }
+            assert_eq!(last, ONE);
+        }
+        assert_eq!((hard::<true>(ONE / 2 - 1), hard::<true>(ONE / 2)), (0, ONE));
+        assert_eq!(hard::<false>(123), 123);
     }
 
     /// The integer tone curves against the f64 ones: within 1/8 of a channel unit (the filmic

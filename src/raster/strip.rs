@@ -12,8 +12,8 @@ use embedded_graphics_core::Pixel;
 
 use crate::num::scalar::Scalar;
 use crate::raster::depth_mode::{draw_row_no_depth, painter_insert, painter_key};
-use crate::raster::seek::Rows;
 use crate::raster::kind::{draw_row, enter};
+use crate::raster::seek::Rows;
 use crate::raster::span::LESS;
 use crate::raster::{ActiveList, SpanMode};
 use crate::scene::color::{rgb565_word, rgb565_words_mut, TargetColor};

@@ -53,9 +53,9 @@ impl VertexExtra {
 
     /// The attributes of a vertex of a Phong object: its unit normal (world space, Q1.14)
     /// and its position less the eye's (world space, 2^-bits units, `effects::position_bits`),
-    /// packed as six `i16` in `st` and `q`; the pool entry of its object's material, and the
-    /// variant.
-    pub(crate) fn phong(n: [i32; 3], pos: [i32; 3], material: u16, fast: bool) -> Self {
+    /// packed as six `i16` in `st` and `q`; the pool entry of its object's material, and its
+    /// lighting mode ([`lit_mode`]).
+    pub(crate) fn phong(n: [i32; 3], pos: [i32; 3], material: u16, mode: u8) -> Self {
         let h = |v: i32| (v.clamp(-32768, 32767) as u16) as u32;
         VertexExtra {
             st: [
@@ -66,7 +66,7 @@ impl VertexExtra {
             texture: None,
             key: material,
             has_key: false,
-            mode: if fast { MODE_FAST_PHONG } else { MODE_PHONG },
+            mode,
         }
     }
 

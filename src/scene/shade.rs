@@ -32,13 +32,27 @@ pub enum Shading {
     /// [`Shading::Phong`] lit at every 8th pixel of a span, the colour linear in between:
     /// most of Phong's highlights for additions per pixel.
     FastPhong,
+    /// Toon (cel) shading: [`Shading::Phong`] with hard edges, per pixel. Each light's `N·L`
+    /// on the lit side is rounded up to the next of `bands` equal steps (`⌈N·L·bands⌉/bands`,
+    /// so the lit side shows `bands` flat tones and the side turned away the ambient colour),
+    /// and the specular term is all or nothing (full where `max(0, R·V)^shininess ≥ ½`). With
+    /// the renderer's dithering on, the colour is dithered into the target's channels as
+    /// Gouraud colours are. Needs the attribute stores, as Phong does.
+    Toon {
+        /// Lit tones (1: one tone for the whole lit side).
+        bands: core::num::NonZeroU8,
+    },
 }
 
 impl Shading {
-    /// Whether the shading lights per pixel ([`Shading::Phong`], [`Shading::FastPhong`]).
+    /// Whether the shading lights per pixel ([`Shading::Phong`], [`Shading::FastPhong`],
+    /// [`Shading::Toon`]).
     #[must_use]
     pub const fn is_phong(self) -> bool {
-        matches!(self, Shading::Phong | Shading::FastPhong)
+        matches!(
+            self,
+            Shading::Phong | Shading::FastPhong | Shading::Toon { .. }
+        )
     }
 }
 

@@ -189,6 +189,12 @@ where
     }
 }
 
+/// The toon benchmark scene's bands ([`Bench::Toon`]).
+pub const TOON_BANDS: core::num::NonZeroU8 = match core::num::NonZeroU8::new(4) {
+    Some(b) => b,
+    None => panic!("bands are at least 1"),
+};
+
 /// The lights' intensity in the HDR benchmark scene ([`Bench::HdrGouraud`]).
 pub const HDR_INTENSITY: f64 = 2.0;
 /// The exposure of the HDR benchmark scene.
@@ -423,6 +429,7 @@ where
         }
         Bench::Phong
         | Bench::PhongFast
+        | Bench::Toon
         | Bench::PhongGouraud
         | Bench::PointPhong
         | Bench::PointPhongFast
@@ -434,6 +441,7 @@ where
             let shading = match bench {
                 Bench::Phong | Bench::PointPhong | Bench::HdrPhong => Shading::Phong,
                 Bench::PhongFast | Bench::PointPhongFast => Shading::FastPhong,
+                Bench::Toon => Shading::Toon { bands: TOON_BANDS },
                 _ => Shading::Gouraud,
             };
             let m = Material::matte([60, 110, 210], S::from_f64(0.1), S::from_f64(0.8))

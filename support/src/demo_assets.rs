@@ -275,6 +275,9 @@ pub enum Bench {
     /// The example CSG part (`tests/data/part.csg`: a block with a spherical pocket and a
     /// drilled hole, 210 triangles) baked into flash, Gouraud, one white light.
     Csg,
+    /// [`Bench::Phong`] with [`scanline3d::Shading::Toon`] in [`crate::demo::TOON_BANDS`]
+    /// bands: lit per pixel, hard edges between the tones and at the highlight.
+    Toon,
 }
 
 impl Bench {
@@ -289,7 +292,7 @@ impl Bench {
     }
 
     /// Every benchmark scene.
-    pub const ALL: [Bench; 32] = [
+    pub const ALL: [Bench; 33] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -322,6 +325,7 @@ impl Bench {
         Bench::IcosphereNoDepth,
         Bench::HdrPhong,
         Bench::Csg,
+        Bench::Toon,
     ];
 
     /// Its name in reports.
@@ -339,6 +343,7 @@ impl Bench {
             Bench::TexturedExact => "textured_exact",
             Bench::Phong => "phong",
             Bench::PhongFast => "phong_fast",
+            Bench::Toon => "toon",
             Bench::PhongGouraud => "phong_gouraud",
             Bench::PointPhong => "point_phong",
             Bench::PointPhongFast => "point_phong_fast",

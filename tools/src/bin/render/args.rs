@@ -58,6 +58,9 @@ pub(crate) enum ShadingArg {
     Phong,
     /// Phong lit every 8 pixels, linear between
     FastPhong,
+    /// Phong with hard edges, per pixel: --bands tones on the lit side, an all-or-nothing
+    /// highlight
+    Toon,
     /// Lines along the edges (--edges, default all) over surfaces unlit in the background
     /// colour, which hide the lines behind them (unless --see-through)
     Wireframe,
@@ -257,6 +260,10 @@ fn integer(s: &str, flag: &str, lo: u64, hi: Option<u64>, what: &str) -> Result<
     }
 }
 
+fn bands(s: &str) -> Result<u8, String> {
+    integer(s, "--bands", 1, Some(255), "").map(|v| v as u8)
+}
+
 fn shininess(s: &str) -> Result<u8, String> {
     integer(s, "--shininess", 1, Some(255), "").map(|v| v as u8)
 }
@@ -428,6 +435,9 @@ pub(crate) struct Args {
     /// Shading mode
     #[arg(long, value_enum, default_value = "gouraud")]
     pub(crate) shading: ShadingArg,
+    /// Tones on the lit side with --shading toon, 1-255
+    #[arg(long, value_name = "N", value_parser = bands, default_value = "4")]
+    pub(crate) bands: u8,
     /// Texture image (PNG, power-of-two sides up to 1024): multiplies the lit colour (use
     /// --color 255,255,255 for the image's own colours); the OBJ needs vt, the built-in scenes
     /// have texture coordinates; transparent pixels are not drawn [default: none]

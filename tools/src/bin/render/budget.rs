@@ -155,10 +155,18 @@ pub(crate) fn budget<C: TargetColor>(
         scanline3d::internals::TRIANGLE_BYTES,
         scanline3d::internals::ACTIVE_BYTES
     );
-    if s.texture.is_some() || matches!(args.shading, ShadingArg::Phong | ShadingArg::FastPhong) {
+    if s.texture.is_some()
+        || matches!(
+            args.shading,
+            ShadingArg::Phong | ShadingArg::FastPhong | ShadingArg::Toon
+        )
+    {
         // The attribute stores: every vertex, and every active triangle plus the Phong lights'
         // and material's entries.
-        let reserved = if matches!(args.shading, ShadingArg::Phong | ShadingArg::FastPhong) {
+        let reserved = if matches!(
+            args.shading,
+            ShadingArg::Phong | ShadingArg::FastPhong | ShadingArg::Toon
+        ) {
             2
         } else {
             0

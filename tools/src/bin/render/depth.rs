@@ -32,7 +32,10 @@ impl DepthArg {
 fn needs_depth(args: &Args, textured: bool) -> Option<&'static str> {
     if textured {
         Some("a textured material needs the attribute stores")
-    } else if matches!(args.shading, ShadingArg::Phong | ShadingArg::FastPhong) {
+    } else if matches!(
+        args.shading,
+        ShadingArg::Phong | ShadingArg::FastPhong | ShadingArg::Toon
+    ) {
         Some("Phong shading needs the attribute stores")
     } else if edges::chosen(args) != edges::EdgesArg::None {
         Some("edges are tested against the depth lines")

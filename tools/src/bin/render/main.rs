@@ -423,6 +423,9 @@ fn run<S: Scalar, C: TargetColor>(
             ShadingArg::Gouraud => Shading::Gouraud,
             ShadingArg::Phong => Shading::Phong,
             ShadingArg::FastPhong => Shading::FastPhong,
+            ShadingArg::Toon => Shading::Toon {
+                bands: std::num::NonZeroU8::new(args.bands).unwrap_or(std::num::NonZeroU8::MIN),
+            },
             ShadingArg::Wireframe => Shading::Flat,
         },
         texture: s.texture,

@@ -27,7 +27,10 @@ fn wireframe(a: &Args) -> bool {
 }
 
 fn phong(a: &Args) -> bool {
-    matches!(a.shading, ShadingArg::Phong | ShadingArg::FastPhong)
+    matches!(
+        a.shading,
+        ShadingArg::Phong | ShadingArg::FastPhong | ShadingArg::Toon
+    )
 }
 
 /// The table: for each flag, the scenes and modes that do not use it.
@@ -82,10 +85,11 @@ const UNUSED: &[Unused] = &[
             shadow(a)
                 && matches!(
                     a.shading,
-                    ShadingArg::Flat | ShadingArg::Phong | ShadingArg::FastPhong
+                    ShadingArg::Flat | ShadingArg::Phong | ShadingArg::FastPhong | ShadingArg::Toon
                 )
         },
-        why: "flat, phong or fast-phong is not applied to --scene shadow: it draws its torus \
+        why:
+            "flat, phong, fast-phong or toon is not applied to --scene shadow: it draws its torus \
               Gouraud shaded and its ground and cube flat, or everything as a wireframe \
               (--shading gouraud or wireframe)",
     },
@@ -151,10 +155,16 @@ const UNUSED: &[Unused] = &[
         when: |a| {
             a.dither == OnOff::On
                 && !shadow(a)
-                && (a.shading != ShadingArg::Gouraud || a.texture.is_some())
+                && (!matches!(a.shading, ShadingArg::Gouraud | ShadingArg::Toon)
+                    || a.texture.is_some())
         },
-        why: "on dithers Gouraud gradients: it has no effect with --shading flat, phong, \
-              fast-phong or wireframe, or with --texture",
+        why: "on dithers Gouraud gradients and toon tones: it has no effect with --shading \
+              flat, phong, fast-phong or wireframe, or with --texture",
+    },
+    Unused {
+        flags: &["--bands"],
+        when: |a| a.shading != ShadingArg::Toon,
+        why: "sets the tones of --shading toon only",
     },
     Unused {
         flags: &["--dither"],
