@@ -47,6 +47,9 @@ const SSE = 1 << 1;
 const TXDMAE = 1 << 1;
 const RXDMAE = 1 << 0;
 
+// DMA register offsets.
+const DMA_CHAN_ABORT = 0x444;
+
 // TIMER register offsets.
 const TIMEHR = 0x08;
 const TIMELR = 0x0c;
@@ -175,6 +178,7 @@ export class Machine {
     this.patchQspiSsPad();
     this.patchTimer();
     this.patchSpi();
+    this.patchDmaAbort();
     this.watchDisplayPins();
     // Core 1, the per-core SIO (with the exact divider) and PPB, SEV between the cores.
     this.slots = installCores(this, { core1Boot: o.core1Boot ?? hasRp2040RomHeader(o.bootrom) });
@@ -408,6 +412,19 @@ export class Machine {
       };
       completeAlarm.schedule(bits * perBit * NS_PER_CYCLE);
     };
+  }
+
+  /**
+   * DMA CHAN_ABORT (0x50000444) reads 0. rp2040js implements only its write (which aborts the
+   * channels at once) and reads it as an unimplemented register, 0xffffffff. On the chip a bit
+   * reads 1 while that channel's abort is still flushing, so an idle DMA reads 0; embassy-rp
+   * drops every transfer with a read-modify-write of the register (set its channel's bit), which
+   * with 0xffffffff aborted every channel.
+   */
+  patchDmaAbort() {
+    const { dma } = this.rp2040;
+    const origRead = dma.readUint32.bind(dma);
+    dma.readUint32 = (offset) => (offset === DMA_CHAN_ABORT ? 0 : origRead(offset));
   }
 
   /** A frame finished shifting: hand its byte(s) to the display if it was selected. */

@@ -104,16 +104,23 @@ export function benchmarksBlock(r, profile = null, oneCore = null) {
 }
 
 /**
- * Puts `block` between the markers in `path`, or appends it at the end of the file when the
- * markers are absent. Written atomically.
+ * Puts `block` between the markers in `path` (`markers.start` and `markers.end`, by default the
+ * pico-emu block's), or, when they are absent, after the line that holds `markers.after` (a
+ * marker of another block) if the file has it, else at the end of the file. Written atomically.
  */
-export function updateBenchmarks(path, block) {
+export function updateBenchmarks(path, block, markers = {}) {
+  const start = markers.start ?? START_MARKER;
+  const end = markers.end ?? END_MARKER;
   const old = fs.existsSync(path) ? fs.readFileSync(path, 'utf8') : '';
-  const s = old.indexOf(START_MARKER);
-  const e = old.indexOf(END_MARKER);
+  const s = old.indexOf(start);
+  const e = old.indexOf(end);
+  const a = markers.after ? old.indexOf(markers.after) : -1;
   let text;
   if (s >= 0 && e > s) {
-    text = old.slice(0, s) + block + old.slice(e + END_MARKER.length);
+    text = old.slice(0, s) + block + old.slice(e + end.length);
+  } else if (a >= 0) {
+    const cut = a + markers.after.length;
+    text = `${old.slice(0, cut)}\n\n${block}${old.slice(cut)}`;
   } else {
     text = `${old}${old && !old.endsWith('\n') ? '\n' : ''}${old ? '\n' : ''}${block}\n`;
   }

@@ -60,3 +60,19 @@ test('BENCHMARKS.md: the block is appended once, then replaced in place', () => 
   updateBenchmarks(p, block('two'));
   assert.equal(fs.readFileSync(p, 'utf8'), `# Benchmarks\n\ntext\n\n${block('two')}\n`);
 });
+
+test('a block with markers of its own goes after another block, then is replaced in place', () => {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'pico-emu-'));
+  const p = path.join(dir, 'B.md');
+  const pico = `${START_MARKER}\npico\n${END_MARKER}`;
+  fs.writeFileSync(p, `# Benchmarks\n\n${pico}\n\n## Later\n`);
+  const markers = { start: '<!-- e:start -->', end: '<!-- e:end -->', after: END_MARKER };
+  const block = (x) => `${markers.start}\n${x}\n${markers.end}`;
+  updateBenchmarks(p, block('one'), markers);
+  assert.equal(fs.readFileSync(p, 'utf8'), `# Benchmarks\n\n${pico}\n\n${block('one')}\n\n## Later\n`);
+  updateBenchmarks(p, block('two'), markers);
+  assert.equal(fs.readFileSync(p, 'utf8'), `# Benchmarks\n\n${pico}\n\n${block('two')}\n\n## Later\n`);
+  // The pico-emu block is still found and replaced by the default markers.
+  updateBenchmarks(p, `${START_MARKER}\nnew\n${END_MARKER}`);
+  assert.match(fs.readFileSync(p, 'utf8'), /pico-emu:start -->\nnew\n.*\n\n<!-- e:start -->\ntwo/s);
+});

@@ -127,3 +127,17 @@ test('DC changing while a byte is shifted out is a failure', () => {
   w(SPI1 + 0x08, 0x2c);
   assert.throws(() => w(SIO + 0x18, 1 << 8), /DC \(GP8\) changed .* still shifting out 0x2c/);
 });
+
+test('CHAN_ABORT reads 0, and setting one bit aborts that channel only', () => {
+  const { m, w, bytes } = machine();
+  spiOn(w, 7);
+  m.rp2040.sram.set([1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20], 0);
+  dmaToSpi(w, 1, 0x2000_0000, 20, 0);
+  run(m, 16);
+  // embassy-rp's Transfer::drop: CHAN_ABORT |= 1 << channel, here for the idle channel 0.
+  assert.equal(m.rp2040.readUint32(DMA + 0x444), 0);
+  w(DMA + 0x444, m.rp2040.readUint32(DMA + 0x444) | 1);
+  run(m, 16 * 25);
+  assert.deepEqual(bytes.map((b) => b.value), [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20]);
+  assert.ok(!m.logger.summary().some((s) => /0x444/.test(s)), m.logger.summary().join('; '));
+});
