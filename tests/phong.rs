@@ -263,7 +263,12 @@ fn phong_frames_match_their_golden_images() {
         f.assert_each_written_once();
         common::check_golden(&format!("{}_{ty}", b.name()), &f);
     }
-    for b in [Bench::Phong, Bench::PhongFast, Bench::PhongGouraud, Bench::Toon] {
+    for b in [
+        Bench::Phong,
+        Bench::PhongFast,
+        Bench::PhongGouraud,
+        Bench::Toon,
+    ] {
         one::<Q>(b, "I16F16");
         one::<f32>(b, "f32");
         one::<f64>(b, "f64");

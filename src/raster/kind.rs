@@ -12,8 +12,10 @@
 //! constants); a triangle with a pool entry (its index in [`ActiveTri::spare`]) gets
 //! [`POOL`] and its code at [`enter`]. Row state: [`MID_LEFT`] always, and
 //! [`LAST_IN_ROUTINE`] and [`SWITCH_IN_ROUTINE`] for the [`FAST`] kinds only, which the Cortex-M
-//! row routine draws; a pool kind (never fast) has those two bits, [`DITHER_OK`]'s and bit 7
-//! for its code: 16 codes, each with and without [`FLAT`].
+//! row routine draws (and, with its row count used up, reads on any triangle); a pool kind
+//! (never fast) has [`DITHER_OK`]'s bit and bit 7 for its code: 4 codes, each with and without
+//! [`FLAT`], all used (textured, Phong, fast Phong, toon). A fifth pool kind needs one more
+//! bit: the row routine testing [`FAST`] before the routine bits would free those two.
 
 use crate::geometry::project::ScreenVertex;
 use crate::raster::attrs::{ActiveExtra, FREE, MODE_FAST_PHONG, MODE_PHONG, MODE_TOON};
@@ -24,15 +26,16 @@ use crate::scene::color::TargetColor;
 
 /// Bit of a pool kind: the triangle has an entry in the attribute pool, [`ActiveTri::spare`].
 pub(crate) const POOL: u8 = 64;
-/// The bits of a pool kind's code (besides [`POOL`] and [`FLAT`]): free in a triangle that is
-/// not [`FAST`].
-const CODE_BITS: u8 = LAST_IN_ROUTINE | SWITCH_IN_ROUTINE | DITHER_OK | 128;
-/// A pool kind's code `n` (0..16) as flag bits.
+/// The bits of a pool kind's code (besides [`POOL`] and [`FLAT`]): [`DITHER_OK`]'s, free in
+/// a triangle that is not [`FAST`], and bit 7. ([`LAST_IN_ROUTINE`] and [`SWITCH_IN_ROUTINE`]
+/// are not free: the Cortex-M row routine reads them on any triangle whose routine rows are
+/// used up, and draws it as a fast Gouraud triangle's last or switch row when one is set.)
+const CODE_BITS: u8 = DITHER_OK | 128;
+/// A pool kind's code `n` (0..4) as flag bits.
 const fn code(n: u8) -> u8 {
-    POOL | ((n & 3) << 3) | ((n & 4) << 3) | ((n & 8) << 4)
+    POOL | ((n & 1) << 5) | ((n & 2) << 6)
 }
-const _: () = assert!(code(15) & !POOL == CODE_BITS && LAST_IN_ROUTINE == 8);
-const _: () = assert!(SWITCH_IN_ROUTINE == 16 && DITHER_OK == 32 && FAST == 4);
+const _: () = assert!(code(3) & !POOL == CODE_BITS && DITHER_OK == 32 && FAST == 4);
 
 // The kinds. Without a pool entry (the setup decides among these):
 /// Gouraud, 20-bit attribute rows, any depth test and colour type (`Span::fill_gouraud`).
@@ -150,12 +153,40 @@ pub(crate) fn enter<C: TargetColor, const N: usize>(
 /// `depth` unless `Z` is [`NONE`]: a renderer without depth lines) and moves it to the next
 /// row; frees its pool entry when this was its last row. `POOLED`: the renderer has attribute
 /// stores (without them, the pool kinds' arms are compiled out). Returns `(fragments tested,
-/// pixels written, finished)`. The one dispatch on the kind.
+/// pixels written, finished)`. The one dispatch on the kind: the pool kinds in
+/// [`pool_row`], the others in [`plain_row`], each out of line (in one function, the pool
+/// kinds' code made the plain kinds' rows of a renderer with a pool 50 instructions dearer on
+/// RISC-V: the icosphere's Gouraud frame +7 %).
 #[allow(clippy::too_many_arguments)]
-#[inline(never)]
+#[inline(always)]
 pub(crate) fn draw_row<C: TargetColor, const Z: u8, const POOLED: bool>(
     a: &mut ActiveTri,
     pool: &mut [ActiveExtra],
+    row: i32,
+    colors: &mut [C],
+    depth: &mut [u16],
+    test: DepthTest,
+    dither: bool,
+) -> (u32, u32, bool) {
+    if POOLED && Z != NONE && a.has_pool_entry() {
+        pool_row::<C>(a, pool, row, colors, depth, test, dither)
+    } else {
+        plain_row::<C, Z>(a, row, colors, depth, test, dither)
+    }
+}
+
+/// The columns of `a`'s span on a line of `width` pixels, and its left edge's column.
+#[inline(always)]
+fn columns(a: &ActiveTri, width: usize) -> (i32, i32, i32) {
+    let lc = a.edges[0].c();
+    (lc, lc.max(0), a.edges[1].c().min(width as i32))
+}
+
+/// [`draw_row`] for the kinds without a pool entry: [`FAST_GOURAUD`],
+/// [`FAST_GOURAUD_DITHER`], [`FAST_FLAT`], [`GOURAUD`] and [`FLAT_KIND`].
+#[inline(never)]
+fn plain_row<C: TargetColor, const Z: u8>(
+    a: &mut ActiveTri,
     row: i32,
     colors: &mut [C],
     depth: &mut [u16],
@@ -166,42 +197,74 @@ pub(crate) fn draw_row<C: TargetColor, const Z: u8, const POOLED: bool>(
         colors.len()
     } else {
         colors.len().min(depth.len())
-    } as i32;
-    let lc = a.edges[0].c();
-    let (xs, xe) = (lc.max(0), a.edges[1].c().min(width));
+    };
+    let (lc, xs, xe) = columns(a, width);
     let dither = dither && C::can_dither();
     let mut counts = (0, 0);
     if xs < xe {
         let k = a.kind();
-        let (x0, x1) = (xs as usize, xe as usize);
         let written = match k {
             // The common case first, by its bit.
             _ if k & FAST != 0 => a.fast_span::<C, Z>(lc, xs, xe, row, colors, depth, dither),
             GOURAUD | FLAT_KIND => a.span::<C, Z>(lc, xs, xe, row, colors, depth, test, dither),
-            TEXTURED | TEXTURED_FLAT if POOLED => {
-                let (zs, cs) = (&mut depth[x0..x1], &mut colors[x0..x1]);
+            _ => 0,
+        };
+        counts = ((xe - xs) as u32, written);
+    }
+    let done = next_row(a, row, dither);
+    (counts.0, counts.1, done)
+}
+
+/// [`draw_row`] for the kinds with a pool entry: [`TEXTURED`], [`TEXTURED_FLAT`], [`PHONG`],
+/// [`FAST_PHONG`] and [`TOON`] (drawn with depth lines only).
+#[inline(never)]
+fn pool_row<C: TargetColor>(
+    a: &mut ActiveTri,
+    pool: &mut [ActiveExtra],
+    row: i32,
+    colors: &mut [C],
+    depth: &mut [u16],
+    test: DepthTest,
+    dither: bool,
+) -> (u32, u32, bool) {
+    let (lc, xs, xe) = columns(a, colors.len().min(depth.len()));
+    let mut counts = (0, 0);
+    if xs < xe {
+        let k = a.kind();
+        let (zs, cs) = (
+            &mut depth[xs as usize..xe as usize],
+            &mut colors[xs as usize..xe as usize],
+        );
+        let written = match k {
+            TEXTURED | TEXTURED_FLAT => {
                 crate::raster::textured::span::<C>(a, pool, lc, xs, row, zs, cs, test)
             }
-            PHONG | FAST_PHONG | TOON if POOLED => {
-                let (zs, cs) = (&mut depth[x0..x1], &mut colors[x0..x1]);
+            PHONG | FAST_PHONG | TOON => {
                 crate::raster::phong::span::<C>(a, k, pool, lc, xs, row, zs, cs, test, dither)
             }
             _ => 0,
         };
         counts = ((xe - xs) as u32, written);
     }
+    let done = next_row(a, row, dither && C::can_dither());
+    if done {
+        if let Some(e) = pool.get_mut(a.spare as usize) {
+            e.kind = FREE;
+        }
+    }
+    (counts.0, counts.1, done)
+}
+
+/// Moves `a` from `row`, just drawn, to the next row; true when `row` was its last.
+#[inline(always)]
+fn next_row(a: &mut ActiveTri, row: i32, dither: bool) -> bool {
     let next = row + 1;
     if next >= a.row_end as i32 {
-        if POOLED && a.has_pool_entry() {
-            if let Some(e) = pool.get_mut(a.spare as usize) {
-                e.kind = FREE;
-            }
-        }
-        return (counts.0, counts.1, true);
+        return true;
     }
     a.advance(next);
     a.set_routine_rows(next, dither);
-    (counts.0, counts.1, false)
+    false
 }
 
 impl ActiveTri {
