@@ -168,10 +168,12 @@ pub(crate) fn draw_row<C: TargetColor, const Z: u8, const POOLED: bool>(
     test: DepthTest,
     dither: bool,
 ) -> (u32, u32, bool) {
-    if POOLED && Z != NONE && a.has_pool_entry() {
+    if Z == NONE {
+        plain_row_no_depth::<C>(a, row, colors, dither)
+    } else if POOLED && a.has_pool_entry() {
         pool_row::<C>(a, pool, row, colors, depth, test, dither)
     } else {
-        plain_row::<C, Z>(a, row, colors, depth, test, dither)
+        plain_row::<C>(a, row, colors, depth, test, dither)
     }
 }
 
@@ -182,10 +184,36 @@ fn columns(a: &ActiveTri, width: usize) -> (i32, i32, i32) {
     (lc, lc.max(0), a.edges[1].c().min(width as i32))
 }
 
-/// [`draw_row`] for the kinds without a pool entry: [`FAST_GOURAUD`],
-/// [`FAST_GOURAUD_DITHER`], [`FAST_FLAT`], [`GOURAUD`] and [`FLAT_KIND`].
+/// [`draw_row`] for the kinds without a pool entry, with depth lines ([`plain_row_in`]).
 #[inline(never)]
-fn plain_row<C: TargetColor, const Z: u8>(
+fn plain_row<C: TargetColor>(
+    a: &mut ActiveTri,
+    row: i32,
+    colors: &mut [C],
+    depth: &mut [u16],
+    test: DepthTest,
+    dither: bool,
+) -> (u32, u32, bool) {
+    plain_row_in::<C, LESS>(a, row, colors, depth, test, dither)
+}
+
+/// [`draw_row`] for a renderer without depth lines ([`plain_row_in`]): a function of its own
+/// with only the arguments it reads (on a Cortex-M0 the depth line's and test's arguments went
+/// through the stack, 1–2 % of the painter's cube frame).
+#[inline(never)]
+fn plain_row_no_depth<C: TargetColor>(
+    a: &mut ActiveTri,
+    row: i32,
+    colors: &mut [C],
+    dither: bool,
+) -> (u32, u32, bool) {
+    plain_row_in::<C, NONE>(a, row, colors, &mut [], DepthTest::Always, dither)
+}
+
+/// The row of the kinds without a pool entry: [`FAST_GOURAUD`], [`FAST_GOURAUD_DITHER`],
+/// [`FAST_FLAT`], [`GOURAUD`] and [`FLAT_KIND`].
+#[inline(always)]
+fn plain_row_in<C: TargetColor, const Z: u8>(
     a: &mut ActiveTri,
     row: i32,
     colors: &mut [C],
