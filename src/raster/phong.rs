@@ -690,8 +690,7 @@ impl Span<'_> {
     ) -> u32 {
         let e = self.e;
         let n = zs.len().min(cs.len()) as i32;
-        // 1 or FAST_SEGMENT, as the compiler then knows.
-        let seg = if self.seg == 1 { 1 } else { FAST_SEGMENT };
+        let seg = self.seg;
         // The planes stepped: the normal's, and with `FX` the position's (integer parts: Q1.14
         // and 2^-bits units), from the span's first pixel.
         let planes = if FX { 6 } else { 3 };
