@@ -295,7 +295,7 @@ fn next_row(a: &mut ActiveTri, row: i32, dither: bool) -> bool {
     if next >= a.row_end as i32 {
         return true;
     }
-    a.advance(next);
+    a.advance_inlined(next);
     a.set_routine_rows(next, dither);
     false
 }

@@ -86,12 +86,18 @@ impl ActiveTri {
         [b[0], b[1], b[2]]
     }
 
-    /// Moves to `next_row` (the row after the one just drawn). Always inlined: with the span
-    /// seam's row functions (`raster::kind`) the compiler kept it a function of its own on
-    /// every core (RISC-V torus +4.7 %, the painter's cube +1.7 % on a Cortex-M0, fast Phong
-    /// +2-3 %), as it did at the seek's first version.
-    #[inline(always)]
+    /// Moves to `next_row` (the row after the one just drawn).
+    #[inline]
     pub(crate) fn advance(&mut self, next_row: i32) {
+        self.advance_inlined(next_row);
+    }
+
+    /// [`ActiveTri::advance`] always inlined, for the plain kinds' row (`raster::kind`): there
+    /// the compiler kept `advance` a function of its own on every core (RISC-V torus +4.7 %,
+    /// the painter's cube +1.7 % on a Cortex-M0, fast Phong +2-3 %), while inlining it at
+    /// every call made the layered rows dearer on the M4F and M33 (shadow volumes +6 %).
+    #[inline(always)]
+    pub(crate) fn advance_inlined(&mut self, next_row: i32) {
         let mid_left = self.flags & MID_LEFT != 0;
         // The short edge b → c from the switch on: a fast Gouraud triangle has it from setup
         // ([`ActiveTri::set_pending`], the one the Cortex-M row routine switches to).
