@@ -722,46 +722,31 @@ impl Span<'_> {
             channels(c, &factors)
         };
         let half = 1 << (COLOR_FRAC_BITS - 1);
-        let out = |c: [i32; 3]| {
-            C::from_channels([0, 1, 2].map(|k| {
-                ((c[k] + half) >> COLOR_FRAC_BITS).clamp(0, C::CHANNEL_MAX[k] as i32) as u8
-            }))
-        };
+        // The channels rounded (`t` = ½ unit) or dithered (toon with dithering: `t` =
+        // (2·b + 1)/32 of a unit, b the pixel's Bayer entry, as the dithered Gouraud spans).
+        let out =
+            |c: [i32; 3], t: i32| {
+                C::from_channels([0, 1, 2].map(|k| {
+                    ((c[k] + t) >> COLOR_FRAC_BITS).clamp(0, C::CHANNEL_MAX[k] as i32) as u8
+                }))
+            };
+        let bayer = &BAYER[(self.row & 3) as usize];
         let [mut z, gz] = self.z;
         let mut written = 0;
         let mut i = 0;
-        if TOON && self.dither {
-            // As the dithered Gouraud spans: ((2·b + 1)/32 of a channel unit, b the Bayer
-            // entry) added before the channel is truncated.
-            let bayer = &BAYER[(self.row & 3) as usize];
-            while i < n {
-                let k = i as usize;
-                let z16 = (z >> DEPTH_FRAC_BITS) as u16;
-                if passes::<T>(z16, zs[k]) {
-                    zs[k] = z16;
-                    let c = lit(&nv, z);
-                    let t = (2 * bayer[((self.x0 + i) & 3) as usize] as i32 + 1)
-                        << (COLOR_FRAC_BITS - 5);
-                    cs[k] = C::from_channels([0, 1, 2].map(|ch| {
-                        ((c[ch] + t) >> COLOR_FRAC_BITS).clamp(0, C::CHANNEL_MAX[ch] as i32) as u8
-                    }));
-                    written += 1;
-                }
-                z = z.wrapping_add(gz);
-                for k in 0..planes {
-                    nv[k] = nv[k].wrapping_add(step[k]);
-                }
-                i += 1;
-            }
-            return written;
-        }
         if seg == 1 {
             while i < n {
                 let k = i as usize;
                 let z16 = (z >> DEPTH_FRAC_BITS) as u16;
                 if passes::<T>(z16, zs[k]) {
                     zs[k] = z16;
-                    cs[k] = out(lit(&nv, z));
+                    let t = if TOON && self.dither {
+                        (2 * bayer[((self.x0 + i) & 3) as usize] as i32 + 1)
+                            << (COLOR_FRAC_BITS - 5)
+                    } else {
+                        half
+                    };
+                    cs[k] = out(lit(&nv, z), t);
                     written += 1;
                 }
                 z = z.wrapping_add(gz);
@@ -793,7 +778,7 @@ impl Span<'_> {
                 let z16 = (z >> DEPTH_FRAC_BITS) as u16;
                 if passes::<T>(z16, zs[k]) {
                     zs[k] = z16;
-                    cs[k] = out(c);
+                    cs[k] = out(c, half);
                     written += 1;
                 }
                 z = z.wrapping_add(gz);
