@@ -270,7 +270,8 @@ fn pool_row<C: TargetColor>(
                 crate::raster::textured::span::<C>(a, pool, lc, xs, row, zs, cs, test)
             }
             PHONG | FAST_PHONG | TOON => {
-                crate::raster::phong::span::<C>(a, k, pool, lc, xs, row, zs, cs, test, dither)
+                let lit = (k == FAST_PHONG, k == TOON);
+                crate::raster::phong::span::<C>(a, lit, pool, lc, xs, row, zs, cs, test, dither)
             }
             _ => 0,
         };
