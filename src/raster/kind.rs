@@ -270,8 +270,8 @@ fn pool_row<C: TargetColor>(
                 crate::raster::textured::span::<C>(a, pool, lc, xs, row, zs, cs, test)
             }
             PHONG | FAST_PHONG | TOON => {
-                let lit = (k == FAST_PHONG, k == TOON);
-                crate::raster::phong::span::<C>(a, lit, pool, lc, xs, row, zs, cs, test, dither)
+                let span = crate::raster::phong::span::<C, FAST_PHONG, TOON>;
+                span(a, k, pool, lc, xs, row, zs, cs, test, dither)
             }
             _ => 0,
         };

@@ -594,15 +594,16 @@ fn channels(v: [i32; 3], f: &[i32; 3]) -> [i32; 3] {
     [0, 1, 2].map(|c| (mul_wide(v[c], f[c]) >> 16) as i32)
 }
 
-/// The span of the Phong kinds (`raster::kind`): lit at every pixel, or every
-/// [`FAST_SEGMENT`] pixels (`fast`), or as toon shading (`toon`, dithered with `dither`):
-/// triangle `rec`'s pixels from column `xs` of `row` (`lc`: its left edge's column), `zs` and
-/// `cs` the span's depth and colours, its planes and material in its pool entries. Returns the
-/// pixels written.
+/// The span of the Phong kinds (`raster::kind`): `kind` is one of them, and the kind's codes
+/// for fast Phong (lit every [`FAST_SEGMENT`] pixels) and toon shading (dithered with
+/// `dither`) come as `FAST` and `TOON` (the caller owns the codes; comparing the code here, not
+/// in the caller, keeps the caller's code as measured by the ratchet). Draws triangle `rec`'s
+/// pixels from column `xs` of `row` (`lc`: its left edge's column), `zs` and `cs` the span's
+/// depth and colours, its planes and material in its pool entries. Returns the pixels written.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn span<C: TargetColor>(
+pub(crate) fn span<C: TargetColor, const FAST: u8, const TOON: u8>(
     rec: &ActiveTri,
-    (fast, toon): (bool, bool),
+    kind: u8,
     pool: &[ActiveExtra],
     lc: i32,
     xs: i32,
@@ -614,10 +615,10 @@ pub(crate) fn span<C: TargetColor>(
 ) -> u32 {
     let z = rec.row[0].wrapping_add(rec.gx[0].wrapping_mul(xs - lc));
     let z = z.clamp(0, DEPTH_MAX << DEPTH_FRAC_BITS) + (1 << (DEPTH_FRAC_BITS - 1));
-    let seg = if fast { FAST_SEGMENT } else { 1 };
+    let seg = if kind == FAST { FAST_SEGMENT } else { 1 };
     let slot = rec.spare as usize;
     let z = [z, rec.gx[0]];
-    if toon {
+    if kind == TOON {
         let dither = dither && C::can_dither();
         return by_depth_test!(test, T => fill_t::<C, T, true>(pool, slot, 1, dither, xs, row, z, zs, cs));
     }
