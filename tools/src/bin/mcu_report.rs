@@ -330,17 +330,11 @@ fn run() -> Result<(), String> {
         md.push_str(&breakdown(t, strip)?);
     }
     md.push_str(&board_frames(&strips));
-    // scripts/pico-emu writes its own section (the emulated Pico's figures): keep it, unchanged,
-    // at the end of the regenerated file.
+    // scripts/pico-emu and scripts/embassy-firmware write their own sections (the emulated
+    // Pico's figures): keep them, unchanged and in their order, at the end of the regenerated
+    // file.
     if let Ok(old) = std::fs::read_to_string("BENCHMARKS.md") {
-        if let Some(block) = pico_emu_block(&old) {
-            if !md.ends_with('\n') {
-                md.push('\n');
-            }
-            md.push('\n');
-            md.push_str(block);
-            md.push('\n');
-        }
+        append_kept_blocks(&mut md, &old);
     }
     std::fs::write("BENCHMARKS.md", md).map_err(|e| e.to_string())?;
     println!("{}", table(&rows));
@@ -507,13 +501,55 @@ fn board_frames(strips: &[Value]) -> String {
     s
 }
 
-/// The section of BENCHMARKS.md that `scripts/pico-emu` generates, markers included.
-fn pico_emu_block(md: &str) -> Option<&str> {
-    const START: &str = "<!-- pico-emu:start -->";
-    const END: &str = "<!-- pico-emu:end -->";
-    let start = md.find(START)?;
-    let end = start + md[start..].find(END)? + END.len();
-    Some(&md[start..end])
+/// The sections of BENCHMARKS.md that other scripts generate (`<!-- NAME:start -->` to
+/// `<!-- NAME:end -->`), in this order.
+const KEPT_BLOCKS: [&str; 2] = ["pico-emu", "embassy-firmware"];
+
+/// The section `name` of `md` (see [`KEPT_BLOCKS`]), markers included.
+fn generated_block<'a>(md: &'a str, name: &str) -> Option<&'a str> {
+    let (start, end) = (
+        format!("<!-- {name}:start -->"),
+        format!("<!-- {name}:end -->"),
+    );
+    let from = md.find(&start)?;
+    let to = from + md[from..].find(&end)? + end.len();
+    Some(&md[from..to])
+}
+
+/// Appends to `md` every section of [`KEPT_BLOCKS`] that `old` has, each after a blank line.
+fn append_kept_blocks(md: &mut String, old: &str) {
+    for name in KEPT_BLOCKS {
+        if let Some(block) = generated_block(old, name) {
+            if !md.ends_with('\n') {
+                md.push('\n');
+            }
+            md.push('\n');
+            md.push_str(block);
+            md.push('\n');
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keeps_the_other_scripts_sections() {
+        let old = "# old\n\n<!-- pico-emu:start -->\npico\n<!-- pico-emu:end -->\n\n\
+                   <!-- embassy-firmware:start -->\nembassy\n<!-- embassy-firmware:end -->\n";
+        let mut md = String::from("# new\n");
+        append_kept_blocks(&mut md, old);
+        assert_eq!(
+            md,
+            "# new\n\n<!-- pico-emu:start -->\npico\n<!-- pico-emu:end -->\n\n\
+             <!-- embassy-firmware:start -->\nembassy\n<!-- embassy-firmware:end -->\n"
+        );
+        // A section without its end marker is not kept (nothing to cut it at).
+        let mut md = String::from("# new\n");
+        append_kept_blocks(&mut md, "<!-- pico-emu:start -->\npico\n");
+        assert_eq!(md, "# new\n");
+    }
 }
 
 fn table(rows: &[Value]) -> String {
