@@ -530,28 +530,6 @@ fn append_kept_blocks(md: &mut String, old: &str) {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn keeps_the_other_scripts_sections() {
-        let old = "# old\n\n<!-- pico-emu:start -->\npico\n<!-- pico-emu:end -->\n\n\
-                   <!-- embassy-firmware:start -->\nembassy\n<!-- embassy-firmware:end -->\n";
-        let mut md = String::from("# new\n");
-        append_kept_blocks(&mut md, old);
-        assert_eq!(
-            md,
-            "# new\n\n<!-- pico-emu:start -->\npico\n<!-- pico-emu:end -->\n\n\
-             <!-- embassy-firmware:start -->\nembassy\n<!-- embassy-firmware:end -->\n"
-        );
-        // A section without its end marker is not kept (nothing to cut it at).
-        let mut md = String::from("# new\n");
-        append_kept_blocks(&mut md, "<!-- pico-emu:start -->\npico\n");
-        assert_eq!(md, "# new\n");
-    }
-}
-
 fn table(rows: &[Value]) -> String {
     let mut s = String::new();
     let _ = writeln!(
@@ -758,4 +736,26 @@ fn markdown(
         "\nPeers on the same scene and QEMU setup (C, arm-none-eabi-gcc -O2, one frame including clears; figures reported with the benchmark task, not measured here): small3dlib 7.50 M instructions on M0 and 3.29 M on M4F with 347 KB RAM; tgx 24.8 M (soft float) and 1.96 M with 231 KB; TinyGL 40.0 M and 3.64 M with 240 KB or more."
     );
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keeps_the_other_scripts_sections() {
+        let old = "# old\n\n<!-- pico-emu:start -->\npico\n<!-- pico-emu:end -->\n\n\
+                   <!-- embassy-firmware:start -->\nembassy\n<!-- embassy-firmware:end -->\n";
+        let mut md = String::from("# new\n");
+        append_kept_blocks(&mut md, old);
+        assert_eq!(
+            md,
+            "# new\n\n<!-- pico-emu:start -->\npico\n<!-- pico-emu:end -->\n\n\
+             <!-- embassy-firmware:start -->\nembassy\n<!-- embassy-firmware:end -->\n"
+        );
+        // A section without its end marker is not kept (nothing to cut it at).
+        let mut md = String::from("# new\n");
+        append_kept_blocks(&mut md, "<!-- pico-emu:start -->\npico\n");
+        assert_eq!(md, "# new\n");
+    }
 }
