@@ -288,12 +288,13 @@ fn run() -> Result<(), String> {
     });
     let out = std::path::Path::new("target/mcu-bench");
     std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
-    std::fs::write(
-        out.join("report.json"),
-        serde_json::to_string_pretty(&rows.iter().chain(&small).chain(&strips).collect::<Vec<_>>())
-            .map_err(|e| e.to_string())?,
-    )
-    .map_err(|e| e.to_string())?;
+    ratchet::write_atomic(
+        &out.join("report.json"),
+        &serde_json::to_string_pretty(
+            &rows.iter().chain(&small).chain(&strips).collect::<Vec<_>>(),
+        )
+        .map_err(|e| e.to_string())?,
+    )?;
     // The Cortex-M4F goal: the same frame on mps2-an386.
     let m4f_torus = torus_on("mps2-an386").and_then(|t| t["renderer_instructions"].as_u64());
     let mut md = markdown(&rows, &mem, budget, &small);
@@ -336,7 +337,7 @@ fn run() -> Result<(), String> {
     if let Ok(old) = std::fs::read_to_string("BENCHMARKS.md") {
         append_kept_blocks(&mut md, &old);
     }
-    std::fs::write("BENCHMARKS.md", md).map_err(|e| e.to_string())?;
+    ratchet::write_atomic(std::path::Path::new("BENCHMARKS.md"), &md)?;
     println!("{}", table(&rows));
     if let Some((i, ram, ok)) = budget {
         println!(
