@@ -23,7 +23,7 @@ use embedded_graphics::pixelcolor::raw::ToBytes;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use scanline3d::fixed::types::I16F16;
-use scanline3d::{Fx, NoProbe};
+use scanline3d::{probe::NoProbe, Fx};
 use scanline3d_support::demo::{self, board, Bench};
 
 type Q = Fx<I16F16>;

@@ -106,8 +106,8 @@ pub enum Error<E> {
         object: usize,
     },
     /// A layered frame ([`Renderer::render_layered`](crate::Renderer::render_layered)) that
-    /// cannot be drawn: the [`crate::LayerError`] says why. Nothing was drawn.
-    Layers(crate::LayerError),
+    /// cannot be drawn: the [`crate::errors::LayerError`] says why. Nothing was drawn.
+    Layers(LayerError),
     /// The scene's fog ([`crate::Scene::fog`]) has `near ≥ far`, or a number that is NaN,
     /// infinite or at a fixed-point rail. Nothing was drawn.
     Fog,
@@ -135,7 +135,7 @@ pub enum Error<E> {
     NoDepthLines,
     /// The scene's camera fails [`crate::Camera::validate`] (its fields are public and may
     /// have been changed after [`crate::Camera::look_at`]). Nothing was drawn.
-    Camera(crate::CameraError),
+    Camera(crate::scene::camera::CameraError),
     /// The frame needs more room than the renderer has, in one or more of its capacities:
     /// every capacity that is short, with what the frame needed, is in the [`Shortfall`]
     /// ([`Shortfall::iter`]). Returned under [`OverflowPolicy::Error`] (the default); nothing
@@ -614,14 +614,14 @@ pub enum LayerError {
     /// Both a planar shadow and shadow volumes: the stencil serves one of them per frame.
     TwoShadows,
     /// Object `object` (a volume caster or an outlined object) has no adjacency table, or one
-    /// checked against another mesh ([`crate::Adjacency::is_for`]: not the same index and
+    /// checked against another mesh ([`crate::mesh::Adjacency::is_for`]: not the same index and
     /// position slices).
     Adjacency {
         /// Index of the object in the scene.
         object: usize,
     },
-    /// Outlined object `object` has no crease table ([`crate::Edges::Crease`]), or one shorter than
-    /// its mesh's `3·T` bits ([`crate::mesh_creases`]).
+    /// Outlined object `object` has no crease table ([`crate::shadow::Edges::Crease`]), or one shorter than
+    /// its mesh's `3·T` bits ([`crate::mesh::mesh_creases`]).
     Creases {
         /// Index of the object in the scene.
         object: usize,

@@ -200,43 +200,112 @@ extern crate self as scanline3d;
 #[doc(hidden)]
 pub use config::__macro as __renderer_type;
 pub use config::Capacities;
-pub use error::{LayerError, MAX_TRANSLUCENT};
-pub use geometry::clip::{BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP};
-pub use geometry::cull::{facing, signed_area2, Facing};
-pub use geometry::project::{
-    ScreenVertex, COORD_LIMIT, DEPTH_FRAC_BITS, MAX_SCREEN, SUBPIXEL_BITS,
-};
-pub use num::math::{add, cross, dot, length, normalize, scale, sub, Mat4, Vec3};
-pub use num::scalar::{Fx, FxRecip, Scalar, NDC_FRAC_BITS};
+pub use num::math::Mat4;
+pub use num::scalar::{Fx, Scalar};
 pub use raster::depth_mode::DrawOrder;
 pub use raster::layers::Layers;
 pub use raster::no_depth::NoDepthRenderer;
 pub use raster::pass::StripPass;
-pub use raster::phong::MAX_PHONG_LIGHTS;
-pub use raster::shadow::{
-    Edges, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow, BLOB_RINGS,
-    BLOB_SIDES,
-};
 pub use raster::strip::StripCanvas;
-pub use raster::{DepthTest, COLOR_FRAC_BITS};
-pub use renderer::{
-    Capacity, Error, Needs, NoProbe, OverflowPolicy, Probe, Renderer, Shortfall, Stage, Stats,
-    StripBufferTooSmall, ACTIVE_EXTRA_BYTES, ACTIVE_EXTRA_BYTES_32, VERTEX_EXTRA_BYTES,
-    VERTEX_EXTRA_BYTES_32,
-};
-pub use scene::adjacency::{
-    check_adjacency, mesh_adjacency, mesh_creases, Adjacency, AdjacencyError, NO_NEIGHBOUR,
-};
-pub use scene::camera::{Camera, CameraError, Projection, MAX_DEPTH_RATIO};
-pub use scene::color::{luma, quantize, scale_channels, TargetColor, TriangleId, BAYER};
-pub use scene::effects::{Effects, Fog, PointLight, MAX_PHONG_POINT_LIGHTS};
-pub use scene::mesh::{face_normal, vertex_normals, Mesh, MeshError, UV_LIMIT};
+pub use raster::DepthTest;
+pub use renderer::{Error, Needs, OverflowPolicy, Renderer, Shortfall, Stats};
+pub use scene::camera::{Camera, Projection};
+pub use scene::color::TargetColor;
+pub use scene::effects::{Effects, Fog, PointLight};
+pub use scene::mesh::Mesh;
 pub use scene::shade::{Light, Material, Shading};
-pub use scene::shapes::{ParamValue, Shape, ShapeError};
-pub use scene::texture::{Texture, TextureError, TextureMode, Texturing, Wrap, MAX_TEXTURE_SIZE};
+pub use scene::shapes::Shape;
+pub use scene::texture::{Texture, TextureMode, Texturing, Wrap};
 pub use scene::textured_shapes::TexturedShape;
-pub use scene::tone::{AutoExposure, Metered, ToneCurve, ToneMap, MAX_TONE_SCALE};
+pub use scene::tone::ToneMap;
 pub use scene::{Object, Scene};
+
+// The crate root holds what a frame needs; the rest is grouped by subject in the modules
+// below (each only re-exports: the code stays in its stage's folder).
+
+/// Vector and matrix helpers over any [`Scalar`] (`[S; 3]` vectors, column-vector
+/// [`Mat4`]s), and the fixed-point reciprocal the projection uses.
+pub mod math {
+    pub use crate::num::math::{add, cross, dot, length, normalize, scale, sub, Mat4, Vec3};
+    pub use crate::num::scalar::FxRecip;
+}
+
+/// The library's numeric limits and formats: largest screen, coordinates, textures and light
+/// counts, the fixed-point formats of screen coordinates, depth and colour, and the sizes of
+/// the per-vertex and per-triangle attribute records (for RAM budgets).
+pub mod limits {
+    pub use crate::error::MAX_TRANSLUCENT;
+    pub use crate::geometry::project::{COORD_LIMIT, DEPTH_FRAC_BITS, MAX_SCREEN, SUBPIXEL_BITS};
+    pub use crate::num::scalar::NDC_FRAC_BITS;
+    pub use crate::raster::phong::MAX_PHONG_LIGHTS;
+    pub use crate::raster::shadow::{BLOB_RINGS, BLOB_SIDES};
+    pub use crate::raster::COLOR_FRAC_BITS;
+    pub use crate::renderer::{
+        ACTIVE_EXTRA_BYTES, ACTIVE_EXTRA_BYTES_32, VERTEX_EXTRA_BYTES, VERTEX_EXTRA_BYTES_32,
+    };
+    pub use crate::scene::camera::MAX_DEPTH_RATIO;
+    pub use crate::scene::effects::MAX_PHONG_POINT_LIGHTS;
+    pub use crate::scene::mesh::UV_LIMIT;
+    pub use crate::scene::texture::MAX_TEXTURE_SIZE;
+    pub use crate::scene::tone::MAX_TONE_SCALE;
+}
+
+/// Screen space: the projected vertex record, the view-volume outcode bits (clipping) and
+/// the facing test of a screen triangle (culling).
+pub mod screen {
+    pub use crate::geometry::clip::{BOTTOM, FAR, GUARD, LEFT, NEAR, NEEDS_CLIP, RIGHT, TOP};
+    pub use crate::geometry::cull::{facing, signed_area2, Facing};
+    pub use crate::geometry::project::ScreenVertex;
+}
+
+/// Mesh helpers: normals, the edge adjacency that outlines and shadow volumes read, and the
+/// parameters of the built-in [`Shape`]s.
+pub mod mesh {
+    pub use crate::scene::adjacency::{
+        check_adjacency, mesh_adjacency, mesh_creases, Adjacency, NO_NEIGHBOUR,
+    };
+    pub use crate::scene::mesh::{face_normal, vertex_normals};
+    pub use crate::scene::shapes::ParamValue;
+}
+
+/// Colour helpers: 8-bit channels to a target colour (rounded, optionally dithered with the
+/// [`BAYER`](color::BAYER) matrix), luma, and the triangle-index "colour" for picking.
+pub mod color {
+    pub use crate::scene::color::{luma, quantize, scale_channels, TriangleId, BAYER};
+}
+
+/// Shadows and edges: planar (projected) and volume shadows, blob shadows, outlines and
+/// wireframe edges, and how translucent layers are ordered.
+pub mod shadow {
+    pub use crate::raster::shadow::{
+        Edges, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow,
+    };
+}
+
+/// HDR tone mapping: the curves and the automatic exposure ([`ToneMap`] is
+/// at the crate root).
+pub mod tone {
+    pub use crate::scene::tone::{AutoExposure, Metered, ToneCurve};
+}
+
+/// Profiling hooks: a [`Probe`](probe::Probe) sees every stage change of a frame (the
+/// benchmarks time stages with one); [`NoProbe`](probe::NoProbe) costs nothing.
+pub mod probe {
+    pub use crate::renderer::{NoProbe, Probe, Stage};
+}
+
+/// The error types besides [`Error`]: the scene's parts' own errors (camera,
+/// mesh, texture, shape, adjacency), the layered frame's, the strip buffer's, and which
+/// capacity a [`Shortfall`] names.
+pub mod errors {
+    pub use crate::error::LayerError;
+    pub use crate::renderer::{Capacity, StripBufferTooSmall};
+    pub use crate::scene::adjacency::AdjacencyError;
+    pub use crate::scene::camera::CameraError;
+    pub use crate::scene::mesh::MeshError;
+    pub use crate::scene::shapes::ShapeError;
+    pub use crate::scene::texture::TextureError;
+}
 
 #[doc(inline)]
 pub use embedded_graphics_core::draw_target::DrawTarget;
@@ -254,7 +323,7 @@ pub mod internals {
 
 /// The types and traits a typical user needs.
 pub mod prelude {
-    pub use crate::vertex_normals;
+    pub use crate::mesh::vertex_normals;
     pub use crate::{
         renderer_type, Camera, Capacities, DepthTest, Effects, Fog, Fx, Light, Mat4, Material,
         Mesh, Needs, Object, OverflowPolicy, PointLight, Projection, Renderer, Scalar, Scene,

@@ -113,8 +113,8 @@ pub use crate::stats::{NoProbe, Probe, Stage, Stats};
 /// assert_eq!(
 ///     Textured::RAM_BYTES,
 ///     Renderer::<Q, Rgb565, 240, 240, 64, 64, 16>::RAM_BYTES
-///         + 64 * scanline3d::VERTEX_EXTRA_BYTES
-///         + 16 * scanline3d::ACTIVE_EXTRA_BYTES
+///         + 64 * scanline3d::limits::VERTEX_EXTRA_BYTES
+///         + 16 * scanline3d::limits::ACTIVE_EXTRA_BYTES
 /// );
 /// ```
 #[derive(Debug)]

@@ -9,7 +9,7 @@ use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics::prelude::*;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::{Capacity, Error, Stats};
+use scanline3d::{errors::Capacity, Error, Stats};
 use scanline3d_support::demo::deg;
 
 type Q = Fx<I16F16>;
@@ -108,7 +108,7 @@ fn zero_normals_light_as_ambient<S: Scalar>() {
     let (f, s) = draw(&pos, &[[0, 1, 2]], Some(&n), perspective([0.0, 0.0, 3.0]));
     assert!(s.pixels_written > 50);
     // Ambient only: material colour × 1.0 (ambient 1, the diffuse term sees N = 0).
-    let want: Rgb565 = scanline3d::quantize([200, 100, 50]);
+    let want: Rgb565 = scanline3d::color::quantize([200, 100, 50]);
     assert_eq!(f.get(16, 16), want, "{}", S::NAME);
 }
 

@@ -3,11 +3,12 @@
 
 use crate::common;
 
+use common::compare::HostProbe;
 use common::Frame;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::NoProbe;
+use scanline3d::probe::NoProbe;
 use scanline3d_support::demo::{render_bench, Bench};
 use scanline3d_support::hash::HashTarget;
 
@@ -15,7 +16,7 @@ type Q = Fx<I16F16>;
 
 fn frame<S: Scalar>(b: Bench, spin: f64) -> (Frame<Rgb565>, scanline3d_support::demo::BenchFrame) {
     let mut f = Frame::new(240, 240, Rgb565::BLACK);
-    let r = render_bench::<S, Rgb565, _, _>(b, spin, false, &mut f, &mut NoProbe)
+    let r = render_bench::<S, Rgb565, _, _>(b, spin, false, &mut f, &mut HostProbe::Plain)
         .unwrap_or_else(|e| panic!("{b:?} {} at {spin}°: {e:?}", S::NAME));
     f.assert_each_written_once();
     (f, r)

@@ -20,7 +20,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::{Capacity, Error, Shortfall, Stats};
+use scanline3d::{errors::Capacity, Error, Shortfall, Stats};
 use scanline3d_support::demo::{self, deg, TorusShape};
 
 type Q = Fx<I16F16>;

@@ -10,7 +10,9 @@ use common::Frame;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use scanline3d::prelude::*;
-use scanline3d::{DrawOrder, Error, Layering, Layers, NoDepthRenderer, Shape, Stats, TargetColor};
+use scanline3d::{
+    shadow::Layering, DrawOrder, Error, Layers, NoDepthRenderer, Shape, Stats, TargetColor,
+};
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;
 
@@ -314,7 +316,7 @@ fn bench_case<S: Scalar>() {
                         spin as f64,
                         dither,
                         &mut f,
-                        &mut scanline3d::NoProbe,
+                        &mut common::compare::HostProbe::Plain,
                     )
                     .unwrap();
                     (f, r)

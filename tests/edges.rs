@@ -9,8 +9,8 @@ use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use scanline3d::prelude::*;
 use scanline3d::{
-    mesh_adjacency, mesh_creases, Adjacency, AdjacencyError, Edges, Error, LayerError, Layering,
-    Layers, Outline, Shape,
+    errors::AdjacencyError, errors::LayerError, mesh::mesh_adjacency, mesh::mesh_creases,
+    mesh::Adjacency, shadow::Edges, shadow::Layering, shadow::Outline, Error, Layers, Shape,
 };
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;

@@ -12,7 +12,8 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use scanline3d::prelude::*;
 use scanline3d::{
-    AutoExposure, Error, Metered, Texture, TextureMode, ToneCurve, ToneMap, MAX_TONE_SCALE,
+    limits::MAX_TONE_SCALE, tone::AutoExposure, tone::Metered, tone::ToneCurve, Error, Texture,
+    TextureMode, ToneMap,
 };
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;
@@ -482,7 +483,14 @@ fn effects_frames_match_their_golden_images() {
     use scanline3d_support::demo::{render_bench, Bench};
     fn one<S: Scalar>(b: Bench, ty: &str) {
         let mut f = Frame::new(240, 240, Rgb565::BLACK);
-        render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::NoProbe).unwrap();
+        render_bench::<S, Rgb565, _, _>(
+            b,
+            0.0,
+            false,
+            &mut f,
+            &mut common::compare::HostProbe::Plain,
+        )
+        .unwrap();
         f.assert_each_written_once();
         common::check_golden(&format!("{}_{ty}", b.name()), &f);
     }

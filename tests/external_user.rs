@@ -25,7 +25,7 @@ use embedded_graphics::prelude::{DrawTarget, OriginDimensions, Pixel, Point, Poi
 use embedded_graphics::primitives::Rectangle;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::{Capacity, Error, TexturedShape};
+use scanline3d::{errors::Capacity, Error, TexturedShape};
 
 type Q = Fx<I16F16>;
 
@@ -701,13 +701,13 @@ fn orbit_effects() -> scanline3d::Effects<'static, Q> {
 
 /// The layered orbit's layering: the torus (object 1) shadows the ground (object 0) along the
 /// sun.
-fn orbit_layering() -> scanline3d::Layering<'static, Q> {
-    scanline3d::Layering::projected(
+fn orbit_layering() -> scanline3d::shadow::Layering<'static, Q> {
+    scanline3d::shadow::Layering::projected(
         &[0],
         &[1],
-        scanline3d::PlanarShadow::new(
+        scanline3d::shadow::PlanarShadow::new(
             [Q::ZERO, Q::ONE, Q::ZERO, Q::ZERO],
-            scanline3d::ShadowLight::Directional(sun().direction),
+            scanline3d::shadow::ShadowLight::Directional(sun().direction),
             140,
         ),
     )

@@ -5,12 +5,12 @@
 
 use crate::common;
 
-use common::compare::{Record, Replay};
+use common::compare::HostProbe;
 use common::{screen_camera, unlit, Frame};
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::{Probe, Stats, TriangleId};
+use scanline3d::{color::TriangleId, probe::Probe, Stats};
 use scanline3d_support::demo::deg;
 
 type Q = Fx<I16F16>;
@@ -118,14 +118,11 @@ fn assert_same_ids<S: Scalar>(
 
 /// Coverage (triangle ids) of `S` and of f64 on `S`'s snapped positions: must be identical.
 fn same_coverage_as_f64<S: Scalar>(tris: &[Tri], what: &str) -> (Frame<TriangleId>, Stats) {
-    let mut rec = Record::default();
+    let mut rec = HostProbe::record();
     let (ids, stats) = draw::<S, TriangleId, _>(tris, DepthTest::Less, &mut rec);
-    let mut rp = Replay {
-        snaps: &rec.0,
-        diverged: 0,
-    };
+    let mut rp = HostProbe::replay(rec.recorded());
     let (ref_ids, _) = draw::<f64, TriangleId, _>(tris, DepthTest::Less, &mut rp);
-    assert_same_ids::<S>(&ids, &ref_ids, rp.diverged, what);
+    assert_same_ids::<S>(&ids, &ref_ids, rp.diverged(), what);
     (ids, stats)
 }
 
@@ -281,11 +278,7 @@ fn facing_is_decided_on_snapped_positions<S: Scalar>() {
     let float_area =
         (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]) - (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]);
     assert!(float_area > 0.0);
-    let (_, s) = draw::<S, Rgb565, _>(
-        &[raw(p, [1, 1, 1])],
-        DepthTest::Less,
-        &mut scanline3d::NoProbe,
-    );
+    let (_, s) = draw::<S, Rgb565, _>(&[raw(p, [1, 1, 1])], DepthTest::Less, &mut HostProbe::Plain);
     assert_eq!((s.culled, s.drawn), (1, 0), "{}: {s:?}", S::NAME);
 }
 
@@ -437,16 +430,13 @@ fn world_same_coverage<S: Scalar>(
     what: &str,
 ) -> (Frame<TriangleId>, Stats) {
     let (cs, cf) = camera();
-    let mut rec = Record::default();
+    let mut rec = HostProbe::record();
     let (ids, stats) =
         draw_world::<S, TriangleId, _>(pos, idx, cs, [255; 3], DepthTest::Less, false, &mut rec);
-    let mut rp = Replay {
-        snaps: &rec.0,
-        diverged: 0,
-    };
+    let mut rp = HostProbe::replay(rec.recorded());
     let (ref_ids, _) =
         draw_world::<f64, TriangleId, _>(pos, idx, cf, [255; 3], DepthTest::Less, false, &mut rp);
-    assert_same_ids::<S>(&ids, &ref_ids, rp.diverged, what);
+    assert_same_ids::<S>(&ids, &ref_ids, rp.diverged(), what);
     (ids, stats)
 }
 
@@ -712,8 +702,7 @@ fn depth_repeatability_and_ordering<S: Scalar>() {
         for swap in [false, true] {
             let (a, b) = (big(0.0, 0, [1, 1, 1]), big(0.0, rotate, [2, 2, 2]));
             let tris = if swap { [b, a] } else { [a, b] };
-            let (_, s) =
-                draw::<S, Rgb565, _>(&tris, DepthTest::LessEqual, &mut scanline3d::NoProbe);
+            let (_, s) = draw::<S, Rgb565, _>(&tris, DepthTest::LessEqual, &mut HostProbe::Plain);
             assert_eq!(
                 s.pixels_written,
                 s.fragments,
@@ -729,8 +718,7 @@ fn depth_repeatability_and_ordering<S: Scalar>() {
     if S::NAME != "I16F16" {
         let mut at_far_plane = big(0.0, 1, [3, 3, 3]);
         at_far_plane.z = [-9.0; 3];
-        let (_, s) =
-            draw::<S, Rgb565, _>(&[at_far_plane], DepthTest::Equal, &mut scanline3d::NoProbe);
+        let (_, s) = draw::<S, Rgb565, _>(&[at_far_plane], DepthTest::Equal, &mut HostProbe::Plain);
         assert_eq!(
             s.pixels_written as usize,
             W * H,
@@ -745,7 +733,7 @@ fn depth_repeatability_and_ordering<S: Scalar>() {
         let near = big(3.0 * step, 0, [0, 255, 0]);
         let far = big(0.0, 0, [255, 0, 0]);
         let tris = if order { [near, far] } else { [far, near] };
-        let (ids, _) = draw::<S, TriangleId, _>(&tris, DepthTest::Less, &mut scanline3d::NoProbe);
+        let (ids, _) = draw::<S, TriangleId, _>(&tris, DepthTest::Less, &mut HostProbe::Plain);
         let near_id = if order { 1 } else { 2 };
         assert!(
             ids.px.iter().all(|i| i.0 == near_id),
@@ -761,28 +749,21 @@ fn depth_repeatability_and_ordering<S: Scalar>() {
     at_near.z = [9.0; 3];
     let mut at_far = at_near;
     at_far.z = [-9.0; 3];
-    let (ids, s) = draw::<S, TriangleId, _>(
-        &[mid, at_near],
-        DepthTest::LessEqual,
-        &mut scanline3d::NoProbe,
-    );
+    let (ids, s) =
+        draw::<S, TriangleId, _>(&[mid, at_near], DepthTest::LessEqual, &mut HostProbe::Plain);
     assert!(
         ids.px.iter().all(|i| i.0 == 2),
         "{}: near-plane triangle lost: {s:?}",
         S::NAME
     );
-    let (ids, _) = draw::<S, TriangleId, _>(
-        &[mid, at_far],
-        DepthTest::LessEqual,
-        &mut scanline3d::NoProbe,
-    );
+    let (ids, _) =
+        draw::<S, TriangleId, _>(&[mid, at_far], DepthTest::LessEqual, &mut HostProbe::Plain);
     assert!(
         ids.px.iter().all(|i| i.0 == 1),
         "{}: far-plane triangle won (depth wrapped?)",
         S::NAME
     );
-    let (ids, _) =
-        draw::<S, TriangleId, _>(&[at_far], DepthTest::LessEqual, &mut scanline3d::NoProbe);
+    let (ids, _) = draw::<S, TriangleId, _>(&[at_far], DepthTest::LessEqual, &mut HostProbe::Plain);
     assert!(
         ids.px.iter().all(|i| i.0 == 1),
         "{}: far-plane triangle not drawn under LessEqual",
@@ -842,14 +823,14 @@ fn vertices_100000_px_off_screen_in_fixed_point_and_f32_max() {
     // keeps every product finite) — no wrap, no panic.
     let m = f32::MAX as f64;
     let t = tri([[-m, -m], [m, -m], [-m, m]], [1, 2, 3]);
-    let (_, s) = draw::<f32, Rgb565, _>(&[t], DepthTest::Less, &mut scanline3d::NoProbe);
-    let (_, s64) = draw::<f64, Rgb565, _>(&[t], DepthTest::Less, &mut scanline3d::NoProbe);
+    let (_, s) = draw::<f32, Rgb565, _>(&[t], DepthTest::Less, &mut HostProbe::Plain);
+    let (_, s64) = draw::<f64, Rgb565, _>(&[t], DepthTest::Less, &mut HostProbe::Plain);
     assert_eq!(
         s.pixels_written, s64.pixels_written,
         "f32::MAX: {s:?} vs {s64:?}"
     );
     // Q16.16 cannot hold it: the input saturates (a defined result), never wraps or panics.
-    let (_, sq) = draw::<Q, Rgb565, _>(&[t], DepthTest::Less, &mut scanline3d::NoProbe);
+    let (_, sq) = draw::<Q, Rgb565, _>(&[t], DepthTest::Less, &mut HostProbe::Plain);
     assert!(sq.drawn + sq.invalid + sq.culled + sq.outside + sq.degenerate + sq.empty >= 1);
 }
 
@@ -947,7 +928,7 @@ fn scene_scales<S: Scalar>() {
             [255; 3],
             DepthTest::Less,
             false,
-            &mut scanline3d::NoProbe,
+            &mut HostProbe::Plain,
         )
         .0
     };
@@ -966,7 +947,7 @@ fn scene_scales<S: Scalar>() {
             [255; 3],
             DepthTest::Less,
             false,
-            &mut scanline3d::NoProbe,
+            &mut HostProbe::Plain,
         );
         let diff = ids
             .px
@@ -1054,13 +1035,13 @@ fn normalization_and_reciprocals<S: Scalar>() {
                 let l = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
                 f.map(|x| x / l)
             };
-            let got = scanline3d::normalize(v);
+            let got = scanline3d::math::normalize(v);
             for i in 0..3 {
                 worst_norm = worst_norm.max((got[i].to_f64() - exact[i]).abs());
             }
         }
     }
-    assert_eq!(scanline3d::normalize([S::ZERO; 3]), [S::ZERO; 3]);
+    assert_eq!(scanline3d::math::normalize([S::ZERO; 3]), [S::ZERO; 3]);
     // 1/w over the type's range (for Q16.16 every power of two from 2^-16 to 2^14), through
     // the perspective divide: v/w for v = w·0.75 must come back as 0.75.
     let mut worst_recip = 0.0f64;

@@ -13,9 +13,10 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{PrimitiveStyle, Rectangle};
 use scanline3d::prelude::*;
 use scanline3d::{
-    check_adjacency, mesh_adjacency, Adjacency, AdjacencyError, Effects, Error, LayerError,
-    Layering, Layers, MeshError, Outline, PointLight, ShadowLight, ShapeError, Stats,
-    TexturedShape, VolumeShadow, NO_NEIGHBOUR,
+    errors::AdjacencyError, errors::LayerError, errors::MeshError, errors::ShapeError,
+    mesh::check_adjacency, mesh::mesh_adjacency, mesh::Adjacency, mesh::NO_NEIGHBOUR,
+    shadow::Layering, shadow::Outline, shadow::ShadowLight, shadow::VolumeShadow, Effects, Error,
+    Layers, PointLight, Stats, TexturedShape,
 };
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;
@@ -277,10 +278,10 @@ fn mesh_creases_refuses_a_table_that_is_not_the_meshs() {
     let mesh = Mesh::new(&p, &t).unwrap();
     let mut bits = [0u8; 2];
     assert_eq!(
-        scanline3d::mesh_creases(&mesh, &adj, 30.0, &mut bits),
+        scanline3d::mesh::mesh_creases(&mesh, &adj, 30.0, &mut bits),
         Ok(6)
     );
-    let e = scanline3d::mesh_creases(&mesh, &[[9, 9, 9]; 4], 30.0, &mut bits).unwrap_err();
+    let e = scanline3d::mesh::mesh_creases(&mesh, &[[9, 9, 9]; 4], 30.0, &mut bits).unwrap_err();
     assert!(matches!(e, AdjacencyError::Mismatch { .. }), "{e:?}");
 }
 
@@ -636,7 +637,7 @@ where
                 point_lights: &[],
                 fog: None,
                 tone: Some(
-                    scanline3d::ToneMap::new(scanline3d::ToneCurve::Reinhard)
+                    scanline3d::ToneMap::new(scanline3d::tone::ToneCurve::Reinhard)
                         .with_exposure(S::from_f64(bad)),
                 ),
             },

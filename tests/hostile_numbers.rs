@@ -13,9 +13,9 @@ use common::Frame;
 use embedded_graphics::pixelcolor::{Gray8, GrayColor, Rgb565, RgbColor};
 use embedded_graphics::prelude::*;
 use scanline3d::fixed::types::I16F16;
+use scanline3d::limits::MAX_DEPTH_RATIO;
 use scanline3d::prelude::*;
-use scanline3d::MAX_DEPTH_RATIO;
-use scanline3d::{CameraError, Error, MeshError, Stats};
+use scanline3d::{errors::CameraError, errors::MeshError, Error, Stats};
 
 type Q = Fx<I16F16>;
 type R<S, C> = Renderer<S, C, 48, 48, 64, 64, 32>;

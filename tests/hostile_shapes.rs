@@ -23,8 +23,8 @@ use std::sync::mpsc;
 use std::time::Duration;
 
 use scanline3d::fixed::types::{I12F20, I16F16};
-use scanline3d::ParamValue;
-use scanline3d::{Fx, Scalar, Shape, ShapeError};
+use scanline3d::mesh::ParamValue;
+use scanline3d::{errors::ShapeError, Fx, Scalar, Shape};
 
 type Q = Fx<I16F16>;
 

@@ -33,11 +33,11 @@ use embedded_graphics::pixelcolor::{
 };
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
+use scanline3d::color::quantize;
 use scanline3d::fixed::types::I16F16;
+use scanline3d::limits::MAX_DEPTH_RATIO;
 use scanline3d::prelude::*;
-use scanline3d::quantize;
-use scanline3d::MAX_DEPTH_RATIO;
-use scanline3d::{CameraError, Capacity, Error, Stats, TriangleId};
+use scanline3d::{color::TriangleId, errors::CameraError, errors::Capacity, Error, Stats};
 
 type Q = Fx<I16F16>;
 
@@ -838,7 +838,10 @@ fn build<S: Scalar>(case: Case) -> Spec<S> {
                 .unwrap()
                 .with_normals(&nan)
                 .unwrap_err();
-            assert_eq!(e, scanline3d::MeshError::InvalidNormal { vertex: 0 });
+            assert_eq!(
+                e,
+                scanline3d::errors::MeshError::InvalidNormal { vertex: 0 }
+            );
             spec(s, frame(&[("invalid", 0, 0), ("drawn", 6, 6)], (300, 1000)))
         }
         Case::Specular(shading, shininess, k) => {

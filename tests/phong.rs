@@ -259,7 +259,14 @@ fn phong_frames_match_their_golden_images() {
     use scanline3d_support::demo::{render_bench, Bench};
     fn one<S: Scalar>(b: Bench, ty: &str) {
         let mut f = Frame::new(240, 240, Rgb565::BLACK);
-        render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::NoProbe).unwrap();
+        render_bench::<S, Rgb565, _, _>(
+            b,
+            0.0,
+            false,
+            &mut f,
+            &mut common::compare::HostProbe::Plain,
+        )
+        .unwrap();
         f.assert_each_written_once();
         common::check_golden(&format!("{}_{ty}", b.name()), &f);
     }
@@ -282,8 +289,14 @@ fn toon_with_dithering_matches_its_golden_image() {
     use scanline3d_support::demo::{render_bench, Bench};
     let frame = |dither: bool| {
         let mut f = Frame::new(240, 240, Rgb565::BLACK);
-        render_bench::<Q, Rgb565, _, _>(Bench::Toon, 0.0, dither, &mut f, &mut scanline3d::NoProbe)
-            .unwrap();
+        render_bench::<Q, Rgb565, _, _>(
+            Bench::Toon,
+            0.0,
+            dither,
+            &mut f,
+            &mut common::compare::HostProbe::Plain,
+        )
+        .unwrap();
         f.assert_each_written_once();
         f
     };

@@ -8,9 +8,9 @@ use common::{at, screen_camera, unlit};
 use embedded_graphics::mock_display::MockDisplay;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
+use scanline3d::color::quantize;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::quantize;
 use scanline3d::Stats;
 
 const W: u32 = 16;

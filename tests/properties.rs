@@ -5,9 +5,9 @@ use crate::common;
 use common::{at, screen_camera, unlit, Frame};
 use embedded_graphics::pixelcolor::Rgb565;
 use proptest::prelude::*;
+use scanline3d::color::TriangleId;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::TriangleId;
 use scanline3d_support::hash::NullTarget;
 
 type Q = Fx<I16F16>;

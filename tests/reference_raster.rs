@@ -34,7 +34,7 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use scanline3d::prelude::*;
-use scanline3d::{Probe, Stage, TargetColor, TriangleId};
+use scanline3d::{color::TriangleId, probe::Probe, probe::Stage, TargetColor};
 
 /// The fixed proptest seed of every generated scene set.
 const SEED: [u8; 32] = *b"scanline3d issue 20 reference 01";
@@ -827,8 +827,8 @@ fn colour_within_vertex_colours_at_1024() {
 /// channel units and packed into the vertex format) for every input, RGB565 and RGB888.
 #[test]
 fn vertex_colour_conversion_is_the_crates() {
+    use scanline3d::color::scale_channels;
     use scanline3d::internals::pack_channels;
-    use scanline3d::scale_channels;
     for max in [[31u8, 63, 31], [255; 3]] {
         for c in 0..=1020u16 {
             let lit = [64 * c; 3];

@@ -7,9 +7,9 @@ use crate::common;
 
 use common::{at, check_golden, compare565, screen_camera, unlit, Frame};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use scanline3d::color::quantize;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::quantize;
 use scanline3d::Stats;
 use scanline3d_support::demo::{self, deg};
 

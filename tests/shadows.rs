@@ -8,7 +8,9 @@ use common::Frame;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use scanline3d::prelude::*;
-use scanline3d::{Error, LayerError, Layering, Layers, NoProbe, PlanarShadow, ShadowLight};
+use scanline3d::{
+    errors::LayerError, shadow::Layering, shadow::PlanarShadow, shadow::ShadowLight, Error, Layers,
+};
 use scanline3d_support::demo::{render_bench, Bench};
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;
@@ -295,7 +297,14 @@ fn shadow_benchmark_scenes_match_their_golden_images() {
             Bench::Wireframe,
         ] {
             let mut f = Frame::new(240, 240, Rgb565::BLACK);
-            render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut NoProbe).unwrap();
+            render_bench::<S, Rgb565, _, _>(
+                b,
+                0.0,
+                false,
+                &mut f,
+                &mut common::compare::HostProbe::Plain,
+            )
+            .unwrap();
             f.assert_each_written_once();
             common::check_golden(&format!("{}_{ty}", b.name()), &f);
         }

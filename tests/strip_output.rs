@@ -12,9 +12,9 @@ use embedded_graphics::pixelcolor::raw::ToBytes;
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_graphics::text::{Baseline, Text};
+use scanline3d::errors::StripBufferTooSmall;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::StripBufferTooSmall;
 use scanline3d_support::demo::{self, board};
 
 type Q = Fx<I16F16>;

@@ -138,8 +138,8 @@ fn attribute_stores_cost_exactly_their_records() {
     assert_eq!(
         std::mem::size_of::<Stores>(),
         std::mem::size_of::<Plain>()
-            + 512 * scanline3d::VERTEX_EXTRA_BYTES
-            + 61 * scanline3d::ACTIVE_EXTRA_BYTES
+            + 512 * scanline3d::limits::VERTEX_EXTRA_BYTES
+            + 61 * scanline3d::limits::ACTIVE_EXTRA_BYTES
     );
     assert_eq!(
         std::mem::align_of::<Plain>(),
@@ -154,7 +154,8 @@ fn textured_frames_match_their_golden_images() {
     use scanline3d_support::demo::{render_bench, Bench};
     fn one<S: Scalar>(b: Bench, ty: &str) {
         let mut f = common::Frame::new(240, 240, Rgb565::BLACK);
-        render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::NoProbe).unwrap();
+        render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::probe::NoProbe)
+            .unwrap();
         f.assert_each_written_once();
         common::check_golden(&format!("{}_{ty}", b.name()), &f);
     }

@@ -9,8 +9,9 @@ use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use scanline3d::prelude::*;
 use scanline3d::{
-    mesh_adjacency, Adjacency, AdjacencyError, Error, LayerError, Layering, Layers, Outline,
-    PlanarShadow, ShadowLight, VolumeShadow,
+    errors::AdjacencyError, errors::LayerError, mesh::mesh_adjacency, mesh::Adjacency,
+    shadow::Layering, shadow::Outline, shadow::PlanarShadow, shadow::ShadowLight,
+    shadow::VolumeShadow, Error, Layers,
 };
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;

@@ -25,9 +25,10 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
 use scanline3d::{
-    check_adjacency, mesh_adjacency, mesh_creases, Adjacency, Edges, Layering, Layers, Outline,
-    PlanarShadow, ShadowLight, Stats, Texture, TextureMode, TexturedShape, ToneCurve, ToneMap,
-    VolumeShadow, Wrap, NO_NEIGHBOUR,
+    mesh::check_adjacency, mesh::mesh_adjacency, mesh::mesh_creases, mesh::Adjacency,
+    mesh::NO_NEIGHBOUR, shadow::Edges, shadow::Layering, shadow::Outline, shadow::PlanarShadow,
+    shadow::ShadowLight, shadow::VolumeShadow, tone::ToneCurve, Layers, Stats, Texture,
+    TextureMode, TexturedShape, ToneMap, Wrap,
 };
 use scanline3d_support::hash::HashTarget;
 

@@ -8,7 +8,7 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::Pixel;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::{TargetColor, TriangleId};
+use scanline3d::{color::TriangleId, TargetColor};
 use scanline3d_support::hash::HashTarget;
 
 struct Bytes<'a>(&'a [u8]);

@@ -10,9 +10,9 @@
 //! vertices per number type: a constructor that loops past its capacity check would time out.
 
 use scanline3d::fixed::types::{I12F20, I16F16};
+use scanline3d::mesh::ParamValue;
 use scanline3d::prelude::*;
-use scanline3d::ParamValue;
-use scanline3d::{Shape, ShapeError, TexturedShape};
+use scanline3d::{errors::ShapeError, Shape, TexturedShape};
 
 const V: usize = 289;
 const T: usize = 512;

@@ -26,7 +26,7 @@ use riscv_rt::entry;
 #[cfg(target_arch = "riscv32")]
 use riscv_semihosting::{debug, hprintln};
 use scanline3d::fixed::types::I16F16;
-use scanline3d::{Fx, NoProbe, Probe, Scalar, Stage};
+use scanline3d::{probe::NoProbe, probe::Probe, probe::Stage, Fx, Scalar};
 use scanline3d_support::demo::{render_bench, Bench};
 use scanline3d_support::hash::{HashTarget, NullTarget};
 

@@ -240,9 +240,9 @@ impl<
                     t.exposure,
                     t.intensity * t.exposure,
                     match t.curve {
-                        crate::ToneCurve::Clamp => TONE_NONE,
-                        crate::ToneCurve::Reinhard => TONE_REINHARD,
-                        crate::ToneCurve::Filmic => TONE_FILMIC,
+                        crate::scene::tone::ToneCurve::Clamp => TONE_NONE,
+                        crate::scene::tone::ToneCurve::Reinhard => TONE_REINHARD,
+                        crate::scene::tone::ToneCurve::Filmic => TONE_FILMIC,
                     },
                 ),
                 None => (S::ONE, S::ONE, TONE_NONE),

@@ -71,7 +71,7 @@ pub struct Layers<const W: usize, const LINES: usize, const RA: usize, const PA:
     blob: bool,
     /// The shadow is volumes, counted in the stencil.
     volume: bool,
-    /// The outlines are drawn without the depth test ([`crate::Outline::see_through`]).
+    /// The outlines are drawn without the depth test ([`crate::shadow::Outline::see_through`]).
     see_through: bool,
     skipped: u32,
 }
@@ -137,7 +137,7 @@ impl<
     /// once, the stencil of `layers` keeping count), then the other opaque objects, then the
     /// translucent triangles ([`crate::Material::alpha`]) back to front, depth-tested against
     /// the opaque ones and not writing depth. With [`Layering::volumes`] the shadow is
-    /// counted instead, after the opaque objects of each row (see [`crate::VolumeShadow`]);
+    /// counted instead, after the opaque objects of each row (see [`crate::shadow::VolumeShadow`]);
     /// [`Layering::with_outline`] adds outlines before the translucent triangles. The shadow and the translucent triangles blend
     /// onto the strip's pixels (`C = Csrc·α + Cdst·(1 − α)`): one product per channel and
     /// pixel (the only per-pixel products of the renderer), a table lookup for the shadow on
@@ -280,7 +280,7 @@ impl<
             check_creases(scene, o)?;
         }
         let translucent = scene.objects.iter().any(|o| o.material.alpha < 255);
-        // (A [`crate::TriangleId`] target records the opaque triangles only: nothing blends.)
+        // (A [`crate::color::TriangleId`] target records the opaque triangles only: nothing blends.)
         if (shadow.is_some() || layering.volume.is_some() || translucent)
             && C::from_channels([0; 3]).channels().is_none()
             && C::triangle_id(0).is_none()
@@ -753,12 +753,12 @@ fn set_blend<
 }
 
 /// Checks each object of `objects` has an adjacency table (`adjacency`, in the same order)
-/// checked against its mesh ([`crate::Adjacency::is_for`]: two pointer comparisons, the table
+/// checked against its mesh ([`crate::mesh::Adjacency::is_for`]: two pointer comparisons, the table
 /// itself was checked when it was made), and at most `bits` triangles.
 fn check_adjacency<S: Scalar, E, const L: usize>(
     scene: &Scene<'_, S, L>,
     objects: &[usize],
-    adjacency: &[crate::Adjacency<'_, S>],
+    adjacency: &[crate::scene::adjacency::Adjacency<'_, S>],
     bits: usize,
 ) -> Result<(), Error<E>> {
     for (k, &object) in objects.iter().enumerate() {
@@ -782,7 +782,7 @@ fn check_adjacency<S: Scalar, E, const L: usize>(
 /// 3 bits per triangle.
 fn check_creases<S: Scalar, E, const L: usize>(
     scene: &Scene<'_, S, L>,
-    o: &crate::Outline<'_, S>,
+    o: &crate::raster::shadow::Outline<'_, S>,
 ) -> Result<(), Error<E>> {
     if let Edges::Crease(tables) = o.edges {
         for (k, &object) in o.objects.iter().enumerate() {
@@ -799,7 +799,7 @@ fn check_creases<S: Scalar, E, const L: usize>(
 fn check_volume<S: Scalar, E, const L: usize>(
     scene: &Scene<'_, S, L>,
     casters: &[usize],
-    v: &crate::VolumeShadow<'_, S>,
+    v: &crate::raster::shadow::VolumeShadow<'_, S>,
     bits: usize,
 ) -> Result<(), Error<E>> {
     let light_ok = match v.light {

@@ -93,7 +93,7 @@ fn ratio_q30(num: u64, den: u64) -> u64 {
 
 /// The tone curve `tone` on an exposed radiance `v` (Q8.14 channel units, 255·2¹⁴ = white):
 /// the display channel, Q8.14 in 0..=255·2¹⁴. Reinhard `x/(1 + x)` and the filmic
-/// `x(2.51x + 0.03)/(x(2.43x + 0.59) + 0.14)` (clamped to 1) as [`crate::ToneCurve`]
+/// `x(2.51x + 0.03)/(x(2.43x + 0.59) + 0.14)` (clamped to 1) as [`crate::tone::ToneCurve`]
 /// defines them, in integers: the filmic polynomials on `v/2¹⁰` (steps of 1/16 channel unit,
 /// constants Q2.14).
 fn tone14(v: i64, tone: u8) -> i32 {

@@ -259,7 +259,7 @@ pub(crate) const BLOB_FAN: [[u16; 3]; BLOB_SIDES] = {
 };
 
 /// A shadow volume per caster ([`Layering::volume`]): the silhouette of each caster as seen
-/// from the light (found with its [`crate::mesh_adjacency`]) extruded away from the light by
+/// from the light (found with its [`crate::mesh::mesh_adjacency`]) extruded away from the light by
 /// `reach`, closed by caps, and counted per pixel in the stencil lines (z-fail: the volume
 /// faces behind the visible surface, so a camera inside a volume needs nothing special).
 /// Every visible pixel inside a volume is blended toward `color` by `alpha`, whichever object
@@ -279,8 +279,8 @@ pub struct VolumeShadow<'a, S> {
     /// shadow should reach (for a point light, from each caster vertex along the light's ray).
     pub reach: S,
     /// One adjacency table per caster, in the order of [`Layering::casters`]
-    /// ([`crate::mesh_adjacency`] of its mesh, checked once by [`crate::Adjacency::new`]).
-    pub adjacency: &'a [crate::Adjacency<'a, S>],
+    /// ([`crate::mesh::mesh_adjacency`] of its mesh, checked once by [`crate::mesh::Adjacency::new`]).
+    pub adjacency: &'a [crate::scene::adjacency::Adjacency<'a, S>],
     /// The shadow's colour, 8 bits per channel.
     pub color: [u8; 3],
     /// The shadow's opacity, 0..=255.
@@ -295,7 +295,7 @@ pub enum Edges<'a> {
     Silhouette,
     /// The contour and the creases: besides the silhouette, every edge whose two faces meet at
     /// more than a crease angle (and every open edge). One crease table per outlined object,
-    /// in the order of [`Outline::objects`], from [`crate::mesh_creases`] (a mesh's setup: the
+    /// in the order of [`Outline::objects`], from [`crate::mesh::mesh_creases`] (a mesh's setup: the
     /// angle is fixed there).
     Crease(&'a [&'a [u8]]),
     /// Every edge: with the depth test, a wireframe with its hidden lines removed.
@@ -303,7 +303,7 @@ pub enum Edges<'a> {
 }
 
 /// Outlines and wireframes ([`Layering::outline`]): the chosen [`Edges`] of each listed object
-/// (found with its [`crate::mesh_adjacency`]) drawn as lines of `color`, 1 px wide: each edge
+/// (found with its [`crate::mesh::mesh_adjacency`]) drawn as lines of `color`, 1 px wide: each edge
 /// is a quad one pixel across its minor axis, so every column (or row) it crosses takes exactly
 /// one pixel by the top-left rule and joined edges leave no gap. With `see_through` off an edge
 /// is drawn only where it is not behind a nearer surface (within a small bias, so an edge on a
@@ -318,8 +318,8 @@ pub struct Outline<'a, S> {
     /// The outlined objects (indices into [`crate::Scene::objects`]).
     pub objects: &'a [usize],
     /// One adjacency table per outlined object, in the order of `objects` (checked once by
-    /// [`crate::Adjacency::new`]).
-    pub adjacency: &'a [crate::Adjacency<'a, S>],
+    /// [`crate::mesh::Adjacency::new`]).
+    pub adjacency: &'a [crate::scene::adjacency::Adjacency<'a, S>],
     /// The lines' colour, 8 bits per channel.
     pub color: [u8; 3],
     /// Which edges are drawn.
@@ -333,7 +333,7 @@ impl<'a, S> Outline<'a, S> {
     #[must_use]
     pub const fn silhouette(
         objects: &'a [usize],
-        adjacency: &'a [crate::Adjacency<'a, S>],
+        adjacency: &'a [crate::scene::adjacency::Adjacency<'a, S>],
         color: [u8; 3],
     ) -> Self {
         Outline {

@@ -1,5 +1,5 @@
 //! Shadow volumes and outlines: the triangles a layered frame adds for them, built in the
-//! geometry stage from each mesh's adjacency ([`crate::mesh_adjacency`]).
+//! geometry stage from each mesh's adjacency ([`crate::mesh::mesh_adjacency`]).
 //!
 //! - A **shadow volume** is a caster's faces turned away from the light (the near cap), the
 //!   same faces moved away from the light (the far cap) and one quad per silhouette edge
@@ -42,7 +42,7 @@ pub(crate) struct Lines<'a, S> {
     pub(crate) eye: (Vec3<S>, bool),
 }
 
-/// Which edges an outline draws for one object ([`crate::Edges`] with the object's crease
+/// Which edges an outline draws for one object ([`crate::shadow::Edges`] with the object's crease
 /// table).
 #[derive(Copy, Clone)]
 pub(crate) enum Pick<'a> {

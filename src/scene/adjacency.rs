@@ -8,14 +8,14 @@ use crate::num::scalar::Scalar;
 use crate::scene::mesh::{Mesh, MeshError};
 
 /// An adjacency table checked against its mesh ([`check_adjacency`]) once, when it is made, and
-/// bound to that mesh's slices: what [`crate::VolumeShadow`] and [`crate::Outline`] take. A
+/// bound to that mesh's slices: what [`crate::shadow::VolumeShadow`] and [`crate::shadow::Outline`] take. A
 /// layered frame checks only that each object's mesh is the one its table was checked against
 /// (the same index and position slices, two pointer comparisons), so a table costs nothing per
 /// frame. The table and the mesh's slices stay borrowed while it exists, so neither can change
 /// under it.
 ///
 /// ```
-/// use scanline3d::{mesh_adjacency, Adjacency, Shape};
+/// use scanline3d::{mesh::mesh_adjacency, mesh::Adjacency, Shape};
 ///
 /// let cube = Shape::<f32, 24, 12>::cube(1.0).unwrap();
 /// let mut table = [[0u16; 3]; 12];
@@ -280,7 +280,7 @@ pub fn check_adjacency<S: Scalar>(
 /// significant first, for edge `e` of triangle `t`, numbered as in [`mesh_adjacency`]): an
 /// edge whose two faces meet at more than `angle_deg` degrees (between their normals: 0 for a
 /// flat surface), or an open edge. A face of zero area makes no crease with its neighbours.
-/// The table is what [`crate::Edges::Crease`] draws; both sides of an edge carry the same bit.
+/// The table is what [`crate::shadow::Edges::Crease`] draws; both sides of an edge carry the same bit.
 /// Returns the number of crease edges (an edge between two faces counted once).
 ///
 /// For a mesh's setup, not per frame: one face normal per triangle, in f64 (the same table

@@ -24,7 +24,7 @@ pub enum Shading {
     #[default]
     Gouraud,
     /// Per-pixel lighting: the vertex normals interpolated across the face and lit at every
-    /// pixel (the seeds' model, directional lights, up to [`crate::MAX_PHONG_LIGHTS`]; the
+    /// pixel (the seeds' model, directional lights, up to [`crate::limits::MAX_PHONG_LIGHTS`]; the
     /// view direction is the object origin's, one per object). Needs the renderer's attribute
     /// stores, as a texture does ([`crate::Renderer`], "Textures"); not combined with a
     /// texture (the texture is not drawn).
@@ -170,8 +170,8 @@ impl<S: Scalar> Material<S> {
 
     /// `color` exactly, whatever the lights: flat, ambient 1, no diffuse or specular term. In
     /// the background colour it hides what is behind it and shows nothing of itself — the
-    /// surfaces of a wireframe with its hidden lines removed ([`crate::Outline`] with
-    /// [`crate::Edges::All`]).
+    /// surfaces of a wireframe with its hidden lines removed ([`crate::shadow::Outline`] with
+    /// [`crate::shadow::Edges::All`]).
     #[must_use]
     pub const fn unlit(color: [u8; 3]) -> Self {
         Material::matte(color, S::ONE, S::ZERO).flat()

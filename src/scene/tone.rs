@@ -220,7 +220,7 @@ impl AutoExposure {
 
 /// A draw target that measures the luma of what passes through it to `target`: the strips of
 /// a frame as the renderer hands them over (no framebuffer). Luma is BT.601's
-/// ([`crate::luma`]) of the 8-bit channels; [`Metered::mean`] is the mean since [`Metered::reset`], of every pixel or
+/// ([`crate::color::luma`]) of the 8-bit channels; [`Metered::mean`] is the mean since [`Metered::reset`], of every pixel or
 /// of those not in an excluded colour ([`Metered::excluding`]: the background, so that the
 /// exposure follows the objects, not how much of the screen they cover).
 #[derive(Debug)]
@@ -266,7 +266,7 @@ impl<'a, D: DrawTarget> Metered<'a, D> {
     }
 }
 
-/// The luma (0..=255) of `c`: [`crate::luma`] (BT.601, embedded-graphics' weights) of its
+/// The luma (0..=255) of `c`: [`crate::color::luma`] (BT.601, embedded-graphics' weights) of its
 /// channels scaled to 8 bits, rounded (`None` for a colour without channels).
 fn luma<C: TargetColor>(c: C) -> Option<u64> {
     let max = C::CHANNEL_MAX;

@@ -17,9 +17,9 @@ pub use crate::demo_shadow::{
 use scanline3d::Mat4;
 use scanline3d::Object;
 use scanline3d::Scalar;
-use scanline3d::{Camera, CameraError, Projection};
+use scanline3d::{errors::CameraError, Camera, Projection};
+use scanline3d::{errors::ShapeError, Shape};
 use scanline3d::{Light, Material};
-use scanline3d::{Shape, ShapeError};
 
 /// The default torus mesh.
 pub type TorusShape<S> = Shape<S, 512, 1024>;
@@ -125,7 +125,7 @@ where
     S: Scalar,
     C: scanline3d::TargetColor,
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: scanline3d::Probe,
+    P: scanline3d::probe::Probe,
 {
     let objects = [Object {
         mesh,
@@ -155,7 +155,7 @@ where
     S: Scalar,
     C: scanline3d::TargetColor,
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: scanline3d::Probe,
+    P: scanline3d::probe::Probe,
 {
     let shape = torus::<S>().map_err(|_| BenchError::Scene)?;
     let objects = [Object {
@@ -214,7 +214,7 @@ where
     S: Scalar,
     C: scanline3d::TargetColor,
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: scanline3d::Probe,
+    P: scanline3d::probe::Probe,
 {
     use scanline3d::Shading;
     macro_rules! go_with {
@@ -471,7 +471,7 @@ where
             let haze = fog(2.2, 3.6);
             let hdr = scanline3d::Effects {
                 tone: Some(
-                    scanline3d::ToneMap::new(scanline3d::ToneCurve::Filmic)
+                    scanline3d::ToneMap::new(scanline3d::tone::ToneCurve::Filmic)
                         .with_intensity(S::from_f64(HDR_INTENSITY))
                         .with_exposure(S::from_f64(HDR_EXPOSURE)),
                 ),

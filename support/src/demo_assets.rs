@@ -3,7 +3,7 @@
 //! flash and the floor mesh).
 
 use scanline3d::Scalar;
-use scanline3d::{Camera, CameraError, Projection};
+use scanline3d::{errors::CameraError, Camera, Projection};
 
 /// Degrees to radians in `S`.
 #[must_use]
@@ -90,7 +90,7 @@ where
     S: Scalar,
     C: scanline3d::TargetColor,
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: scanline3d::Probe,
+    P: scanline3d::probe::Probe,
 {
     let order = scanline3d::DrawOrder::default();
     render_on::<S, C, D, P, W, H, V, T, A, L, LINES, XV, XA, LINES>(
@@ -126,7 +126,7 @@ where
     S: Scalar,
     C: scanline3d::TargetColor,
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: scanline3d::Probe,
+    P: scanline3d::probe::Probe,
 {
     // Set in place: `with_dither` would move the renderer, which may take a second copy of it
     // on the stack.
@@ -241,15 +241,15 @@ pub enum Bench {
     /// ([`scanline3d::Renderer::render_layered`]; the two shadows overlap and darken once).
     Shadow,
     /// [`Bench::ShadowNone`] with a soft blob shadow under each model
-    /// ([`scanline3d::ShadowMethod::Blob`]).
+    /// ([`scanline3d::shadow::ShadowMethod::Blob`]).
     ShadowBlob,
     /// [`Bench::ShadowNone`] with the torus translucent (drawn after the opaque triangles of
     /// each row, blended).
     Translucent,
-    /// [`Bench::ShadowNone`] with shadow volumes of both models ([`scanline3d::VolumeShadow`]): on
+    /// [`Bench::ShadowNone`] with shadow volumes of both models ([`scanline3d::shadow::VolumeShadow`]): on
     /// the ground, on each other and on themselves.
     ShadowVolume,
-    /// [`Bench::ShadowNone`] with both models outlined ([`scanline3d::Outline`]).
+    /// [`Bench::ShadowNone`] with both models outlined ([`scanline3d::shadow::Outline`]).
     Outline,
     /// The shadow scene's torus and cube outlined with their creases (edges sharper than
     /// [`crate::demo::CREASE_ANGLE`]: the cube's) besides their contours.

@@ -45,7 +45,7 @@ where
     S: Scalar,
     C: scanline3d::TargetColor,
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: scanline3d::Probe,
+    P: scanline3d::probe::Probe,
 {
     let convert = |v: &[scanline3d::Fx<scanline3d::fixed::types::I16F16>; 3]| {
         v.map(|c| S::from_f64(c.to_f64()))

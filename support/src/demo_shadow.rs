@@ -9,7 +9,10 @@ use crate::demo_assets::{deg, look, persp, Bench, BenchError, BenchFrame};
 use scanline3d::Mat4;
 use scanline3d::Scalar;
 use scanline3d::Shape;
-use scanline3d::{Edges, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow};
+use scanline3d::{
+    shadow::Edges, shadow::Layering, shadow::Outline, shadow::PlanarShadow, shadow::ShadowLight,
+    shadow::ShadowMethod, shadow::VolumeShadow,
+};
 use scanline3d::{Layers, Renderer};
 use scanline3d::{Light, Material};
 use scanline3d::{Object, Scene};
@@ -147,7 +150,7 @@ where
     S: Scalar,
     C: scanline3d::TargetColor,
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: scanline3d::Probe,
+    P: scanline3d::probe::Probe,
 {
     let ground = Shape::<S, 4, 2>::plane(5.0, 5.0, 1, 1).map_err(|_| BenchError::Scene)?;
     let torus = Shape::<S, 288, 576>::torus(0.7, 0.25, 24, 12).map_err(|_| BenchError::Scene)?;
@@ -203,16 +206,17 @@ where
     let mut cube_creases = [0u8; 5];
     if o.volume || o.outline.is_some() {
         let bad = |_| BenchError::Scene;
-        scanline3d::mesh_adjacency(&ground.mesh(), &mut ground_adj).map_err(bad)?;
-        scanline3d::mesh_adjacency(&torus.mesh(), &mut torus_adj).map_err(bad)?;
-        scanline3d::mesh_adjacency(&cube.mesh(), &mut cube_adj).map_err(bad)?;
+        scanline3d::mesh::mesh_adjacency(&ground.mesh(), &mut ground_adj).map_err(bad)?;
+        scanline3d::mesh::mesh_adjacency(&torus.mesh(), &mut torus_adj).map_err(bad)?;
+        scanline3d::mesh::mesh_adjacency(&cube.mesh(), &mut cube_adj).map_err(bad)?;
         if o.edges == EdgeStyle::Crease {
             let a = o.crease_angle;
-            scanline3d::mesh_creases(&ground.mesh(), &ground_adj, a, &mut ground_creases)
+            scanline3d::mesh::mesh_creases(&ground.mesh(), &ground_adj, a, &mut ground_creases)
                 .map_err(bad)?;
-            scanline3d::mesh_creases(&torus.mesh(), &torus_adj, a, &mut torus_creases)
+            scanline3d::mesh::mesh_creases(&torus.mesh(), &torus_adj, a, &mut torus_creases)
                 .map_err(bad)?;
-            scanline3d::mesh_creases(&cube.mesh(), &cube_adj, a, &mut cube_creases).map_err(bad)?;
+            scanline3d::mesh::mesh_creases(&cube.mesh(), &cube_adj, a, &mut cube_creases)
+                .map_err(bad)?;
         }
     }
     // Each table checked against its mesh once (Adjacency::new): the frame then only checks
@@ -220,9 +224,9 @@ where
     let checked = if o.volume || o.outline.is_some() {
         let bad = |_| BenchError::Scene;
         Some([
-            scanline3d::Adjacency::new(&ground.mesh(), &ground_adj).map_err(bad)?,
-            scanline3d::Adjacency::new(&torus.mesh(), &torus_adj).map_err(bad)?,
-            scanline3d::Adjacency::new(&cube.mesh(), &cube_adj).map_err(bad)?,
+            scanline3d::mesh::Adjacency::new(&ground.mesh(), &ground_adj).map_err(bad)?,
+            scanline3d::mesh::Adjacency::new(&torus.mesh(), &torus_adj).map_err(bad)?,
+            scanline3d::mesh::Adjacency::new(&cube.mesh(), &cube_adj).map_err(bad)?,
         ])
     } else {
         None
@@ -317,7 +321,7 @@ where
     S: Scalar,
     C: scanline3d::TargetColor,
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
-    P: scanline3d::Probe,
+    P: scanline3d::probe::Probe,
 {
     const RA: usize = SHADOW_CAPACITY.3;
     let mut r = Renderer::<S, C, 240, 240, V, T, A>::new();

@@ -2,7 +2,7 @@
 //! memory, so that they also run on a device: prepare two renderers (say, fixed point and f32),
 //! draw them strip by strip ([`scanline3d::Renderer::render_strip`]) into two [`StripCapture`]s, and
 //! feed the strips to [`Metrics::add_line`]. Depth-order mismatches come from rendering
-//! [`scanline3d::TriangleId`]s the same way and feeding them to [`Metrics::add_ids`].
+//! [`scanline3d::color::TriangleId`]s the same way and feeding them to [`Metrics::add_ids`].
 
 use core::ops::Range;
 
@@ -12,7 +12,7 @@ use embedded_graphics_core::pixelcolor::{PixelColor, RgbColor};
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
 
-use scanline3d::TriangleId;
+use scanline3d::color::TriangleId;
 
 /// Accumulated differences between a tested image and a reference image.
 #[derive(Copy, Clone, Debug, Default, PartialEq)]

@@ -133,7 +133,7 @@ impl ObjFile {
 
     /// The indexed mesh: one vertex per distinct [`Self::split_key`], in order of first use;
     /// with `uvs`, texture coordinates `(s, t) = (u, 1 − v)` (an error unless every corner has
-    /// a `vt` and every one is within ±[`scanline3d::UV_LIMIT`] once stored in Q16.16).
+    /// a `vt` and every one is within ±[`scanline3d::limits::UV_LIMIT`] once stored in Q16.16).
     pub fn mesh_with(&self, normals: NormalSource, uvs: bool) -> Result<BigMesh, String> {
         use std::collections::HashMap;
         if normals == NormalSource::File && !self.all_corners_have_normals {
@@ -183,10 +183,10 @@ impl ObjFile {
 
     /// The renderer's `(s, t)` of a `vt` `(u, v)`: `(u, 1 − v)` (OBJ's `v` goes up, the
     /// renderer's `t` down from the top row), or an error naming the `vt` when a coordinate,
-    /// rounded to Q16.16 as baked, is not strictly within ±[`scanline3d::UV_LIMIT`].
+    /// rounded to Q16.16 as baked, is not strictly within ±[`scanline3d::limits::UV_LIMIT`].
     fn texture_coordinate(&self, [u, v]: [f64; 2]) -> Result<[f64; 2], String> {
         let st = [u, 1.0 - v];
-        let limit = (scanline3d::UV_LIMIT * 65536.0) as i64;
+        let limit = (scanline3d::limits::UV_LIMIT * 65536.0) as i64;
         if st
             .iter()
             .all(|&c| c.is_finite() && (q16(c) as i64).abs() < limit)
@@ -195,11 +195,11 @@ impl ObjFile {
         } else {
             Err(format!(
                 "{}: texture coordinate `vt {u} {v}` gives (s, t) = ({}, {}) (t = 1 − v): \
-                 the renderer takes coordinates strictly within ±{} (scanline3d::UV_LIMIT)",
+                 the renderer takes coordinates strictly within ±{} (scanline3d::limits::UV_LIMIT)",
                 self.name,
                 st[0],
                 st[1],
-                scanline3d::UV_LIMIT
+                scanline3d::limits::UV_LIMIT
             ))
         }
     }
@@ -561,12 +561,12 @@ pub fn bounds(positions: &[[f64; 3]]) -> ([f64; 3], [f64; 3], [f64; 3], f64) {
 pub fn vertex_normals(mesh: &ObjMesh, use_file: bool) -> Vec<[f64; 3]> {
     if use_file {
         if let Some(ns) = &mesh.normals {
-            return ns.iter().map(|n| scanline3d::normalize(*n)).collect();
+            return ns.iter().map(|n| scanline3d::math::normalize(*n)).collect();
         }
     }
     let mut out = vec![[0.0; 3]; mesh.positions.len()];
     // The library's own averaging, in f64.
-    let _ = scanline3d::vertex_normals(&mesh.positions, &mesh.indices, &mut out);
+    let _ = scanline3d::mesh::vertex_normals(&mesh.positions, &mesh.indices, &mut out);
     out
 }
 

@@ -156,8 +156,8 @@ fn one_sided(from: &BigMesh, to: &BigMesh, samples: usize) -> Result<f64, String
     let mut total = 0.0;
     for t in &from.indices {
         let [a, b, c] = t.map(|i| from.positions[i as usize]);
-        let n = scanline3d::cross(scanline3d::sub(b, a), scanline3d::sub(c, a));
-        total += scanline3d::length(n);
+        let n = scanline3d::math::cross(scanline3d::math::sub(b, a), scanline3d::math::sub(c, a));
+        total += scanline3d::math::length(n);
         cum.push(total);
     }
     if total <= 0.0 {

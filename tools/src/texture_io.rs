@@ -7,7 +7,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use scanline3d::{Wrap, MAX_TEXTURE_SIZE};
+use scanline3d::{limits::MAX_TEXTURE_SIZE, Wrap};
 
 use super::obj::write_atomic;
 

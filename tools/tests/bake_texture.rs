@@ -645,8 +645,8 @@ fn texture_coordinates_follow_simplification_and_sloppy_is_refused() {
     // The faces wind outward (the renderer culls the others).
     for t in &big.indices {
         let [a, b, c] = t.map(|i| big.positions[i as usize]);
-        let n = scanline3d::cross(scanline3d::sub(b, a), scanline3d::sub(c, a));
-        assert!(scanline3d::dot(n, a) > 0.0);
+        let n = scanline3d::math::cross(scanline3d::math::sub(b, a), scanline3d::math::sub(c, a));
+        assert!(scanline3d::math::dot(n, a) > 0.0);
     }
     let s = simplify(&big, Some(200), None).unwrap();
     let out = &s.mesh;

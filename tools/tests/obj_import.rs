@@ -74,9 +74,9 @@ fn sphere_obj(rings: usize, segs: usize, with_vt: bool, with_vn: bool) -> String
     let mut face = |c: [(usize, usize, usize); 3]| {
         // Counter-clockwise from outside: flip when the normal points inward.
         let [a, b, d] = c.map(|(v, _, _)| pos[v - 1]);
-        let n = scanline3d::cross(scanline3d::sub(b, a), scanline3d::sub(d, a));
+        let n = scanline3d::math::cross(scanline3d::math::sub(b, a), scanline3d::math::sub(d, a));
         let centre = [0, 1, 2].map(|k| a[k] + b[k] + d[k]);
-        let c = if scanline3d::dot(n, centre) < 0.0 {
+        let c = if scanline3d::math::dot(n, centre) < 0.0 {
             [c[0], c[2], c[1]]
         } else {
             c
@@ -288,9 +288,9 @@ fn hard_edges_from_vn_stay_hard() {
     let hard_normals = vertex_normals(&hard, true);
     for t in &hard.indices {
         let [a, b, c] = t.map(|i| hard.positions[i as usize]);
-        let face = scanline3d::face_normal(a, b, c);
+        let face = scanline3d::mesh::face_normal(a, b, c);
         for &i in t {
-            let d = scanline3d::dot(face, hard_normals[i as usize]);
+            let d = scanline3d::math::dot(face, hard_normals[i as usize]);
             assert!((d - 1.0).abs() < 1e-9, "corner normal off its face: {d}");
         }
     }

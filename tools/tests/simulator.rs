@@ -17,7 +17,7 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::SimulatorDisplay;
-use scanline3d::NoProbe;
+use scanline3d::probe::NoProbe;
 use scanline3d_support::demo::{render_bench, Bench};
 use scanline3d_tools::obj::to_obj;
 use scanline3d_tools::{golden_dir, read_png, Frame};

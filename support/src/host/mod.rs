@@ -232,8 +232,8 @@ pub fn unlit<S: Scalar>(color: [u8; 3], shading: Shading) -> Material<S> {
 /// reference-rasterizer tests draw triangles exactly on the grid they choose.
 pub struct Snap<'a>(pub &'a [[i32; 2]]);
 
-impl scanline3d::Probe for Snap<'_> {
-    fn enter(&mut self, _: scanline3d::Stage) {}
+impl scanline3d::probe::Probe for Snap<'_> {
+    fn enter(&mut self, _: scanline3d::probe::Stage) {}
     fn snap(&mut self, index: u32, x: i32, y: i32) -> (i32, i32) {
         self.0.get(index as usize).map_or((x, y), |q| (q[0], q[1]))
     }

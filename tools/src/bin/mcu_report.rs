@@ -15,7 +15,7 @@ use std::fmt::Write as _;
 
 use embedded_graphics::pixelcolor::Rgb565;
 use scanline3d::fixed::types::I16F16;
-use scanline3d::{Fx, NoProbe, Scalar};
+use scanline3d::{probe::NoProbe, Fx, Scalar};
 use scanline3d_support::demo::{render_bench, render_torus_sized, Bench, SMALL_PART_TORUS};
 use scanline3d_support::hash::HashTarget;
 use serde_json::{json, Value};

@@ -175,9 +175,9 @@ pub(crate) fn budget<C: TargetColor>(
         println!(
             "  attribute stores (texture, Phong): XV = {xv}, XA = {xa}: + {} bytes on a 32-bit core \
              ({xv}·{} + {xa}·{})",
-            xv * scanline3d::VERTEX_EXTRA_BYTES_32 + xa * scanline3d::ACTIVE_EXTRA_BYTES_32,
-            scanline3d::VERTEX_EXTRA_BYTES_32,
-            scanline3d::ACTIVE_EXTRA_BYTES_32
+            xv * scanline3d::limits::VERTEX_EXTRA_BYTES_32 + xa * scanline3d::limits::ACTIVE_EXTRA_BYTES_32,
+            scanline3d::limits::VERTEX_EXTRA_BYTES_32,
+            scanline3d::limits::ACTIVE_EXTRA_BYTES_32
         );
         println!("  renderer type: Renderer<Fx<I16F16>, {color}, {w}, {h}, {verts}, {tris}, {active}, {lines}, {xv}, {xa}>");
     } else {
@@ -231,11 +231,11 @@ fn is_closed_convex(m: &Model) -> bool {
     let (_, _, _, r) = bounds(&m.positions);
     m.indices.iter().all(|t| {
         let [a, b, c] = t.map(|i| m.positions[i as usize]);
-        let n = scanline3d::cross(scanline3d::sub(b, a), scanline3d::sub(c, a));
-        let len = scanline3d::length(n);
+        let n = scanline3d::math::cross(scanline3d::math::sub(b, a), scanline3d::math::sub(c, a));
+        let len = scanline3d::math::length(n);
         len == 0.0
-            || m.positions
-                .iter()
-                .all(|p| scanline3d::dot(n, scanline3d::sub(*p, a)) / len <= 1e-9 * r.max(1.0))
+            || m.positions.iter().all(|p| {
+                scanline3d::math::dot(n, scanline3d::math::sub(*p, a)) / len <= 1e-9 * r.max(1.0)
+            })
     })
 }

@@ -5,8 +5,8 @@
 
 use clap::ValueEnum;
 use scanline3d::{
-    mesh_adjacency, mesh_creases, Adjacency, Edges, Layering, Layers, Mesh, Outline, Scalar, Scene,
-    Stats, TargetColor,
+    mesh::mesh_adjacency, mesh::mesh_creases, mesh::Adjacency, shadow::Edges, shadow::Layering,
+    shadow::Outline, Layers, Mesh, Scalar, Scene, Stats, TargetColor,
 };
 use scanline3d_support::hash::NullTarget;
 

@@ -23,7 +23,7 @@ use std::time::Instant;
 use args::*;
 use budget::{budget, capacity_name, short_capacities};
 use clap::ValueEnum;
-use common::compare::Timer;
+use common::compare::HostProbe;
 use common::csg::load_csg;
 use common::obj::{
     bounds, parse_obj, simplify, suggest_triangles, vertex_normals, NormalSource, ObjMesh,
@@ -35,7 +35,9 @@ use output::{compare, piece_mesh, plan, write_image};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::internals::ram_formula;
 use scanline3d::prelude::*;
-use scanline3d::{Capacity, Error, Needs, Stats, Texture, TextureMode, TexturedShape, Texturing};
+use scanline3d::{
+    errors::Capacity, Error, Needs, Stats, Texture, TextureMode, TexturedShape, Texturing,
+};
 use scanline3d_support::demo::{self, deg};
 use scanline3d_support::metrics::Metrics;
 
@@ -141,7 +143,7 @@ fn model(args: &Args) -> Result<Model, String> {
             simplified: None,
         }
     }
-    let e = |e: scanline3d::ShapeError| format!("shape: {e}");
+    let e = |e: scanline3d::errors::ShapeError| format!("shape: {e}");
     if args.texture.is_some() {
         // The textured shapes: the same geometry with texture coordinates (seams split).
         fn textured<const V: usize, const T: usize>(
@@ -252,7 +254,7 @@ fn setup(args: &Args, m: &Model) -> Result<Setup, String> {
         let (_, _, c, r) = bounds(&m.positions);
         let r = r.max(1e-9);
         s.centre = c;
-        let dir = scanline3d::normalize(scanline3d::sub(args.eye, args.target));
+        let dir = scanline3d::math::normalize(scanline3d::math::sub(args.eye, args.target));
         let dir = if dir == [0.0; 3] {
             [0.0, 0.0, 1.0]
         } else {
@@ -461,7 +463,7 @@ fn run<S: Scalar, C: TargetColor>(
             PointLight::new(p.position.map(S::from_f64), p.color).attenuation(c, l, q)
         })
         .collect();
-    let frame_setup = |k: usize, auto: Option<&scanline3d::AutoExposure>| FrameSetup {
+    let frame_setup = |k: usize, auto: Option<&scanline3d::tone::AutoExposure>| FrameSetup {
         camera,
         lights: lights::<S>(args),
         effects: Effects {
@@ -535,17 +537,17 @@ fn run<S: Scalar, C: TargetColor>(
                     }
                 }
                 let mut sink = scanline3d_support::hash::NullTarget::<C>::new(w as u32, h as u32);
-                let mut t = Timer::default();
+                let mut t = HostProbe::timer();
                 match depth_check.as_mut() {
                     Some(d) if args.depth != depth::DepthArg::Zbuffer => timed(&mut || {
-                        t = Timer::default();
+                        t = HostProbe::timer();
                         let _ = d.renderer().render_probed(&scene, &mut sink, &mut t);
-                        t.total.as_nanos() as f64
+                        t.total().as_nanos() as f64
                     }),
                     _ => timed(&mut || {
-                        t = Timer::default();
+                        t = HostProbe::timer();
                         let _ = r.render_probed(&scene, &mut sink, &mut t);
-                        t.total.as_nanos() as f64
+                        t.total().as_nanos() as f64
                     }),
                 }
                 out.needs.push(Needs::from_stats(&stats));
@@ -695,7 +697,7 @@ fn go<C: TargetColor + RgbColor + Into<Rgb888>>(
     let metrics = compare(
         &tested.frames,
         &reference.frames,
-        scanline3d::quantize::<C>(args.background),
+        scanline3d::color::quantize::<C>(args.background),
     );
     write_image(&args.out, &tested.frames, 40).map_err(|e| (e, 1))?;
     if let Some(note) = &m.simplified {

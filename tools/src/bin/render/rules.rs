@@ -3,7 +3,7 @@
 //! number type cannot hold ([`check_numbers`]), and frames in which nothing could be drawn
 //! ([`nothing_drawn`]).
 
-use scanline3d::{Scalar, Stats, MAX_PHONG_POINT_LIGHTS};
+use scanline3d::{limits::MAX_PHONG_POINT_LIGHTS, Scalar, Stats};
 
 use super::edges::{self, EdgesArg};
 use super::{Args, FormatArg, OnOff, SceneArg, ShadingArg};

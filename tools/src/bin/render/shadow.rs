@@ -6,7 +6,7 @@ use std::path::Path;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use scanline3d::fixed::types::I16F16;
-use scanline3d::{Fx, NoProbe, Scalar, ShadowMethod, TargetColor};
+use scanline3d::{probe::NoProbe, shadow::ShadowMethod, Fx, Scalar, TargetColor};
 use scanline3d_support::demo::{render_shadow_scene, EdgeStyle, ShadowScene};
 
 use super::common::Frame;

@@ -4,7 +4,8 @@
 
 use clap::ValueEnum;
 use scanline3d::{
-    AutoExposure, Metered, Scalar, Scene, TargetColor, ToneCurve, ToneMap, MAX_TONE_SCALE,
+    limits::MAX_TONE_SCALE, tone::AutoExposure, tone::Metered, tone::ToneCurve, Scalar, Scene,
+    TargetColor, ToneMap,
 };
 use scanline3d_support::hash::NullTarget;
 
@@ -103,7 +104,7 @@ pub fn adapt<S: Scalar, C: TargetColor>(
     let mut sink = NullTarget::<C>::new(w as u32, h as u32);
     // The model's pixels, not the background's.
     let mut metered =
-        Metered::new(&mut sink).excluding(scanline3d::quantize::<C>(scene.background));
+        Metered::new(&mut sink).excluding(scanline3d::color::quantize::<C>(scene.background));
     if r.render(scene, &mut metered).is_ok() {
         auto.adapt(metered.mean());
     }

@@ -13,7 +13,7 @@ use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::text::{Baseline, Text};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::{Error, NoProbe, Stats};
+use scanline3d::{probe::NoProbe, Error, Stats};
 use scanline3d_support::demo::{self, deg, Bench};
 use scanline3d_tools::obj::{bounds, parse_obj, suggest_triangles, vertex_normals, NormalSource};
 
@@ -192,7 +192,7 @@ impl Viewer {
         // `render --fit`: the unit sphere fills the 45° view from along (0, 1.2, 3).
         let fov = 45.0f64.to_radians();
         let distance = 1.0 / (fov / 2.0).sin();
-        let dir = scanline3d::normalize([0.0, 1.2, 3.0]);
+        let dir = scanline3d::math::normalize([0.0, 1.2, 3.0]);
         let camera = Camera::look_at(
             dir.map(|d| Q::from_f64(d * distance)),
             [Q::ZERO; 3],
