@@ -154,8 +154,14 @@ fn textured_frames_match_their_golden_images() {
     use scanline3d_support::demo::{render_bench, Bench};
     fn one<S: Scalar>(b: Bench, ty: &str) {
         let mut f = common::Frame::new(240, 240, Rgb565::BLACK);
-        render_bench::<S, Rgb565, _, _>(b, 0.0, false, &mut f, &mut scanline3d::probe::NoProbe)
-            .unwrap();
+        render_bench::<S, Rgb565, _, _>(
+            b,
+            0.0,
+            false,
+            &mut f,
+            &mut common::compare::HostProbe::Plain,
+        )
+        .unwrap();
         f.assert_each_written_once();
         common::check_golden(&format!("{}_{ty}", b.name()), &f);
     }
