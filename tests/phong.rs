@@ -256,19 +256,9 @@ fn phong_needs_the_attribute_stores() {
 /// (looked at).
 #[test]
 fn phong_frames_match_their_golden_images() {
-    use scanline3d_support::demo::{render_bench, Bench};
+    use scanline3d_support::demo::Bench;
     fn one<S: Scalar>(b: Bench, ty: &str) {
-        let mut f = Frame::new(240, 240, Rgb565::BLACK);
-        render_bench::<S, Rgb565, _, _>(
-            b,
-            0.0,
-            false,
-            &mut f,
-            &mut common::compare::HostProbe::Plain,
-        )
-        .unwrap();
-        f.assert_each_written_once();
-        common::check_golden(&format!("{}_{ty}", b.name()), &f);
+        common::compare::check_bench_golden::<S>(b, ty);
     }
     for b in [
         Bench::Phong,

@@ -11,7 +11,7 @@ use scanline3d::prelude::*;
 use scanline3d::{
     errors::LayerError, shadow::Layering, shadow::PlanarShadow, shadow::ShadowLight, Error, Layers,
 };
-use scanline3d_support::demo::{render_bench, Bench};
+use scanline3d_support::demo::Bench;
 
 type Q = Fx<scanline3d::fixed::types::I16F16>;
 
@@ -296,17 +296,7 @@ fn shadow_benchmark_scenes_match_their_golden_images() {
             Bench::Edges,
             Bench::Wireframe,
         ] {
-            let mut f = Frame::new(240, 240, Rgb565::BLACK);
-            render_bench::<S, Rgb565, _, _>(
-                b,
-                0.0,
-                false,
-                &mut f,
-                &mut common::compare::HostProbe::Plain,
-            )
-            .unwrap();
-            f.assert_each_written_once();
-            common::check_golden(&format!("{}_{ty}", b.name()), &f);
+            common::compare::check_bench_golden::<S>(b, ty);
         }
     }
     go::<Q>("i16f16");

@@ -151,19 +151,9 @@ fn attribute_stores_cost_exactly_their_records() {
 /// (looked at): the checkerboard floor crossing the near plane and the textured cube.
 #[test]
 fn textured_frames_match_their_golden_images() {
-    use scanline3d_support::demo::{render_bench, Bench};
+    use scanline3d_support::demo::Bench;
     fn one<S: Scalar>(b: Bench, ty: &str) {
-        let mut f = common::Frame::new(240, 240, Rgb565::BLACK);
-        render_bench::<S, Rgb565, _, _>(
-            b,
-            0.0,
-            false,
-            &mut f,
-            &mut common::compare::HostProbe::Plain,
-        )
-        .unwrap();
-        f.assert_each_written_once();
-        common::check_golden(&format!("{}_{ty}", b.name()), &f);
+        common::compare::check_bench_golden::<S>(b, ty);
     }
     for b in [Bench::Textured, Bench::TexturedAffine, Bench::TexturedExact] {
         one::<Q>(b, "I16F16");

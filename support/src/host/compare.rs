@@ -141,6 +141,14 @@ pub fn frame<S: Scalar, C: TargetColor>(b: Bench, probe: &mut HostProbe<'_>) -> 
     f
 }
 
+/// Benchmark scene `b`'s frame ([`frame`], RGB565) checked against its golden image
+/// `<scene>_<ty>.png`, every pixel of the frame written exactly once.
+pub fn check_bench_golden<S: Scalar>(b: Bench, ty: &str) {
+    let f = frame::<S, Rgb565>(b, &mut HostProbe::Plain);
+    f.assert_each_written_once();
+    super::check_golden(&format!("{}_{ty}", b.name()), &f);
+}
+
 /// One row of the comparison.
 #[derive(Clone, Debug)]
 pub struct Row {
