@@ -115,21 +115,40 @@ fn small_part_capacities_are_exactly_the_frame_s_needs() {
         (f.stats.drawn as usize, f.stats.max_active as usize),
         (T, A)
     );
-    let short = |r: Result<_, scanline3d_support::demo::BenchError<_>>| {
+    // On the host the support crate draws the frame with a larger renderer and checks the
+    // frame's needs against the scene's capacities after it (`BenchError::Capacity`).
+    let short = |r: Result<_, scanline3d_support::demo::BenchError<_>>, t: usize, a: usize| {
         matches!(
             r,
-            Err(scanline3d_support::demo::BenchError::Render(
-                Error::Shortfall(_)
-            ))
+            Err(scanline3d_support::demo::BenchError::Capacity { needed, capacity })
+                if needed.triangles == T && needed.active == A
+                    && capacity.triangles == t && capacity.active == a
         )
     };
     let mut t = HashTarget::<Rgb565>::new(W as u32, W as u32);
     assert!(short(
-        render_torus_sized::<Q, Rgb565, _, _, W, { T - 1 }, A>(shape.mesh(), &mut t, &mut NoProbe)
+        render_torus_sized::<Q, Rgb565, _, _, W, { T - 1 }, A>(shape.mesh(), &mut t, &mut NoProbe),
+        T - 1,
+        A
     ));
     assert!(short(
-        render_torus_sized::<Q, Rgb565, _, _, W, T, { A - 1 }>(shape.mesh(), &mut t, &mut NoProbe)
+        render_torus_sized::<Q, Rgb565, _, _, W, T, { A - 1 }>(shape.mesh(), &mut t, &mut NoProbe),
+        T,
+        A - 1
     ));
+    // The 16 KB part's own renderer type (as its firmware builds it) fails the frame with a
+    // shortfall before drawing anything when one capacity is one less.
+    let objects = [scanline3d_support::demo::torus_object(&shape)];
+    let camera = scanline3d_support::demo::camera::<Q>().unwrap();
+    let scene = Scene::new(&objects, camera, scanline3d_support::demo::lights());
+    let mut r = Renderer::<Q, Rgb565, W, W, 512, T, { A - 1 }>::new();
+    let e = r.render(&scene, &mut t).unwrap_err();
+    assert!(matches!(e, Error::Shortfall(s) if s.needed.active == A && s.capacity.active == A - 1));
+    let mut r = Renderer::<Q, Rgb565, W, W, 512, { T - 1 }, A>::new();
+    let e = r.render(&scene, &mut t).unwrap_err();
+    assert!(
+        matches!(e, Error::Shortfall(s) if s.capacity.triangles == T - 1 && s.needed.triangles >= T)
+    );
 }
 
 /// The `csg` scene (the example CSG part baked into flash) against its golden images (looked

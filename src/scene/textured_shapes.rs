@@ -210,6 +210,7 @@ impl<S: Scalar, const V: usize, const T: usize> TexturedShape<S, V, T> {
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::*;
 
     /// Largest difference of `s` within a triangle: no triangle may cross the seam.
@@ -235,23 +236,31 @@ mod tests {
         assert!(widest(&t) <= 1.0 / 16.0 + 1e-12);
         let g = TexturedShape::<f64, 81, 128>::terrain(4.0, 8, 0.5).unwrap();
         assert_eq!(g.uvs.len(), 81);
-        for (n, verts) in [(0u32, 12usize), (1, 42), (2, 162), (3, 642), (4, 2562)] {
-            let s = TexturedShape::<f64, 2700, 5120>::icosphere(1.0, n).unwrap();
-            let extra = s.uvs.len() - verts;
-            let _ = n;
-            assert_eq!(s.uvs.len(), s.shape.positions.len());
-            if n > 0 {
-                assert!(widest(&s) < 0.5, "subdivisions {n}: {}", widest(&s));
-            }
-            assert!(extra < 100, "{extra}");
-            for uv in &s.uvs {
-                assert!((0.0..=1.5).contains(&uv[0]) && (0.0..=1.0).contains(&uv[1]));
-            }
-        }
-        assert!(matches!(
-            TexturedShape::<f64, 2562, 5120>::icosphere(1.0, 4),
-            Err(ShapeError::Capacity { .. })
-        ));
+        // The largest shapes are some 300 KB each, built by value: an unoptimized test build
+        // keeps several copies on the stack, more than a test thread's 2 MB.
+        std::thread::Builder::new()
+            .stack_size(32 << 20)
+            .spawn(|| {
+                for (n, verts) in [(0u32, 12usize), (1, 42), (2, 162), (3, 642), (4, 2562)] {
+                    let s = TexturedShape::<f64, 2700, 5120>::icosphere(1.0, n).unwrap();
+                    let extra = s.uvs.len() - verts;
+                    assert_eq!(s.uvs.len(), s.shape.positions.len());
+                    if n > 0 {
+                        assert!(widest(&s) < 0.5, "subdivisions {n}: {}", widest(&s));
+                    }
+                    assert!(extra < 100, "{extra}");
+                    for uv in &s.uvs {
+                        assert!((0.0..=1.5).contains(&uv[0]) && (0.0..=1.0).contains(&uv[1]));
+                    }
+                }
+                assert!(matches!(
+                    TexturedShape::<f64, 2562, 5120>::icosphere(1.0, 4),
+                    Err(ShapeError::Capacity { .. })
+                ));
+            })
+            .unwrap()
+            .join()
+            .unwrap();
         assert!(matches!(
             TexturedShape::<f64, 10, 10>::torus(1.0, 2.0, 3, 3),
             Err(ShapeError::BadParameter { name: "r", .. })

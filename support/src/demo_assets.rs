@@ -30,6 +30,15 @@ pub enum BenchError<E> {
     Scene,
     /// Rendering failed.
     Render(scanline3d::Error<E>),
+    /// The frame needed more than the scene's capacities (on the host, whose renderers are
+    /// larger: see `host_sizing`; a microcontroller's renderer fails such a frame with
+    /// [`scanline3d::Error::Shortfall`] instead).
+    Capacity {
+        /// What the frame needed.
+        needed: scanline3d::Needs,
+        /// The scene's capacities.
+        capacity: scanline3d::Needs,
+    },
 }
 
 impl<E: core::fmt::Display> core::fmt::Display for BenchError<E> {
@@ -37,6 +46,10 @@ impl<E: core::fmt::Display> core::fmt::Display for BenchError<E> {
         match self {
             BenchError::Scene => write!(f, "building the benchmark scene failed (shape or camera)"),
             BenchError::Render(e) => write!(f, "rendering the benchmark scene failed: {e}"),
+            BenchError::Capacity { needed, capacity } => write!(
+                f,
+                "the benchmark frame needed {needed:?}, more than its scene's capacities {capacity:?}"
+            ),
         }
     }
 }
@@ -100,6 +113,9 @@ where
 
 /// [`render_with`] with `ZL` depth lines (`LINES`, or 0 for a renderer without them, which
 /// draws in `order`).
+///
+/// On a microcontroller the frame is drawn by a renderer of exactly these capacities. On the
+/// host (the `host` feature) by one of [`host_sizing`]'s: see there why.
 pub(crate) fn render_on<
     S,
     C,
@@ -128,18 +144,130 @@ where
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
     P: scanline3d::probe::Probe,
 {
-    // Set in place: `with_dither` would move the renderer, which may take a second copy of it
-    // on the stack.
-    let mut r = scanline3d::Renderer::<S, C, W, H, V, T, A, LINES, XV, XA, ZL>::new();
-    r.set_dither(dither);
-    scanline3d::internals::set_order_any(&mut r, order);
-    let stats = r
-        .render_probed(scene, target, probe)
+    #[cfg(not(feature = "host"))]
+    {
+        // Set in place: `with_dither` would move the renderer, which may take a second copy of
+        // it on the stack.
+        let mut r = scanline3d::Renderer::<S, C, W, H, V, T, A, LINES, XV, XA, ZL>::new();
+        r.set_dither(dither);
+        scanline3d::internals::set_order_any(&mut r, order);
+        let stats = r
+            .render_probed(scene, target, probe)
+            .map_err(BenchError::Render)?;
+        Ok(BenchFrame {
+            stats,
+            renderer_ram_bytes: core::mem::size_of_val(&r),
+        })
+    }
+    #[cfg(feature = "host")]
+    {
+        use host_sizing::{ACTIVE, ATTR_ACTIVE, ATTR_VERTICES, TRIANGLES, VERTICES};
+        const {
+            assert!(
+                V <= VERTICES
+                    && T <= TRIANGLES
+                    && A <= ACTIVE
+                    && XV <= ATTR_VERTICES
+                    && XA <= ATTR_ACTIVE,
+                "a benchmark scene's capacities exceed the host's renderer (demo_assets::host_sizing)"
+            )
+        };
+        fn draw<
+            S,
+            C,
+            D,
+            P,
+            const W: usize,
+            const H: usize,
+            const L: usize,
+            const LINES: usize,
+            const XV: usize,
+            const XA: usize,
+            const ZL: usize,
+        >(
+            scene: &scanline3d::Scene<'_, S, L>,
+            dither: bool,
+            order: scanline3d::DrawOrder,
+            target: &mut D,
+            probe: &mut P,
+        ) -> Result<scanline3d::Stats, scanline3d::Error<D::Error>>
+        where
+            S: Scalar,
+            C: scanline3d::TargetColor,
+            D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+            P: scanline3d::probe::Probe,
+        {
+            let mut r: std::boxed::Box<
+                scanline3d::Renderer<S, C, W, H, VERTICES, TRIANGLES, ACTIVE, LINES, XV, XA, ZL>,
+            > = std::boxed::Box::default();
+            r.set_dither(dither);
+            scanline3d::internals::set_order_any(&mut *r, order);
+            r.render_probed(scene, target, probe)
+        }
+        // A scene without attribute stores keeps a renderer without them: the pipeline
+        // compiled without the stores' tests, which a microcontroller runs for it. Only the
+        // taken branch is compiled (the conditions are constants of the instantiation), but
+        // every branch's renderer type must be valid (its checks are evaluated): hence the
+        // depth lines as `0` or `LINES` (what `ZL` is) rather than `ZL` itself.
+        let stats = if ZL == 0 {
+            draw::<S, C, D, P, W, H, L, LINES, 0, 0, 0>(scene, dither, order, target, probe)
+        } else if XV == 0 && XA == 0 {
+            draw::<S, C, D, P, W, H, L, LINES, 0, 0, LINES>(scene, dither, order, target, probe)
+        } else {
+            draw::<S, C, D, P, W, H, L, LINES, ATTR_VERTICES, ATTR_ACTIVE, LINES>(
+                scene, dither, order, target, probe,
+            )
+        }
         .map_err(BenchError::Render)?;
-    Ok(BenchFrame {
-        stats,
-        renderer_ram_bytes: core::mem::size_of_val(&r),
-    })
+        host_sizing::fits(&stats, scanline3d::Needs::new(V, T, A).with_stores(XV, XA))?;
+        Ok(BenchFrame {
+            stats,
+            renderer_ram_bytes: core::mem::size_of::<
+                scanline3d::Renderer<S, C, W, H, V, T, A, LINES, XV, XA, ZL>,
+            >(),
+        })
+    }
+}
+
+/// The host's benchmark renderers. Each benchmark scene has its own capacities (what its
+/// frames need, so that a microcontroller's RAM holds nothing unused), and each set of
+/// capacities is a renderer type of its own, with its own compiled copy of the whole pipeline
+/// for every number type, colour and target it is drawn in. On the host the scenes share one
+/// renderer type per strip height, depth lines and attribute stores (with or without), large
+/// enough for each, so that the tools and tests that draw every scene in six number types do
+/// not compile some twenty copies of the renderer per number type (`scripts/mono-report`,
+/// CHANGELOG). A frame's pixels do not depend on the capacities it fits, which the QEMU
+/// benchmark checks (its frames' hashes against the host's); whether it fits its scene's own
+/// capacities is checked after the frame ([`fits`]), so that a scene that outgrows them fails
+/// on the host as it would on a microcontroller.
+#[cfg(feature = "host")]
+pub(crate) mod host_sizing {
+    use super::BenchError;
+
+    /// Vertex records: the most of any scene (the see-through wireframe with triangle ids).
+    pub(crate) const VERTICES: usize = 7680;
+    /// Triangles.
+    pub(crate) const TRIANGLES: usize = 2560;
+    /// Active triangles per row (at most the frame's height, 240: the painter's order then
+    /// keeps its slot order in the renderer's own row table, as on a microcontroller).
+    pub(crate) const ACTIVE: usize = 160;
+    /// Texture and Phong attributes per vertex record.
+    pub(crate) const ATTR_VERTICES: usize = 512;
+    /// Texture and Phong attributes per active triangle.
+    pub(crate) const ATTR_ACTIVE: usize = 40;
+
+    /// [`BenchError::Capacity`] unless the frame of `stats` fits `capacity` (a scene's own).
+    pub(crate) fn fits<E>(
+        stats: &scanline3d::Stats,
+        capacity: scanline3d::Needs,
+    ) -> Result<(), BenchError<E>> {
+        let needed = scanline3d::Needs::from_stats(stats);
+        if needed.fits(&capacity) {
+            Ok(())
+        } else {
+            Err(BenchError::Capacity { needed, capacity })
+        }
+    }
 }
 
 /// The textured benchmark's 64 × 64 texture: a two-tone checkerboard of 8 × 8-texel squares

@@ -324,24 +324,58 @@ where
     P: scanline3d::probe::Probe,
 {
     const RA: usize = SHADOW_CAPACITY.3;
-    let mut r = Renderer::<S, C, 240, 240, V, T, A>::new();
-    r.set_dither(dither);
-    if plain {
-        let stats = r
-            .render_probed(scene, target, probe)
-            .map_err(BenchError::Render)?;
-        return Ok(BenchFrame {
-            stats,
-            renderer_ram_bytes: core::mem::size_of_val(&r),
-        });
-    }
-    let mut layers = Layers::<240, 1, RA, PA>::new();
-    let stats = r
-        .render_layered_probed(scene, layering, &mut layers, target, probe)
+    // On the host one renderer and one set of layer lists for every capacity set
+    // (`demo_assets::host_sizing`), the frame's needs checked against the scene's own after it.
+    #[cfg(feature = "host")]
+    let (stats, ram) = {
+        use crate::demo_assets::host_sizing::{self, ACTIVE, TRIANGLES, VERTICES};
+        const HOST_PA: usize = SEE_THROUGH_CAPACITY.4;
+        const { assert!(V <= VERTICES && T <= TRIANGLES && A <= ACTIVE && PA <= HOST_PA) };
+        let mut r: std::boxed::Box<Renderer<S, C, 240, 240, VERTICES, TRIANGLES, ACTIVE>> =
+            std::boxed::Box::default();
+        r.set_dither(dither);
+        let stats = if plain {
+            r.render_probed(scene, target, probe)
+        } else {
+            let mut layers: std::boxed::Box<Layers<240, 1, RA, HOST_PA>> =
+                std::boxed::Box::default();
+            r.render_layered_probed(scene, layering, &mut layers, target, probe)
+        }
         .map_err(BenchError::Render)?;
+        let capacity = scanline3d::Needs::new(V, T, A);
+        let capacity = if plain {
+            capacity
+        } else {
+            capacity.with_layers(RA, PA)
+        };
+        host_sizing::fits(&stats, capacity)?;
+        let ram = core::mem::size_of::<Renderer<S, C, 240, 240, V, T, A>>();
+        let layers = core::mem::size_of::<Layers<240, 1, RA, PA>>();
+        (stats, if plain { ram } else { ram + layers })
+    };
+    #[cfg(not(feature = "host"))]
+    let (stats, ram) = {
+        let mut r = Renderer::<S, C, 240, 240, V, T, A>::new();
+        r.set_dither(dither);
+        if plain {
+            let stats = r
+                .render_probed(scene, target, probe)
+                .map_err(BenchError::Render)?;
+            (stats, core::mem::size_of_val(&r))
+        } else {
+            let mut layers = Layers::<240, 1, RA, PA>::new();
+            let stats = r
+                .render_layered_probed(scene, layering, &mut layers, target, probe)
+                .map_err(BenchError::Render)?;
+            (
+                stats,
+                core::mem::size_of_val(&r) + core::mem::size_of_val(&layers),
+            )
+        }
+    };
     Ok(BenchFrame {
         stats,
-        renderer_ram_bytes: core::mem::size_of_val(&r) + core::mem::size_of_val(&layers),
+        renderer_ram_bytes: ram,
     })
 }
 
