@@ -26,7 +26,7 @@ use riscv_rt::entry;
 #[cfg(target_arch = "riscv32")]
 use riscv_semihosting::{debug, hprintln};
 use scanline3d::fixed::types::I16F16;
-use scanline3d::{probe::NoProbe, probe::Probe, probe::Stage, Fx, Scalar};
+use scanline3d::{probe::Probe, probe::Stage, Fx, Scalar};
 use scanline3d_support::demo::{render_bench, Bench};
 use scanline3d_support::hash::{HashTarget, NullTarget};
 
@@ -458,7 +458,7 @@ fn strip_bench<const LINES: usize>() {
         0.0,
         false,
         &mut target,
-        &mut NoProbe,
+        &mut scanline3d::probe::NoProbe,
     );
     match r {
         Ok(f) => hprintln!(

@@ -327,7 +327,7 @@ where
     // On the host one renderer and one set of layer lists for every capacity set
     // (`demo_assets::host_sizing`), the frame's needs checked against the scene's own after it.
     #[cfg(feature = "host")]
-    let (stats, ram) = {
+    {
         use crate::demo_assets::host_sizing::{self, ACTIVE, TRIANGLES, VERTICES};
         const HOST_PA: usize = SEE_THROUGH_CAPACITY.4;
         const { assert!(V <= VERTICES && T <= TRIANGLES && A <= ACTIVE && PA <= HOST_PA) };
@@ -351,32 +351,33 @@ where
         host_sizing::fits(&stats, capacity)?;
         let ram = core::mem::size_of::<Renderer<S, C, 240, 240, V, T, A>>();
         let layers = core::mem::size_of::<Layers<240, 1, RA, PA>>();
-        (stats, if plain { ram } else { ram + layers })
-    };
+        Ok(BenchFrame {
+            stats,
+            renderer_ram_bytes: if plain { ram } else { ram + layers },
+        })
+    }
     #[cfg(not(feature = "host"))]
-    let (stats, ram) = {
+    {
         let mut r = Renderer::<S, C, 240, 240, V, T, A>::new();
         r.set_dither(dither);
         if plain {
             let stats = r
                 .render_probed(scene, target, probe)
                 .map_err(BenchError::Render)?;
-            (stats, core::mem::size_of_val(&r))
-        } else {
-            let mut layers = Layers::<240, 1, RA, PA>::new();
-            let stats = r
-                .render_layered_probed(scene, layering, &mut layers, target, probe)
-                .map_err(BenchError::Render)?;
-            (
+            return Ok(BenchFrame {
                 stats,
-                core::mem::size_of_val(&r) + core::mem::size_of_val(&layers),
-            )
+                renderer_ram_bytes: core::mem::size_of_val(&r),
+            });
         }
-    };
-    Ok(BenchFrame {
-        stats,
-        renderer_ram_bytes: ram,
-    })
+        let mut layers = Layers::<240, 1, RA, PA>::new();
+        let stats = r
+            .render_layered_probed(scene, layering, &mut layers, target, probe)
+            .map_err(BenchError::Render)?;
+        Ok(BenchFrame {
+            stats,
+            renderer_ram_bytes: core::mem::size_of_val(&r) + core::mem::size_of_val(&layers),
+        })
+    }
 }
 
 /// The transform that places the level ground square (y = 0, facing +y) in plane
