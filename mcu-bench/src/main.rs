@@ -311,8 +311,10 @@ fn flash_used() -> usize {
     core::ptr::addr_of!(__sidata) as usize - core::ptr::addr_of!(__vector_table) as usize + data
 }
 
-#[cfg(feature = "profile-torus")]
+#[cfg(all(feature = "profile-torus", not(feature = "profile-phong-fast")))]
 const SCENES: &[Bench] = &[Bench::Torus];
+#[cfg(feature = "profile-phong-fast")]
+const SCENES: &[Bench] = &[Bench::PhongFast];
 #[cfg(all(not(small_part), not(feature = "profile-torus")))]
 const SCENES: &[Bench] = &Bench::ALL;
 #[cfg(small_part)]

@@ -94,7 +94,7 @@ fn pool_payloads_round_trip() {
     assert_eq!(PhongLights::load(&e), l);
     let m0 = PhongMaterial::default();
     let (a, b) = (
-        ShadeCtx::from_entries(Some(&e), &m0),
+        ShadeCtx::from_entries::<true>(Some(&e), &m0),
         ShadeCtx::new(&l, &m0),
     );
     assert_eq!(

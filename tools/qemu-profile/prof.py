@@ -15,7 +15,7 @@ for l in out.splitlines():
 syms.sort()
 start=[s[0] for s in syms if "frame_start_marker" in s[2]][0]
 end=[s[0] for s in syms if "frame_end_marker" in s[2]][0]
-q=subprocess.Popen(["timeout","600","qemu-system-arm","-machine","mps2-an386","-nographic","-monitor","none",
+q=subprocess.Popen(["timeout","600","qemu-system-arm","-machine",os.environ.get("QEMU_MACHINE","mps2-an386"),"-nographic","-monitor","none",
     "-serial","null","-semihosting-config","enable=on,target=native","-icount","shift=7,align=off,sleep=off",
     "-singlestep","-d","exec,nochain","-D",fifo,"-kernel",elf], stdout=subprocess.DEVNULL)
 pcs=collections.Counter(); on=False; total=0
