@@ -92,13 +92,13 @@ fn render(kind: Kind) -> Result<Vec<u8>, String> {
             let scene = board::BoardScene::new(&shape)?;
             let glyphs = board::glyphs().map_err(|e| format!("glyphs: {e:?}"))?;
             let mut renderer = Box::new(board::renderer::<Q>());
-            scene
+            let mut prepared = scene
                 .prepare(&mut renderer, frame)
                 .map_err(|e| format!("board frame {frame}: {e:?}"))?;
             let label = board::fps_label(us);
             let mut buffer: board::StripBuffer = [[Rgb565::BLACK; board::SIZE]; board::STRIP_LINES];
             let mut px = vec![Rgb565::BLACK; SIZE * SIZE];
-            while let Some(rows) = board::draw_strip(&mut renderer, &glyphs, &label, &mut buffer) {
+            while let Some(rows) = board::draw_strip(&mut prepared, &glyphs, &label, &mut buffer) {
                 for (i, row) in rows.enumerate() {
                     px[row * SIZE..(row + 1) * SIZE].copy_from_slice(&buffer[i]);
                 }

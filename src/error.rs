@@ -99,13 +99,13 @@ pub enum Error<E> {
         active_capacity: usize,
     },
     /// Object `object` has a translucent material ([`crate::Material::alpha`] below 255),
-    /// which only [`Renderer::render_layered`](crate::Renderer::render_layered) draws (after
+    /// which only [`FrameOptions::layered`](crate::FrameOptions::layered) draws (after
     /// the opaque triangles of each row, back to front). Nothing was drawn.
     NeedsLayers {
         /// Index of the object in the scene.
         object: usize,
     },
-    /// A layered frame ([`Renderer::render_layered`](crate::Renderer::render_layered)) that
+    /// A layered frame ([`FrameOptions::layered`](crate::FrameOptions::layered)) that
     /// cannot be drawn: the [`crate::errors::LayerError`] says why. Nothing was drawn.
     Layers(LayerError),
     /// The scene's fog ([`crate::Scene::fog`]) has `near ≥ far`, or a number that is NaN,
@@ -129,7 +129,7 @@ pub enum Error<E> {
         /// `None` (no longer names an object).
         object: Option<usize>,
     },
-    /// A layered frame ([`crate::Renderer::render_layered`]: shadows, outlines, translucency)
+    /// A layered frame ([`crate::FrameOptions::layered`]: shadows, outlines, translucency)
     /// on a renderer without depth lines ([`crate::NoDepthRenderer`]): the layers are tested
     /// against the depth lines. Nothing was drawn.
     NoDepthLines,
@@ -144,7 +144,7 @@ pub enum Error<E> {
     /// The draw target does not contain the viewport: the renderer draws `viewport` pixels at
     /// the target's origin (`W × H` unless changed by [`Renderer::set_viewport`](crate::Renderer::set_viewport)) and the
     /// target's bounding box is `target`. Checked before anything is drawn (by
-    /// [`Renderer::render`](crate::Renderer::render) and its variants once per frame, by [`Renderer::render_strip`](crate::Renderer::render_strip) at
+    /// [`Renderer::render`](crate::Renderer::render) and [`Frame::draw_to`](crate::frame::Frame::draw_to) once per frame, by [`Frame::strip_to`](crate::frame::Frame::strip_to) at
     /// each call); a larger target is fine (the rest of it is left as it was). Set the
     /// viewport to the target's size to draw into a smaller one.
     TargetTooSmall {
@@ -165,12 +165,59 @@ pub enum Error<E> {
     /// A [`StripPass`](crate::StripPass) was begun on a renderer that holds no frame a strip
     /// pass can draw: none was prepared, the last geometry stage failed, or the frame is
     /// layered (a layered frame is drawn only by
-    /// [`Renderer::render_layered`](crate::Renderer::render_layered)). Nothing was drawn.
+    /// [`FrameOptions::layered`](crate::FrameOptions::layered)). Nothing was drawn.
     NoFrame,
     /// The renderer began another frame after the [`StripPass`](crate::StripPass) began
     /// (or the pass never began one): begin the pass again on the renderer's frame. Nothing
     /// was drawn.
     FrameChanged,
+}
+
+impl<E> Error<E> {
+    /// The same error with its target error mapped by `f` (every other variant as it is).
+    pub fn map_target<F, T: FnOnce(E) -> F>(self, f: T) -> Error<F> {
+        match self {
+            Error::Target(e) => Error::Target(f(e)),
+            Error::MissingNormals { object } => Error::MissingNormals { object },
+            Error::MissingUvs { object } => Error::MissingUvs { object },
+            Error::AttributeStore {
+                object,
+                vertices_needed,
+                vertex_capacity,
+                active_needed,
+                active_capacity,
+            } => Error::AttributeStore {
+                object,
+                vertices_needed,
+                vertex_capacity,
+                active_needed,
+                active_capacity,
+            },
+            Error::NeedsLayers { object } => Error::NeedsLayers { object },
+            Error::Layers(e) => Error::Layers(e),
+            Error::Fog => Error::Fog,
+            Error::Light { index, point } => Error::Light { index, point },
+            Error::Tone { object } => Error::Tone { object },
+            Error::NoDepthLines => Error::NoDepthLines,
+            Error::Camera(e) => Error::Camera(e),
+            Error::Shortfall(s) => Error::Shortfall(s),
+            Error::TargetTooSmall { viewport, target } => {
+                Error::TargetTooSmall { viewport, target }
+            }
+            Error::StripTooShort { lines, height } => Error::StripTooShort { lines, height },
+            Error::NoFrame => Error::NoFrame,
+            Error::FrameChanged => Error::FrameChanged,
+        }
+    }
+}
+
+impl Error<core::convert::Infallible> {
+    /// The same error for any target error type: a [`crate::Renderer::prepare`] error (which
+    /// has no target) in a function whose errors carry a target's
+    /// (`renderer.prepare(&scene, options).map_err(Error::widen)?`).
+    pub fn widen<E>(self) -> Error<E> {
+        self.map_target(|e| match e {})
+    }
 }
 
 impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
@@ -219,7 +266,7 @@ impl<E: core::fmt::Display> core::fmt::Display for Error<E> {
             }
             Error::NeedsLayers { object } => write!(
                 f,
-                "object {object} is translucent: draw the scene with render_layered; nothing was drawn"
+                "object {object} is translucent: draw the scene as a layered frame (FrameOptions::layered); nothing was drawn"
             ),
             Error::Layers(e) => write!(f, "{e}; nothing was drawn"),
             Error::Fog => write!(
@@ -568,7 +615,7 @@ pub enum OverflowPolicy {
     DrawWhatFits,
 }
 
-/// [`Renderer::render_strip_be`](crate::Renderer::render_strip_be)'s error: the buffer cannot hold one row of the viewport.
+/// [`Frame::strip_be`](crate::frame::Frame::strip_be)'s error: the buffer cannot hold one row of the viewport.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct StripBufferTooSmall {

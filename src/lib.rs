@@ -182,6 +182,7 @@
 // checks these layers.
 mod config;
 mod error;
+pub mod frame;
 mod geometry;
 mod kernel;
 mod num;
@@ -200,6 +201,7 @@ extern crate self as scanline3d;
 #[doc(hidden)]
 pub use config::__macro as __renderer_type;
 pub use config::Capacities;
+pub use frame::FrameOptions;
 pub use num::math::Mat4;
 pub use num::scalar::{Fx, Scalar};
 pub use raster::depth_mode::DrawOrder;
@@ -325,9 +327,9 @@ pub mod internals {
 pub mod prelude {
     pub use crate::mesh::vertex_normals;
     pub use crate::{
-        renderer_type, Camera, Capacities, DepthTest, Effects, Fog, Fx, Light, Mat4, Material,
-        Mesh, Needs, Object, OverflowPolicy, PointLight, Projection, Renderer, Scalar, Scene,
-        Shading, Shape, TargetColor,
+        renderer_type, Camera, Capacities, DepthTest, Effects, Fog, FrameOptions, Fx, Light, Mat4,
+        Material, Mesh, Needs, Object, OverflowPolicy, PointLight, Projection, Renderer, Scalar,
+        Scene, Shading, Shape, TargetColor,
     };
 }
 

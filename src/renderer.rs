@@ -7,7 +7,6 @@ use core::marker::PhantomData;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Dimensions, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
-use embedded_graphics_core::Drawable;
 use heapless::Vec;
 
 use crate::geometry::project::{ScreenVertex, MAX_SCREEN};
@@ -437,78 +436,6 @@ impl<
         }
     }
 
-    /// Draws one frame of `scene` into `target`, at the target's origin, `W × H` pixels (the
-    /// viewport).
-    ///
-    /// A target that does not contain the viewport ([`Error::TargetTooSmall`]), capacity
-    /// shortfalls ([`Error::Shortfall`], unless the policy is
-    /// [`OverflowPolicy::DrawWhatFits`]) and missing normals are found before anything is
-    /// drawn. A target error stops the frame at the failing strip and is returned.
-    pub fn render<D, const L: usize>(
-        &mut self,
-        scene: &Scene<'_, S, L>,
-        target: &mut D,
-    ) -> Result<Stats, Error<D::Error>>
-    where
-        D: DrawTarget<Color = C>,
-    {
-        self.render_probed(scene, target, &mut NoProbe)
-    }
-
-    /// [`Renderer::render`] with `overlay` (text, a HUD, any embedded-graphics [`Drawable`])
-    /// composed into every strip after the 3D content and before the strip is sent. The
-    /// overlay is drawn once per strip, clipped to it, so its cost grows with the number of
-    /// strips: keep overlays small (a line of text) or use a taller strip. For a label on a
-    /// microcontroller, glyphs rasterized once and copied into [`Renderer::render_strip_into`]'s
-    /// lines (as the repository's Pico firmware does with its support crate's `overlay`) do the
-    /// font work once and touch only the strips the text crosses.
-    pub fn render_overlaid<D, O, const L: usize>(
-        &mut self,
-        scene: &Scene<'_, S, L>,
-        target: &mut D,
-        overlay: &O,
-    ) -> Result<Stats, Error<D::Error>>
-    where
-        D: DrawTarget<Color = C>,
-        O: Drawable<Color = C>,
-    {
-        let mut probe = NoProbe;
-        self.begin_target(target)?;
-        self.geometry(scene, &mut probe)?;
-        while self
-            .strip(target, &mut probe, |canvas| {
-                let _ = overlay.draw(canvas);
-            })?
-            .is_some()
-        {}
-        Ok(self.stats)
-    }
-
-    /// [`Renderer::render`], reporting each stage change to `probe`.
-    pub fn render_probed<D, P, const L: usize>(
-        &mut self,
-        scene: &Scene<'_, S, L>,
-        target: &mut D,
-        probe: &mut P,
-    ) -> Result<Stats, Error<D::Error>>
-    where
-        D: DrawTarget<Color = C>,
-        P: Probe,
-    {
-        probe.frame_start();
-        let result = self
-            .begin_target(target)
-            .and_then(|_| self.geometry(scene, probe))
-            .and_then(|_| {
-                probe.enter(Stage::Raster);
-                while self.strip(target, probe, |_| {})?.is_some() {}
-                Ok(self.stats)
-            });
-        probe.enter(Stage::Done);
-        probe.frame_end();
-        result
-    }
-
     /// Draws the scenes of `passes` one after another into the same colour and depth lines, as
     /// one frame, and sends the frame to `target` once: a frame larger than the capacities,
     /// split between scenes (objects, or a mesh cut into pieces) that each fit, on a renderer
@@ -585,52 +512,8 @@ impl<
         Ok(total)
     }
 
-    /// Runs the geometry stage (transform, light, clip, project, cull, bucket) for a frame of
-    /// `scene` and reports what it needs; nothing is drawn yet. Then [`Renderer::render_strip`]
-    /// draws the frame one strip at a time, which lets a caller interleave the strips with other
-    /// work (a DMA transfer, or a second renderer for comparison).
-    pub fn prepare<const L: usize>(
-        &mut self,
-        scene: &Scene<'_, S, L>,
-    ) -> Result<Stats, Error<core::convert::Infallible>> {
-        self.geometry(scene, &mut NoProbe)
-    }
-
-    /// [`Renderer::prepare`], reporting stages and snapped vertices to `probe`.
-    pub fn prepare_probed<P: Probe, const L: usize>(
-        &mut self,
-        scene: &Scene<'_, S, L>,
-        probe: &mut P,
-    ) -> Result<Stats, Error<core::convert::Infallible>> {
-        self.geometry(scene, probe)
-    }
-
-    /// Draws the next strip of the prepared frame into `target` and returns its rows, or
-    /// `None` when the frame is complete (or nothing was prepared). A target that does not
-    /// contain the viewport is [`Error::TargetTooSmall`] and nothing is drawn (the frame stays
-    /// prepared).
-    pub fn render_strip<D>(
-        &mut self,
-        target: &mut D,
-    ) -> Result<Option<core::ops::Range<usize>>, Error<D::Error>>
-    where
-        D: DrawTarget<Color = C>,
-    {
-        self.render_strip_probed(target, &mut NoProbe)
-    }
-
-    /// Moves the strip pass of the prepared frame to `row` (clamped to the viewport's height):
-    /// the next strip starts there; rows above it are not drawn. The strips from `row` on are
-    /// bit for bit those of the whole frame: each triangle that crosses `row` is set up at its
-    /// first row and stepped down to `row` as the whole frame's pass steps it, and the active
-    /// list's order (which decides depth ties) is replayed. For splitting a frame's rows
-    /// between renderers or cores that share its geometry, or for redrawing part of the
-    /// screen from the same geometry, also after the frame was drawn.
-    ///
-    /// Costs one triangle setup for each triangle that crosses `row` (and each textured one
-    /// above it), its row steps down to `row`, and a look at the vertices of every triangle
-    /// that starts above `row`.
-    pub fn seek_row(&mut self, row: usize) {
+    /// Moves the strip pass of the prepared frame to `row` ([`crate::frame::Frame::seek_row`]).
+    pub(crate) fn seek_row(&mut self, row: usize) {
         let vh = self.vh;
         let row = row.min(vh);
         self.clear_active();
@@ -660,7 +543,7 @@ impl<
         self.active_skipped = self.active_skipped.saturating_add(skipped);
     }
 
-    /// How the strip pass (and [`Renderer::seek_row`]) sets up a triangle, and whether it keeps
+    /// How the strip pass (and [`crate::frame::Frame::seek_row`]) sets up a triangle, and whether it keeps
     /// the painter's order. Without depth lines every triangle is set up as for `Less` (its fast
     /// spans then skip the test).
     pub(crate) fn setup_mode(&self) -> (SpanMode, bool) {

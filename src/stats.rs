@@ -51,6 +51,27 @@ pub trait Probe {
     const SNAPS: bool = true;
 }
 
+/// A probe lent to a frame ([`crate::FrameOptions::probe`]`(&mut probe)`), to be read after it.
+impl<P: Probe + ?Sized> Probe for &mut P {
+    #[inline(always)]
+    fn enter(&mut self, stage: Stage) {
+        (**self).enter(stage);
+    }
+    #[inline(always)]
+    fn frame_start(&mut self) {
+        (**self).frame_start();
+    }
+    #[inline(always)]
+    fn frame_end(&mut self) {
+        (**self).frame_end();
+    }
+    #[inline(always)]
+    fn snap(&mut self, index: u32, x: i32, y: i32) -> (i32, i32) {
+        (**self).snap(index, x, y)
+    }
+    const SNAPS: bool = P::SNAPS;
+}
+
 /// A probe that does nothing.
 #[derive(Copy, Clone, Debug, Default)]
 pub struct NoProbe;
@@ -98,7 +119,7 @@ pub struct Stats {
     /// Pixels that passed the depth test and were written to the strip (saturates).
     pub pixels_written: u32,
     /// The largest number of triangles active on one row. In a layered frame
-    /// ([`Renderer::render_layered`](crate::Renderer::render_layered)), those of the
+    /// ([`FrameOptions::layered`](crate::FrameOptions::layered)), those of the
     /// renderer's own active list (`ACTIVE`): the opaque triangles that do not receive a
     /// planar shadow.
     pub max_active: u32,

@@ -128,18 +128,22 @@ fn strip_by_strip_comparison_in_o_width_memory() {
     let scene_f = Scene::new(&of, demo::camera().unwrap(), demo::lights());
     let mut rq: Box<Renderer<Q, Rgb565, 240, 240, 512, 512, 64, 3>> = Box::default();
     let mut rf: Box<Renderer<f64, Rgb565, 240, 240, 512, 512, 64, 3>> = Box::default();
-    rq.prepare(&scene_q).unwrap();
-    rf.prepare(&scene_f).unwrap();
+    let mut q = rq
+        .prepare(&scene_q, scanline3d::FrameOptions::new())
+        .unwrap();
+    let mut f = rf
+        .prepare(&scene_f, scanline3d::FrameOptions::new())
+        .unwrap();
     let mut cq = StripCapture::<Rgb565, 240, 3>::new(240, Rgb565::BLACK);
     let mut cf = StripCapture::<Rgb565, 240, 3>::new(240, Rgb565::BLACK);
     let mut m = Metrics::new([31, 63, 31]);
-    while let Some(rows) = rq.render_strip(&mut cq).unwrap() {
-        assert_eq!(rf.render_strip(&mut cf).unwrap(), Some(rows.clone()));
+    while let Some(rows) = q.strip_to(&mut cq).unwrap() {
+        assert_eq!(f.strip_to(&mut cf).unwrap(), Some(rows.clone()));
         for k in 0..rows.len() {
             m.add_line(cq.line(k), cf.line(k), Rgb565::BLACK);
         }
     }
-    assert_eq!(rf.render_strip(&mut cf).unwrap(), None);
+    assert_eq!(f.strip_to(&mut cf).unwrap(), None);
     // The same comparison on whole frames.
     let mut fq = Frame::new(240, 240, Rgb565::BLACK);
     let mut ff = Frame::new(240, 240, Rgb565::BLACK);

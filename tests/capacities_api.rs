@@ -243,8 +243,10 @@ fn overflow_policy_error_is_the_default() {
         Err(Error::Shortfall(_))
     ));
     assert_eq!(display, MockDisplay::new());
-    assert!(matches!(r.prepare(&scene), Err(Error::Shortfall(_))));
-    assert_eq!(r.render_strip(&mut display), Ok(None), "nothing prepared");
+    assert!(matches!(
+        r.prepare(&scene, scanline3d::FrameOptions::new()),
+        Err(Error::Shortfall(_))
+    ));
 }
 
 /// Renders `scene` with `r` into a fresh 64 × 64 frame; panics on a pixel written twice.
@@ -294,7 +296,10 @@ fn draw_what_fits_skips_what_the_active_list_cannot_hold() {
         // The next frame that fits clears the report.
         let (_, _) = draw(&mut full, &scene);
         r.set_overflow(OverflowPolicy::Error);
-        assert!(matches!(r.prepare(&scene), Err(Error::Shortfall(_))));
+        assert!(matches!(
+            r.prepare(&scene, scanline3d::FrameOptions::new()),
+            Err(Error::Shortfall(_))
+        ));
     }
 }
 
@@ -415,16 +420,20 @@ fn target_size_is_checked() {
     let style = embedded_graphics::primitives::PrimitiveStyle::with_fill(Rgb565::WHITE);
     let overlay = embedded_graphics::primitives::Primitive::into_styled(label, style);
     assert!(matches!(
-        r.render_overlaid(&scene, &mut short, &overlay),
+        r.render_with(
+            &scene,
+            scanline3d::FrameOptions::new().overlay(&overlay),
+            &mut short
+        ),
         Err(Error::TargetTooSmall { .. })
     ));
-    r.prepare(&scene).unwrap();
+    let mut frame = r.prepare(&scene, scanline3d::FrameOptions::new()).unwrap();
     assert!(matches!(
-        r.render_strip(&mut short),
+        frame.strip_to(&mut short),
         Err(Error::TargetTooSmall { .. })
     ));
     assert!(short.writes.iter().all(|&n| n == 0));
-    assert_eq!(r.next_row(), 0, "the frame stays prepared");
+    assert_eq!(frame.next_row(), 0, "the frame stays prepared");
     // A target whose bounding box does not start at the origin.
     let mut big = Frame::new(300, 300, Rgb565::BLACK);
     let mut moved = big.translated(Point::new(100, 0));

@@ -171,10 +171,10 @@ fn separate_objects_case<S: Scalar>() {
     // From the middle row on (`seek_row`), the painter's order is kept too.
     let scene = Scene::new(&objects, camera(), lights()).with_background([20, 30, 40]);
     let mut r = NoDepthRenderer::<S, Rgb565, N, N, 1024, 1024, 64>::new();
-    r.prepare(&scene).unwrap();
-    r.seek_row(N / 2);
+    let mut frame = r.prepare(&scene, scanline3d::FrameOptions::new()).unwrap();
+    frame.seek_row(N / 2);
     let mut g = Frame::new(N as u32, N as u32, Rgb565::BLACK);
-    while r.render_strip(&mut g).unwrap().is_some() {}
+    while frame.strip_to(&mut g).unwrap().is_some() {}
     let half = N * N / 2;
     assert_eq!(g.px[half..], p.px[half..], "painter's from seek_row");
     assert!(
@@ -289,7 +289,11 @@ fn layered_frames_need_depth_lines() {
     let mut layers = Layers::<N, 1, 4, 16>::new();
     let mut f = Frame::new(N as u32, N as u32, Rgb565::BLACK);
     let e = r
-        .render_layered(&scene, &Layering::none(), &mut layers, &mut f)
+        .render_with(
+            &scene,
+            scanline3d::FrameOptions::new().layered(&Layering::none(), &mut layers),
+            &mut f,
+        )
         .unwrap_err();
     assert_eq!(e, Error::NoDepthLines);
     assert!(e.to_string().contains("depth lines"));

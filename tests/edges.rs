@@ -60,8 +60,12 @@ fn draw<S: Scalar>(
     let mut r = Renderer::<S, Rgb888, { N as usize }, { N as usize }, 256, 256, 64>::new();
     let mut layers = Layers::<{ N as usize }, 1, 4, 64>::new();
     let mut f = Frame::new(N, N, Rgb888::BLACK);
-    r.render_layered(&scene, &layering, &mut layers, &mut f)
-        .unwrap();
+    r.render_with(
+        &scene,
+        scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+        &mut f,
+    )
+    .unwrap();
     f.assert_each_written_once();
     f
 }
@@ -291,8 +295,12 @@ fn missing_or_short_crease_tables_are_named() {
         let mut r = Renderer::<f32, Rgb888, 32, 32, 256, 256, 64>::new();
         let mut layers = Layers::<32, 1, 4, 64>::new();
         let mut f = Frame::new(32, 32, Rgb888::BLACK);
-        r.render_layered(&scene, &layering, &mut layers, &mut f)
-            .err()
+        r.render_with(
+            &scene,
+            scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+            &mut f,
+        )
+        .err()
     };
     let missing = Some(Error::Layers(LayerError::Creases { object: 0 }));
     assert_eq!(run(Edges::Crease(&[])), missing);

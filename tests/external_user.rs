@@ -735,7 +735,11 @@ fn layered_orbit<
         let scene = scene(&objects, k, lights(k)).with_effects(&effects);
         let layering = orbit_layering();
         renderer
-            .render_layered(&scene, &layering, &mut layers, &mut frame)
+            .render_with(
+                &scene,
+                scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+                &mut frame,
+            )
             .map_err(|e| format!("frame {k}: {e}"))?;
     }
     Ok(())

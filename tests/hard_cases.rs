@@ -94,7 +94,9 @@ fn draw<S: Scalar, C: TargetColor, P: Probe>(
     let mut r: Box<R<S, C>> = Box::default();
     r.set_depth_test(test);
     let mut f = Frame::new(W as u32, H as u32, C::from_channels([0; 3]));
-    let stats = r.render_probed(&scene, &mut f, probe).unwrap();
+    let stats = r
+        .render_with(&scene, scanline3d::FrameOptions::new().probe(probe), &mut f)
+        .unwrap();
     f.assert_each_written_once();
     (f, stats)
 }
@@ -396,7 +398,9 @@ fn draw_world<S: Scalar, C: TargetColor, P: Probe>(
     r.set_depth_test(test);
     r.set_dither(dither);
     let mut f = Frame::new(W as u32, H as u32, C::from_channels([0; 3]));
-    let stats = r.render_probed(&scene, &mut f, probe).unwrap();
+    let stats = r
+        .render_with(&scene, scanline3d::FrameOptions::new().probe(probe), &mut f)
+        .unwrap();
     f.assert_each_written_once();
     (f, stats)
 }

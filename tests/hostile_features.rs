@@ -188,7 +188,11 @@ fn layered<S: Scalar>(
     let mut layers = Box::new(Layers::<64, 1, 16, 64>::new());
     let mut f = Frame::new(64, 64, Rgb888::BLACK);
     let stats = r
-        .render_layered(&scene, &layering, &mut layers, &mut f)
+        .render_with(
+            &scene,
+            scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+            &mut f,
+        )
         .map_err(|e| format!("render: {e:?}"))?;
     Ok((stats, f))
 }
@@ -253,7 +257,11 @@ fn other_mesh_for<S: Scalar>() {
     let mut layers = Box::new(Layers::<64, 1, 16, 64>::new());
     let mut f = Frame::new(64, 64, Rgb888::BLACK);
     let e = r
-        .render_layered(&scene, &layering, &mut layers, &mut f)
+        .render_with(
+            &scene,
+            scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+            &mut f,
+        )
         .unwrap_err();
     assert!(
         matches!(e, Error::Layers(LayerError::Adjacency { object: 0 })),
@@ -330,7 +338,12 @@ fn an_overlay_far_larger_than_the_screen_costs_only_its_pixels_on_screen() {
         let huge = Rectangle::with_center(Point::new(32, 32), Size::new(2_000_000_000, 40))
             .into_styled(PrimitiveStyle::with_stroke(Rgb565::RED, 3));
         let start = Instant::now();
-        r.render_overlaid(&scene, &mut f, &huge).unwrap();
+        r.render_with(
+            &scene,
+            scanline3d::FrameOptions::new().overlay(&huge),
+            &mut f,
+        )
+        .unwrap();
         let took = start.elapsed();
         // The stroke's top and bottom edges (3 rows each) cross the whole screen; its left and
         // right edges are off screen; the triangle shows in the middle.
@@ -343,7 +356,12 @@ fn an_overlay_far_larger_than_the_screen_costs_only_its_pixels_on_screen() {
         // fill_contiguous on a strip: an area starting above, clipped on every side.
         let mut g = Frame::new(64, 64, Rgb565::BLACK);
         let grad = Gradient;
-        r.render_overlaid(&scene, &mut g, &grad).unwrap();
+        r.render_with(
+            &scene,
+            scanline3d::FrameOptions::new().overlay(&grad),
+            &mut g,
+        )
+        .unwrap();
         for (y, x) in [(0usize, 0usize), (5, 9), (63, 63), (20, 40)] {
             let want = ((x as i64 + 10) + (y as i64 + 7) * 1000) % 31;
             assert_eq!(
@@ -502,6 +520,8 @@ fn a_rotation_by_an_invalid_angle_is_an_invalid_transform() {
 #[test]
 fn a_viewport_changed_under_a_prepared_frame_applies_to_the_next_one() {
     // Was: `render_strip` returned `Ok(None)` at once, the prepared frame dropped silently.
+    // A prepared frame now holds the renderer, so the viewport changes between frames: a
+    // frame left half drawn keeps its own, and the next one is prepared for the new one.
     let (p, t) = lone_triangle::<Q>();
     let objects = [Object {
         mesh: Mesh::new(&p, &t).unwrap(),
@@ -518,11 +538,22 @@ fn a_viewport_changed_under_a_prepared_frame_applies_to_the_next_one() {
     whole.render(&scene, &mut want).unwrap();
     let mut r = Box::new(Renderer::<Q, Gray8, 32, 32, 16, 16, 8>::new());
     let mut f = Frame::new(32, 32, Gray8::BLACK);
-    r.prepare(&scene).unwrap();
+    let mut frame = r.prepare(&scene, scanline3d::FrameOptions::new()).unwrap();
+    let mut rows = 0;
+    while let Some(strip) = frame.strip_to(&mut f).unwrap() {
+        rows += strip.len();
+        if rows == 16 {
+            break;
+        }
+    }
     r.set_viewport(10, 10);
     assert_eq!(r.viewport(), (10, 10));
-    let mut rows = 0;
-    while let Some(strip) = r.render_strip(&mut f).unwrap() {
+    // The half-drawn frame was prepared for 32 × 32: its geometry stays, drawable by strip
+    // passes, whose rows are the whole frame's. (Was: a strip pass sent the strips at the
+    // width asked for since, 10 columns of the frame's 32.)
+    let mut pass: Box<scanline3d::StripPass<Gray8, 32, 8, 4>> = Box::default();
+    pass.begin(&*r, 16..32).unwrap();
+    while let Some(strip) = pass.render_strip(&*r, &mut f).unwrap() {
         rows += strip.len();
     }
     assert_eq!(rows, 32, "the prepared frame is drawn whole");
@@ -598,7 +629,11 @@ where
         },
     );
     let mut f = Frame::new(48, 48, C::default());
-    match r.render_layered(&base, &layering, &mut layers, &mut f) {
+    match r.render_with(
+        &base,
+        scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+        &mut f,
+    ) {
         Ok(s) => assert!(s.invalid == 0 && drawn(&f), "{label} reach: {s:?}"),
         Err(e) => assert!(
             matches!(e, Error::Layers(LayerError::Reach)),

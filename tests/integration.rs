@@ -18,6 +18,7 @@ mod dither_fast;
 mod edges;
 mod effects;
 mod external_user;
+mod frame_api;
 mod fuzz_regressions;
 mod hard_cases;
 mod hostile_features;

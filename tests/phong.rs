@@ -375,7 +375,12 @@ mod reference {
         );
         let mut r: Box<Renderer<f32, Rgb565, 64, 64, 8, 8, 8, 1, 8, 8>> = Box::default();
         let mut f = Frame::new(SIZE, SIZE, Rgb565::BLACK);
-        r.render_probed(&scene, &mut f, &mut Snap(&p)).unwrap();
+        r.render_with(
+            &scene,
+            scanline3d::FrameOptions::new().probe(&mut Snap(&p)),
+            &mut f,
+        )
+        .unwrap();
         let (mut worst, mut seen, mut edges) = (0.0f64, 0, 0);
         for y in 0..SIZE {
             for x in 0..SIZE {

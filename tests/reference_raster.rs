@@ -156,7 +156,13 @@ fn render<C: TargetColor, const N: usize>(tris: &[RefTri]) -> Frame<C> {
         seen: 0,
         extra: 0,
     };
-    let stats = r.render_probed(&scene, &mut f, &mut probe).unwrap();
+    let stats = r
+        .render_with(
+            &scene,
+            scanline3d::FrameOptions::new().probe(&mut probe),
+            &mut f,
+        )
+        .unwrap();
     assert_eq!(
         (probe.seen, probe.extra, stats.clipped),
         (snapped.len(), 0, 0),

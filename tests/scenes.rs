@@ -433,7 +433,12 @@ fn overlay_matches_text_drawn_on_top<const LINES: usize>() {
     r.render(&scene, &mut plain).unwrap();
     text.draw(&mut plain).unwrap();
     let mut overlaid = frame::<Rgb565>(240, 240);
-    r.render_overlaid(&scene, &mut overlaid, &text).unwrap();
+    r.render_with(
+        &scene,
+        scanline3d::FrameOptions::new().overlay(&text),
+        &mut overlaid,
+    )
+    .unwrap();
     overlaid.assert_each_written_once();
     assert_eq!(overlaid.px, plain.px, "LINES = {LINES}");
     assert!(overlaid.px.iter().filter(|&&c| c == Rgb565::WHITE).count() > 50);

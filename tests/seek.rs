@@ -1,4 +1,4 @@
-//! `Renderer::seek_row` is exact: a prepared frame's strips from any row on, after a seek to
+//! `Frame::seek_row` is exact: a prepared frame's strips from any row on, after a seek to
 //! that row, are bit for bit the whole frame's rows, for every kind of triangle (flat,
 //! Gouraud, dithered, textured, Phong), every depth mode (Z-buffer with each test, no depth
 //! lines in the painter's order kept as slots or as records, any order), with depth ties
@@ -20,16 +20,15 @@ const SENTINEL: Rgb565 = Rgb565::CSS_HOT_PINK;
 /// the rows above `split` must stay untouched. Returns the whole frame.
 macro_rules! check_every_split {
     ($r:expr, $scene:expr, $what:expr) => {{
-        let r = &mut $r;
-        r.prepare($scene).unwrap();
-        let (w, h) = r.viewport();
+        let mut frame = $r.prepare($scene, FrameOptions::new()).unwrap();
+        let (w, h) = frame.viewport();
         let mut whole = Frame::new(w as u32, h as u32, SENTINEL);
-        while r.render_strip(&mut whole).unwrap().is_some() {}
+        while frame.strip_to(&mut whole).unwrap().is_some() {}
         for split in (0..=h).chain([h + 7]) {
-            r.seek_row(split);
-            assert_eq!(r.next_row(), split.min(h));
+            frame.seek_row(split);
+            assert_eq!(frame.next_row(), split.min(h));
             let mut part = Frame::new(w as u32, h as u32, SENTINEL);
-            while r.render_strip(&mut part).unwrap().is_some() {}
+            while frame.strip_to(&mut part).unwrap().is_some() {}
             for y in 0..h as u32 {
                 for x in 0..w as u32 {
                     let want = if (y as usize) < split {
@@ -224,15 +223,14 @@ fn no_depth_lines_in_every_order() {
 
 /// Two [`StripPass`]es over one prepared frame, split at every row, their strips drawn in
 /// turn as two cores would: the whole frame, bit for bit, with the passes' own lines
-/// (`render_strip`) and with the caller's (`render_strip_into`).
+/// (`StripPass::render_strip`) and with the caller's (`StripPass::render_strip_into`).
 macro_rules! check_passes {
     ($r:expr, $scene:expr, $pass:ty, $what:expr) => {{
-        let r = &mut $r;
-        r.prepare($scene).unwrap();
-        let (w, h) = r.viewport();
+        let mut frame = $r.prepare($scene, FrameOptions::new()).unwrap();
+        let (w, h) = frame.viewport();
         let mut whole = Frame::new(w as u32, h as u32, SENTINEL);
-        while r.render_strip(&mut whole).unwrap().is_some() {}
-        let shared = &*r;
+        while frame.strip_to(&mut whole).unwrap().is_some() {}
+        let shared = frame.share();
         let mut top: Box<$pass> = Box::default();
         let mut bottom: Box<$pass> = Box::default();
         for split in 0..=h {
@@ -330,7 +328,7 @@ fn a_strip_pass_refuses_a_stale_frame() {
         pass.render_strip_into(&*r, &mut lines),
         Err(scanline3d::Error::FrameChanged)
     );
-    r.prepare(&scene).unwrap();
+    let _ = r.prepare(&scene, FrameOptions::new()).unwrap();
     pass.begin(&*r, 10..50).unwrap();
     assert_eq!(pass.rows_left(), 10..50);
     let mut small = Frame::new(50, 50, SENTINEL);
@@ -343,22 +341,23 @@ fn a_strip_pass_refuses_a_stale_frame() {
         Some(10..14)
     );
     // A frame prepared after the pass began is refused.
-    r.prepare(&scene).unwrap();
+    let _ = r.prepare(&scene, FrameOptions::new()).unwrap();
     assert_eq!(
         pass.render_strip_into(&*r, &mut lines),
         Err(scanline3d::Error::FrameChanged)
     );
     // Dithering switched on between strips: the pass follows as the renderer does.
     let mut want = Frame::new(96, 96, SENTINEL);
-    r.seek_row(30);
+    let mut frame = r.prepare(&scene, FrameOptions::new()).unwrap();
+    frame.seek_row(30);
     for _ in 0..4 {
         // The renderer's strips are one line (its `LINES`).
-        assert!(r.render_strip_into(&mut lines).is_some());
+        assert!(frame.strip_into(&mut lines).is_some());
     }
-    assert_eq!(r.next_row(), 34);
-    r.set_dither(true);
-    while r.render_strip(&mut want).unwrap().is_some() {}
-    r.set_dither(false);
+    assert_eq!(frame.next_row(), 34);
+    frame.set_dither(true);
+    while frame.strip_to(&mut want).unwrap().is_some() {}
+    frame.set_dither(false);
     pass.begin(&*r, 30..96).unwrap();
     assert_eq!(
         pass.render_strip_into(&*r, &mut lines).unwrap(),

@@ -89,8 +89,12 @@ fn shadow_frame<S: Scalar>(g: f64, alpha: u8, show_casters: bool) -> Frame<Rgb88
     let mut r = Renderer::<S, Rgb888, 64, 64, 64, 64, 16>::new();
     let mut layers = Layers::<64, 1, 4, 16>::new();
     let mut f = Frame::new(N, N, Rgb888::BLACK);
-    r.render_layered(&scene, &layering, &mut layers, &mut f)
-        .unwrap();
+    r.render_with(
+        &scene,
+        scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+        &mut f,
+    )
+    .unwrap();
     f.assert_each_written_once();
     f
 }
@@ -192,8 +196,12 @@ fn translucent_frame<S: Scalar>(swap: bool) -> Frame<Rgb565> {
     let mut r = Renderer::<S, Rgb565, 64, 64, 64, 64, 16>::new();
     let mut layers = Layers::<64, 1, 1, 16>::new();
     let mut f = Frame::new(N, N, Rgb565::BLACK);
-    r.render_layered(&scene, &Layering::none(), &mut layers, &mut f)
-        .unwrap();
+    r.render_with(
+        &scene,
+        scanline3d::FrameOptions::new().layered(&Layering::none(), &mut layers),
+        &mut f,
+    )
+    .unwrap();
     f.assert_each_written_once();
     f
 }
@@ -275,8 +283,12 @@ fn plain_render_refuses_translucent_materials_and_bad_layerings_are_errors() {
     for (layering, want) in cases {
         let mut f = Frame::new(N, N, Rgb565::BLACK);
         assert_eq!(
-            r.render_layered(&scene, &layering, &mut layers, &mut f)
-                .unwrap_err(),
+            r.render_with(
+                &scene,
+                scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+                &mut f
+            )
+            .unwrap_err(),
             Error::Layers(want)
         );
         assert!(f.writes.iter().all(|&n| n == 0), "nothing drawn");

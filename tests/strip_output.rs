@@ -1,4 +1,4 @@
-//! Strips into buffers the caller owns (`Renderer::render_strip_into`, `render_strip_be`) and
+//! Strips into buffers the caller owns (`Frame::strip_into`, `Frame::strip_be`) and
 //! the board firmware's frames (`demo::board`): the same pixels as `Renderer::render`.
 // Pixel coordinates index the frame and the lines in lockstep.
 #![allow(clippy::needless_range_loop)]
@@ -43,11 +43,11 @@ fn strips_into_caller_lines_equal_render() {
         let scene = board::BoardScene::new(&shape).unwrap();
         let mut r = Box::new(board::renderer::<Q>());
         r.set_dither(dither);
-        scene.prepare(&mut r, frame).unwrap();
+        let mut prepared = scene.prepare(&mut r, frame).unwrap();
         // 3 lines of caller buffer against 8 depth lines: strips of 3 rows.
         let mut lines = [[Rgb565::CSS_HOT_PINK; 240]; 3];
         let mut next = 0;
-        while let Some(rows) = r.render_strip_into(&mut lines) {
+        while let Some(rows) = prepared.strip_into(&mut lines) {
             assert_eq!(rows.start, next);
             assert!(rows.len() <= 3);
             for (i, y) in rows.clone().enumerate() {
@@ -64,9 +64,9 @@ fn strips_into_caller_lines_equal_render() {
         assert_eq!(next, 240);
         // A viewport narrower than the buffer leaves the columns beyond it alone.
         r.set_viewport(100, 50);
-        scene.prepare(&mut r, frame).unwrap();
+        let mut prepared = scene.prepare(&mut r, frame).unwrap();
         let mut wide = [[Rgb565::CSS_HOT_PINK; 240]; 8];
-        let rows = r.render_strip_into(&mut wide).unwrap();
+        let rows = prepared.strip_into(&mut wide).unwrap();
         assert_eq!(rows, 0..8);
         assert!(wide
             .iter()
@@ -82,14 +82,9 @@ fn strips_as_big_endian_bytes_equal_render() {
     let shape = scanline3d_support::demo::torus::<Q>().unwrap();
     let scene = board::BoardScene::new(&shape).unwrap();
     let mut r = Box::new(board::renderer::<Q>());
+    let mut prepared = scene.prepare(&mut r, 3).unwrap();
     assert_eq!(
-        r.render_strip_be(&mut [0u8; 10]),
-        Ok(None),
-        "nothing prepared"
-    );
-    scene.prepare(&mut r, 3).unwrap();
-    assert_eq!(
-        r.render_strip_be(&mut [0u8; 479]),
+        prepared.strip_be(&mut [0u8; 479]),
         Err(StripBufferTooSmall {
             needed: 480,
             given: 479
@@ -98,7 +93,7 @@ fn strips_as_big_endian_bytes_equal_render() {
     // 2.5 rows of bytes: strips of 2 rows.
     let mut out = vec![0u8; 1200];
     let mut next = 0;
-    while let Some(rows) = r.render_strip_be(&mut out).unwrap() {
+    while let Some(rows) = prepared.strip_be(&mut out).unwrap() {
         assert_eq!(rows.start, next);
         assert_eq!(rows.len(), 2);
         for (i, y) in rows.clone().enumerate() {
@@ -111,6 +106,7 @@ fn strips_as_big_endian_bytes_equal_render() {
         next = rows.end;
     }
     assert_eq!(next, 240);
+    assert_eq!(prepared.strip_be(&mut out), Ok(None), "the frame is done");
 }
 
 /// The board firmware's frame: the render plus the label as embedded-graphics draws it.
@@ -131,10 +127,10 @@ fn board_frame_is_render_plus_label() {
     let scene = board::BoardScene::new(&shape).unwrap();
     let glyphs = board::glyphs().unwrap();
     let mut r = Box::new(board::renderer::<Q>());
-    scene.prepare(&mut r, 9).unwrap();
+    let mut prepared = scene.prepare(&mut r, 9).unwrap();
     let mut buffer = [[Rgb565::BLACK; 240]; board::STRIP_LINES];
     let mut next = 0;
-    while let Some(rows) = board::draw_strip(&mut r, &glyphs, &label, &mut buffer) {
+    while let Some(rows) = board::draw_strip(&mut prepared, &glyphs, &label, &mut buffer) {
         for (i, y) in rows.clone().enumerate() {
             for x in 0..240 {
                 assert_eq!(buffer[i][x], want.get(x as u32, y as u32), "at {x},{y}");
@@ -156,16 +152,16 @@ fn seek_row_splits_a_frame_exactly_at_every_row() {
         let mut r = Box::new(board::renderer::<Q>());
         r.set_dither(dither);
         for split in (0usize..=240).chain([500]) {
-            scene.prepare(&mut r, frame).unwrap();
+            let mut prepared = scene.prepare(&mut r, frame).unwrap();
             let mut got = vec![[Rgb565::CSS_HOT_PINK; 240]; 240];
             let mut line = [[Rgb565::CSS_HOT_PINK; 240]; 1];
             // Bottom part first, then the top: the order does not matter.
-            r.seek_row(split);
-            while let Some(rows) = r.render_strip_into(&mut line) {
+            prepared.seek_row(split);
+            while let Some(rows) = prepared.strip_into(&mut line) {
                 got[rows.start] = line[0];
             }
-            r.seek_row(0);
-            while let Some(rows) = r.render_strip_into(&mut line) {
+            prepared.seek_row(0);
+            while let Some(rows) = prepared.strip_into(&mut line) {
                 if rows.start >= split {
                     break;
                 }

@@ -257,10 +257,10 @@ fn seeking_a_row_gives_the_rows_of_the_whole_frame() {
     let mut full = common::Frame::new(240, 240, Rgb565::BLACK);
     a.render(&scene, &mut full).unwrap();
     let mut b: Box<R> = Box::default();
-    b.prepare(&scene).unwrap();
-    b.seek_row(100);
+    let mut frame = b.prepare(&scene, scanline3d::FrameOptions::new()).unwrap();
+    frame.seek_row(100);
     let mut tail = common::Frame::new(240, 240, Rgb565::BLACK);
-    while b.render_strip(&mut tail).unwrap().is_some() {}
+    while frame.strip_to(&mut tail).unwrap().is_some() {}
     let mut worst = 0;
     for y in 100..240 {
         for x in 0..240 {
@@ -418,7 +418,12 @@ mod reference {
         );
         let mut r: Box<Renderer<f32, Rgb565, 64, 64, 8, 8, 8, 1, 8, 8>> = Box::default();
         let mut f = common::Frame::new(SIZE, SIZE, Rgb565::BLACK);
-        r.render_probed(&scene, &mut f, &mut Snap(&p)).unwrap();
+        r.render_with(
+            &scene,
+            scanline3d::FrameOptions::new().probe(&mut Snap(&p)),
+            &mut f,
+        )
+        .unwrap();
         let n = common::textures::CODED as f64;
         let (mut bad, mut seen) = (0, 0);
         for y in 0..SIZE {

@@ -126,8 +126,12 @@ fn draw<S: Scalar>(w: &World<S>, camera: Camera<S>, light: [f64; 3], how: How) -
     let mut r = Renderer::<S, Rgb888, { N as usize }, { N as usize }, 256, 256, 64>::new();
     let mut layers = Layers::<{ N as usize }, 1, 4, 128>::new();
     let mut f = Frame::new(N, N, Rgb888::BLACK);
-    r.render_layered(&scene, &layering, &mut layers, &mut f)
-        .unwrap();
+    r.render_with(
+        &scene,
+        scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+        &mut f,
+    )
+    .unwrap();
     f.assert_each_written_once();
     f
 }
@@ -340,8 +344,12 @@ fn outlined<S: Scalar>(cover: bool) -> Frame<Rgb888> {
     let mut r = Renderer::<S, Rgb888, { N as usize }, { N as usize }, 64, 64, 16>::new();
     let mut layers = Layers::<{ N as usize }, 1, 4, 16>::new();
     let mut f = Frame::new(N, N, Rgb888::BLACK);
-    r.render_layered(&scene, &layering, &mut layers, &mut f)
-        .unwrap();
+    r.render_with(
+        &scene,
+        scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+        &mut f,
+    )
+    .unwrap();
     f.assert_each_written_once();
     f
 }
@@ -427,7 +435,11 @@ fn bad_volume_and_outline_layerings_are_named_errors() {
         let mut r = Renderer::<f32, Rgb888, { N as usize }, { N as usize }, 256, 256, 64>::new();
         let mut layers = Layers::<{ N as usize }, 1, 4, 128>::new();
         let mut f = Frame::new(N, N, Rgb888::BLACK);
-        let e = r.render_layered(&scene, l, &mut layers, &mut f);
+        let e = r.render_with(
+            &scene,
+            scanline3d::FrameOptions::new().layered(l, &mut layers),
+            &mut f,
+        );
         assert!(f.writes.iter().all(|&n| n == 0), "nothing drawn");
         e.err()
     };
@@ -476,10 +488,12 @@ fn bad_volume_and_outline_layerings_are_named_errors() {
     let mut layers = Layers::<1, 1, 4, 128>::new();
     let mut f = Frame::new(1, 1, Rgb888::BLACK);
     assert_eq!(
-        r.render_layered(
+        r.render_with(
             &scene,
-            &Layering::volumes(&[0], volume(&good[..], 4.0)),
-            &mut layers,
+            scanline3d::FrameOptions::new().layered(
+                &Layering::volumes(&[0], volume(&good[..], 4.0)),
+                &mut layers
+            ),
             &mut f
         )
         .err(),
@@ -539,7 +553,11 @@ fn every_pixel_once<S: Scalar>() {
     let mut layers = Layers::<64, 1, 4, 128>::new();
     let mut display = MockDisplay::<Rgb888>::new();
     let stats = r
-        .render_layered(&scene, &layering, &mut layers, &mut display)
+        .render_with(
+            &scene,
+            scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+            &mut display,
+        )
         .unwrap();
     assert!(stats.drawn > 0);
     let ink = Rgb888::new(INK[0], INK[1], INK[2]);

@@ -646,8 +646,8 @@ fn main() -> ! {
         let renderer = unsafe { &mut (*FRAMES.0.get())[slot] };
         // A frame that does not fit (it always does: the capacities hold for a full turn)
         // sends no strips: the previous image stays on the panel.
-        if scene.prepare(renderer, frame).is_ok() {
-            let renderer: &Device = renderer;
+        if let Ok(prepared) = scene.prepare(renderer, frame) {
+            let renderer: &Device = prepared.share();
             let mut work = since(t);
             if CORES == 2 {
                 sio.fifo.write_blocking(slot as u32 | (split as u32) << 8);

@@ -10,7 +10,7 @@ exec(src.replace('out = sys.argv[1]', ''))
 cube = lambda m: (0, 0.75, 0, 1, 0, TR(), m)
 far_light = dict(ef=0x10 | 1, points=(((1000.0, 1, 0), (255, 255, 255), (1.0, 1.0, 1.0)),))
 ortho_fog = lambda far: dict(opts=1, proj=(6.0, 0.5, far), ef=0x10 | 4, fog=(4.0, 9.0, (150, 170, 200)))
-# lm=1 with receiver index 9 (lists=0): render_layered refuses the layering, so only render draws.
+# lm=1 with receiver index 9 (lists=0): a layered frame refuses the layering, so only render draws.
 plain = dict(lm=1, lists=0, bad=9)
 inputs = {
     'open_phong_point_attenuation/phong_cube_point_light_1000_att_111': scene(caster=cube(MAT(2)), **far_light),

@@ -1,6 +1,6 @@
 //! Raw bytes → a layered frame (planar and blob shadows, shadow volumes, outlines, translucent,
 //! textured and Phong objects, point lights, fog, tone maps; adjacency tables right or
-//! garbage) → `render_layered` and `render` with every number type. The renderer must return
+//! garbage) → a layered frame (`FrameOptions::layered`) and `render` with every number type. The renderer must return
 //! Ok or a named error; any panic (including a debug overflow), hang or failed documented
 //! invariant is a crash.
 #![no_main]

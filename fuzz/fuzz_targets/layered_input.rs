@@ -7,7 +7,7 @@
 //! layering (projected or blob planar shadow from a directional or point light, shadow volumes,
 //! both at once, outlines of every kind; adjacency and crease tables right, garbage, too short,
 //! too long, missing or another mesh's; receiver, caster and outline indices in or out of
-//! range). The frame is drawn with `render_layered` and, for the same scene, `render`.
+//! range). The frame is drawn as a layered frame (`FrameOptions::layered`) and, for the same scene, `render`.
 //!
 //! Shared by the fuzz target (`fuzz_targets/layered.rs`) and the host regression test
 //! (`tests/fuzz_regressions.rs`), which replays the committed corpus (`fuzz/corpus/layered`)
@@ -663,7 +663,11 @@ fn layered<S: Scalar>(data: &[u8]) -> String {
     }
     let mut layers = Box::new(L::new());
     let mut h = HashTarget::<Rgb565>::new(W as u32, H as u32);
-    let result = r.render_layered(&scene, &layering, &mut layers, &mut h);
+    let result = r.render_with(
+        &scene,
+        scanline3d::FrameOptions::new().layered(&layering, &mut layers),
+        &mut h,
+    );
     if let (true, Ok(s)) = (strict, &result) {
         check_stats(s, true, &r);
     }
@@ -674,7 +678,7 @@ fn layered<S: Scalar>(data: &[u8]) -> String {
         check_stats(s, false, &r);
     }
     format!(
-        "{}: {} objects; render_layered {first}; render {}",
+        "{}: {} objects; layered {first}; render {}",
         S::NAME,
         n,
         outcome(&result)

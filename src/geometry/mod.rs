@@ -91,7 +91,7 @@ impl<
 
     /// The geometry stage's start: the stores emptied, every object checked for what its
     /// material needs (normals, texture coordinates, attribute stores; with `layered` false, an
-    /// opaque material: a translucent one needs [`Renderer::render_layered`]), the camera
+    /// opaque material: a translucent one needs [`crate::FrameOptions::layered`]), the camera
     /// validated and the frame's constants computed.
     #[inline(always)]
     pub(crate) fn frame_begin<E, const L: usize>(

@@ -5,9 +5,6 @@
 //! the stencil lines in a [`Layers`] the caller owns. A frame drawn by [`Renderer::render`]
 //! uses none of this and pays nothing for it: no field, no branch.
 
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Point, Size};
-use embedded_graphics_core::primitives::Rectangle;
 use heapless::Vec;
 
 use crate::error::{LayerError, MAX_TRANSLUCENT};
@@ -132,96 +129,17 @@ impl<
         const ZL: usize,
     > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
 {
-    /// Draws one frame of `scene` into `target` in layers: each row of each strip draws the
-    /// `layering`'s receivers, then its projected shadow (each receiver pixel darkened at most
-    /// once, the stencil of `layers` keeping count), then the other opaque objects, then the
-    /// translucent triangles ([`crate::Material::alpha`]) back to front, depth-tested against
-    /// the opaque ones and not writing depth. With [`Layering::volumes`] the shadow is
-    /// counted instead, after the opaque objects of each row (see [`crate::shadow::VolumeShadow`]);
-    /// [`Layering::with_outline`] adds outlines before the translucent triangles. The shadow and the translucent triangles blend
-    /// onto the strip's pixels (`C = Csrc·α + Cdst·(1 − α)`): one product per channel and
-    /// pixel (the only per-pixel products of the renderer), a table lookup for the shadow on
-    /// a target of at most 6 bits per channel (RGB565).
-    ///
-    /// Translucent triangles are sorted per row by the sum of their vertices' depths (then by
-    /// their screen positions), so the image does not depend on the order they are given in;
-    /// triangles that cross in depth are not split.
-    ///
-    /// # Errors
-    ///
-    /// As [`Renderer::render`], and [`Error::Layers`] for a layering that cannot be drawn
-    /// ([`LayerError`]), [`Error::NoDepthLines`] on a renderer without depth lines (the
-    /// layers test against them); all before anything is drawn.
-    pub fn render_layered<D, const L: usize, const RA: usize, const PA: usize>(
-        &mut self,
-        scene: &Scene<'_, S, L>,
-        layering: &Layering<'_, S>,
-        layers: &mut Layers<W, LINES, RA, PA>,
-        target: &mut D,
-    ) -> Result<Stats, Error<D::Error>>
-    where
-        D: DrawTarget<Color = C>,
-    {
-        self.render_layered_probed(scene, layering, layers, target, &mut NoProbe)
-    }
-
-    /// [`Renderer::render_layered`], reporting each stage change to `probe`.
-    pub fn render_layered_probed<D, P, const L: usize, const RA: usize, const PA: usize>(
-        &mut self,
-        scene: &Scene<'_, S, L>,
-        layering: &Layering<'_, S>,
-        layers: &mut Layers<W, LINES, RA, PA>,
-        target: &mut D,
-        probe: &mut P,
-    ) -> Result<Stats, Error<D::Error>>
-    where
-        D: DrawTarget<Color = C>,
-        P: Probe,
-    {
-        probe.frame_start();
-        let result = self
-            .begin_target(target)
-            .and_then(|_| self.geometry_layered(scene, layering, layers, probe))
-            .and_then(|_| {
-                probe.enter(Stage::Raster);
-                let vw = self.vw;
-                while let Some((y0, lines)) = self.draw_strip_layered(layers, probe) {
-                    let area = Rectangle::new(
-                        Point::new(0, y0 as i32),
-                        Size::new(vw as u32, lines as u32),
-                    );
-                    probe.enter(Stage::Output);
-                    let sent = target.fill_contiguous(
-                        &area,
-                        self.color[..lines]
-                            .iter()
-                            .flat_map(|line| line[..vw].iter())
-                            .copied(),
-                    );
-                    probe.enter(Stage::Raster);
-                    if let Err(e) = sent {
-                        self.next_row = self.vh;
-                        return Err(Error::Target(e));
-                    }
-                }
-                Ok(self.stats)
-            });
-        probe.enter(Stage::Done);
-        probe.frame_end();
-        result
-    }
-
     /// Measures what a layered frame of `scene` needs ([`Needs`], with the `layers`' lists:
     /// [`Needs::receivers`] for `RA`, [`Needs::overlays`] for `PA`, and the vertices the
     /// shadow polygons, volumes and outlines add): runs the layered frame's geometry stage
-    /// (as [`Renderer::render_layered`] does, whatever the overflow policy) and leaves no
+    /// (as [`crate::FrameOptions::layered`] does, whatever the overflow policy) and leaves no
     /// frame prepared. For sizing a device's renderer and layers on the host, as
     /// [`Renderer::needs`] for a plain frame; check with
     /// `worst.fits(&Device::CAPACITY.with_layers(RA, PA))`.
     ///
     /// # Errors
     ///
-    /// As [`Renderer::render_layered`] for a layering that cannot be drawn, and as
+    /// As [`crate::FrameOptions::layered`] for a layering that cannot be drawn, and as
     /// [`Renderer::needs`] when this renderer's stores are too small to measure the frame
     /// exactly.
     pub fn needs_layered<const L: usize, const RA: usize, const PA: usize>(
@@ -242,7 +160,13 @@ impl<
     /// The geometry stage of a layered frame: the receivers' objects first, then the other
     /// opaque ones, the casters' shadow polygons and the translucent objects, each group's
     /// vertices contiguous in the store (which is how the strip pass tells them apart).
-    fn geometry_layered<E, P: Probe, const L: usize, const RA: usize, const PA: usize>(
+    pub(crate) fn geometry_layered<
+        E,
+        P: Probe,
+        const L: usize,
+        const RA: usize,
+        const PA: usize,
+    >(
         &mut self,
         scene: &Scene<'_, S, L>,
         layering: &Layering<'_, S>,
@@ -485,9 +409,10 @@ impl<
 
     /// Draws the next strip of a layered frame into the renderer's lines; its first row and
     /// height, or `None` when the frame is complete.
-    fn draw_strip_layered<P: Probe, const RA: usize, const PA: usize>(
+    pub(crate) fn draw_strip_layered<P: Probe, const RA: usize, const PA: usize>(
         &mut self,
         layers: &mut Layers<W, LINES, RA, PA>,
+        limit: usize,
         probe: &mut P,
     ) -> Option<(usize, usize)> {
         let y0 = self.next_row;
@@ -496,7 +421,7 @@ impl<
             return None;
         }
         let mode = SpanMode::new::<C>(self.depth_test, self.dither);
-        let lines = LINES.min(vh - y0);
+        let lines = LINES.min(limit).min(vh - y0);
         for l in 0..lines {
             let row = y0 + l;
             match (

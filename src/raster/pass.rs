@@ -4,7 +4,7 @@
 //! through a shared `&Renderer`; each pass holds what a strip pass changes (its active list,
 //! its attribute pool entries, its depth lines and colour lines, its row cursor and counts).
 //! The rows a pass draws are bit for bit those of the whole frame (it starts at its first row
-//! as [`crate::Renderer::seek_row`] does).
+//! as [`crate::frame::Frame::seek_row`] does).
 
 use core::ops::Range;
 
@@ -44,13 +44,13 @@ use crate::stats::{NoProbe, Stats};
 /// #     near: Q::from_f64(0.1), far: Q::from_f64(10.0) }).unwrap();
 /// # let scene = Scene::new(&objects, camera, [Light::white([Q::ONE; 3])]);
 /// let mut renderer = Box::new(Renderer::<Q, Rgb565, 96, 96, 32, 16, 8>::new());
-/// renderer.prepare(&scene).unwrap();
+/// // The prepared frame's geometry, lent read-only to the passes.
+/// let shared = renderer.prepare(&scene, FrameOptions::new()).unwrap().share();
 /// // One pass per core: rows 0..48 and 48..96 of the same frame (here one after the other).
 /// let (mut top, mut bottom) = (
 ///     StripPass::<Rgb565, 96, 8, 8>::new(),
 ///     StripPass::<Rgb565, 96, 8, 8>::new(),
 /// );
-/// let shared: &Renderer<_, _, 96, 96, 32, 16, 8> = &renderer;
 /// top.begin(shared, 0..48).unwrap();
 /// bottom.begin(shared, 48..96).unwrap();
 /// let mut lines = [[Rgb565::BLACK; 96]; 8];
@@ -161,7 +161,7 @@ impl<
     /// Begins drawing rows `rows` (clamped to the viewport) of the frame `renderer` holds:
     /// the next strip starts at `rows.start`, exactly as the whole frame's rows (the triangles
     /// that cross it are set up at their first rows and stepped down, as
-    /// [`Renderer::seek_row`] does). May be called again for other rows of the same frame.
+    /// [`crate::frame::Frame::seek_row`] does). May be called again for other rows of the same frame.
     ///
     /// # Errors
     ///
@@ -226,7 +226,7 @@ impl<
     }
 
     /// Draws the pass's next strip into `lines`, colour lines the caller owns (as
-    /// [`Renderer::render_strip_into`]: `min(N, LINES, rows left)` rows, each line cleared to
+    /// [`crate::frame::Frame::strip_into`]: `min(N, LINES, rows left)` rows, each line cleared to
     /// the background first), and returns its rows, or `None` when the pass's rows are done.
     ///
     /// # Errors
@@ -291,7 +291,8 @@ impl<
         else {
             return Ok(None);
         };
-        let vw = renderer.viewport().0;
+        // The prepared frame's width (a viewport asked for since applies to the next frame).
+        let vw = renderer.vw;
         let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(vw as u32, n as u32));
         let pixels = self.color[..n]
             .iter()

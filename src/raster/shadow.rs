@@ -1,4 +1,4 @@
-//! What a layered frame ([`crate::Renderer::render_layered`]) does beyond the opaque pass:
+//! What a layered frame ([`crate::FrameOptions::layered`]) does beyond the opaque pass:
 //! which objects receive and cast a projected planar shadow, the plane, the light and the
 //! shadow's colour. The projection is the seeds' shadow matrix, generalised to any plane and to
 //! point lights.

@@ -4,8 +4,7 @@
 //! `fill_contiguous` (or written as big-endian bytes for a DMA buffer).
 
 use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
-use embedded_graphics_core::pixelcolor::raw::ToBytes;
+use embedded_graphics_core::geometry::{OriginDimensions, Size};
 use embedded_graphics_core::pixelcolor::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
@@ -18,16 +17,15 @@ use crate::raster::span::LESS;
 use crate::raster::{ActiveList, SpanMode};
 use crate::scene::color::{rgb565_word, rgb565_words_mut, TargetColor};
 
-use crate::error::*;
 use crate::kernel;
 use crate::renderer::*;
 use crate::stats::*;
 
 /// The strip being rendered, as a draw target covering the whole `W × H` screen: pixels outside
-/// the strip's rows are ignored. [`Renderer::render_overlaid`] hands it to an overlay
-/// [`Drawable`](embedded_graphics_core::Drawable) after the 3D content of each strip is drawn and before the strip is sent, so that
-/// text or a HUD is composed into the lines instead of being drawn over the finished frame
-/// (no flicker on a display without a framebuffer).
+/// the strip's rows are ignored. A frame's overlay ([`crate::FrameOptions::overlay`]) draws into
+/// it after the 3D content of each strip is drawn and before the strip goes to its sink, so
+/// that text or a HUD is composed into the lines instead of being drawn over the finished
+/// frame (no flicker on a display without a framebuffer).
 #[derive(Debug)]
 pub struct StripCanvas<'a, C, const W: usize> {
     lines: &'a mut [[C; W]],
@@ -113,7 +111,12 @@ impl<C: PixelColor, const W: usize> DrawTarget for StripCanvas<'_, C, W> {
     }
 }
 
-impl<C, const W: usize> StripCanvas<'_, C, W> {
+impl<'a, C, const W: usize> StripCanvas<'a, C, W> {
+    /// The strip `lines`, whose first row is screen row `y0`, on a screen `height` rows high.
+    pub(crate) fn new(lines: &'a mut [[C; W]], y0: usize, height: u32) -> Self {
+        StripCanvas { lines, y0, height }
+    }
+
     /// The strip's lines and columns `area` covers, or `None` if it covers none of them.
     fn clip(&self, area: &Rectangle) -> Option<(core::ops::Range<usize>, core::ops::Range<usize>)> {
         let (x0, y0) = (i64::from(area.top_left.x), i64::from(area.top_left.y));
@@ -148,131 +151,6 @@ impl<
         const ZL: usize,
     > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
 {
-    /// [`Renderer::render_strip`], reporting stage changes to `probe`.
-    pub fn render_strip_probed<D, P>(
-        &mut self,
-        target: &mut D,
-        probe: &mut P,
-    ) -> Result<Option<core::ops::Range<usize>>, Error<D::Error>>
-    where
-        D: DrawTarget<Color = C>,
-        P: Probe,
-    {
-        if self.next_row >= self.vh {
-            return Ok(None);
-        }
-        self.check_target(target)?;
-        self.strip(target, probe, |_| {})
-    }
-
-    pub(crate) fn strip<D, P, F>(
-        &mut self,
-        target: &mut D,
-        probe: &mut P,
-        mut overlay: F,
-    ) -> Result<Option<core::ops::Range<usize>>, Error<D::Error>>
-    where
-        D: DrawTarget<Color = C>,
-        P: Probe,
-        F: FnMut(&mut StripCanvas<'_, C, W>),
-    {
-        let Some((y0, lines)) = self.draw_strip::<P, true>(None, LINES, probe) else {
-            return Ok(None);
-        };
-        let (vw, vh) = (self.vw, self.vh);
-        overlay(&mut StripCanvas {
-            lines: &mut self.color[..lines],
-            y0,
-            height: vh as u32,
-        });
-        let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(vw as u32, lines as u32));
-        probe.enter(Stage::Output);
-        let result = target.fill_contiguous(
-            &area,
-            self.color[..lines]
-                .iter()
-                .flat_map(|line| line[..vw].iter())
-                .copied(),
-        );
-        probe.enter(Stage::Raster);
-        if let Err(e) = result {
-            // The frame is abandoned: a later render_strip draws nothing.
-            self.next_row = vh;
-            return Err(Error::Target(e));
-        }
-        Ok(Some(y0..y0 + lines))
-    }
-
-    /// Draws the next strip of the prepared frame into `lines`, colour lines that the caller
-    /// owns, and returns its rows, or `None` when the frame is complete (or nothing was
-    /// prepared). Nothing is sent anywhere: the caller hands the lines to a DMA channel, a
-    /// display driver or another core, and may draw into them first (a label, a HUD).
-    ///
-    /// The strip is `min(N, LINES, rows left)` rows high (the depth lines are the renderer's
-    /// own, `LINES` of them); row `y0 + i` is `lines[i][..vw]` for the returned `y0..y1`. Lines
-    /// beyond the strip and columns beyond the viewport are left as they were. Each line is
-    /// cleared to the background first, so a buffer can be reused without clearing it.
-    ///
-    /// For RGB565, a line is `W` native 16-bit words: an SPI display sends them in its own
-    /// (big-endian) order when the SPI transfers 16-bit frames, which most microcontrollers'
-    /// SPI and DMA units can do with no byte swapping at all (the Pico firmware does this). For
-    /// a byte stream, [`Renderer::render_strip_be`] writes big-endian bytes instead.
-    ///
-    /// The pixels are exactly those [`Renderer::render`] draws into a target.
-    pub fn render_strip_into<const N: usize>(
-        &mut self,
-        lines: &mut [[C; W]; N],
-    ) -> Option<core::ops::Range<usize>> {
-        const { assert!(N >= 1, "a strip buffer needs at least one line") };
-        self.draw_strip::<NoProbe, true>(Some(lines), N, &mut NoProbe)
-            .map(|(y0, n)| y0..y0 + n)
-    }
-
-    /// Draws the next strip of the prepared frame into the renderer's own lines and writes it
-    /// to `out` as big-endian pixel bytes (for RGB565 the byte order of SPI panels such as the
-    /// ST7789 and ILI9341: high byte first), row after row, `vw` pixels a row; returns its rows,
-    /// or `None` when the frame is complete. The strip is as many rows as fit in `out`, at most
-    /// `LINES`. For a driver that sends bytes (an 8-bit SPI DMA channel, a USB or network
-    /// link); [`Renderer::render_strip_into`] avoids the copy.
-    ///
-    /// # Errors
-    ///
-    /// [`StripBufferTooSmall`] when `out` cannot hold one row (`vw · bytes per pixel`); nothing
-    /// is drawn then.
-    pub fn render_strip_be(
-        &mut self,
-        out: &mut [u8],
-    ) -> Result<Option<core::ops::Range<usize>>, StripBufferTooSmall>
-    where
-        C: ToBytes,
-        C::Bytes: AsRef<[u8]>,
-    {
-        let bpp = core::mem::size_of::<C::Bytes>();
-        let row_bytes = self.vw * bpp;
-        if self.next_row >= self.vh {
-            return Ok(None);
-        }
-        if out.len() < row_bytes || bpp == 0 {
-            return Err(StripBufferTooSmall {
-                needed: row_bytes,
-                given: out.len(),
-            });
-        }
-        let fit = out.len() / row_bytes;
-        let Some((y0, lines)) = self.draw_strip::<NoProbe, true>(None, fit, &mut NoProbe) else {
-            return Ok(None);
-        };
-        for (line, dst) in self.color[..lines]
-            .iter()
-            .zip(out.chunks_exact_mut(row_bytes))
-        {
-            for (c, d) in line[..self.vw].iter().zip(dst.chunks_exact_mut(bpp)) {
-                d.copy_from_slice(c.to_be_bytes().as_ref());
-            }
-        }
-        Ok(Some(y0..y0 + lines))
-    }
-
     /// Rasterizes the next strip of the prepared frame, at most `limit` rows, into `ext` (the
     /// caller's lines) or, for `None`, into the renderer's own lines. Returns its first row and
     /// height, or `None` when the frame is complete. `CLEAR`: each line is cleared to the

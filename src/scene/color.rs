@@ -45,7 +45,7 @@ pub trait TargetColor: PixelColor + From<Rgb888> + 'static {
 
     /// This pixel's channels in this colour's own units (≤ [`Self::CHANNEL_MAX`]), for
     /// blending over it (shadows and translucent materials,
-    /// [`crate::Renderer::render_layered`]); `None` for a type that cannot say (the default,
+    /// [`crate::FrameOptions::layered`]); `None` for a type that cannot say (the default,
     /// and [`TriangleId`]): such a target is drawn without blending.
     #[must_use]
     fn channels(self) -> Option<[u8; 3]> {

@@ -128,7 +128,7 @@ pub struct Material<S> {
     pub texture: Option<Texturing>,
     /// Opacity, 0..=255 (255, the default: opaque). A translucent material (below 255) is
     /// blended over what is behind it, `C = Csrc·α + Cdst·(1 − α)` with `α = alpha/255`, by
-    /// [`crate::Renderer::render_layered`]; [`crate::Renderer::render`] refuses it
+    /// [`crate::FrameOptions::layered`]; [`crate::Renderer::render`] refuses it
     /// ([`crate::Error::NeedsLayers`]).
     pub alpha: u8,
 }

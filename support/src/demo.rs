@@ -663,8 +663,9 @@ pub mod board {
             self.tilt.then(&scanline3d::Mat4::rotate_y_sin_cos(s, c))
         }
 
-        /// Prepares frame `frame` of the animation in `renderer` (geometry only; the strips
-        /// follow with [`draw_strip`] or the strip passes, [`BoardPass`]). `renderer` is a
+        /// Prepares frame `frame` of the animation in `renderer` (geometry only) and returns
+        /// it: its strips follow with [`draw_strip`], or with the strip passes
+        /// ([`BoardPass`]) after [`scanline3d::frame::Frame::share`]. `renderer` is a
         /// [`BoardRenderer`] or the same renderer with other strip lines `L` of its own (the
         /// two-core firmware's renderers keep one line: their rows are drawn by the cores'
         /// passes, whose strips are [`STRIP_LINES`] rows whatever `L` is).
@@ -673,29 +674,39 @@ pub mod board {
         ///
         /// The renderer's error when the frame does not fit its capacities (it always does: the
         /// capacities hold for a full turn).
-        pub fn prepare<const L: usize>(
+        pub fn prepare<'r, const L: usize>(
             &self,
-            renderer: &mut scanline3d::Renderer<S, Rgb565, 240, 240, 512, 480, 64, L>,
+            renderer: &'r mut scanline3d::Renderer<S, Rgb565, 240, 240, 512, 480, 64, L>,
             frame: u32,
-        ) -> Result<scanline3d::Stats, scanline3d::Error<core::convert::Infallible>> {
+        ) -> Result<
+            scanline3d::frame::Frame<
+                'r,
+                scanline3d::Renderer<S, Rgb565, 240, 240, 512, 480, 64, L>,
+            >,
+            scanline3d::Error<core::convert::Infallible>,
+        > {
             let objects = [Object {
                 mesh: self.shape.mesh(),
                 transform: self.transform(frame),
                 material: self.material,
             }];
-            renderer.prepare(&Scene::new(&objects, self.camera, self.lights))
+            renderer.prepare(
+                &Scene::new(&objects, self.camera, self.lights),
+                scanline3d::FrameOptions::new(),
+            )
         }
     }
 
-    /// Draws the next strip of the prepared frame into `buffer` with the label `label` composed
-    /// into it (white, at [`LABEL_AT`]); returns its rows, or `None` when the frame is done.
+    /// Draws the next strip of the prepared `frame` into `buffer` with the label `label`
+    /// composed into it (white, at [`LABEL_AT`]); returns its rows, or `None` when the frame
+    /// is done.
     pub fn draw_strip<S: Scalar>(
-        renderer: &mut BoardRenderer<S>,
+        frame: &mut scanline3d::frame::Frame<'_, BoardRenderer<S>>,
         glyphs: &Glyphs<16>,
         label: &str,
         buffer: &mut StripBuffer,
     ) -> Option<Range<usize>> {
-        let rows = renderer.render_strip_into(buffer)?;
+        let rows = frame.strip_into(buffer)?;
         let n = rows.len();
         glyphs.draw(label, LABEL_AT, Rgb565::WHITE, rows.start, &mut buffer[..n]);
         Some(rows)
@@ -738,9 +749,8 @@ pub mod board {
         mut mark: impl FnMut(SplitPart),
     ) -> Result<usize, scanline3d::Error<core::convert::Infallible>> {
         let split = split.min(SIZE) / STRIP_LINES * STRIP_LINES;
-        scene.prepare(renderer, frame)?;
+        let shared = scene.prepare(renderer, frame)?.share();
         mark(SplitPart::Geometry);
-        let shared: &BoardRenderer<S> = renderer;
         let [top, bottom] = passes;
         let mut strips = 0;
         top.begin(shared, 0..split)?;

@@ -152,7 +152,11 @@ where
         r.set_dither(dither);
         scanline3d::internals::set_order_any(&mut r, order);
         let stats = r
-            .render_probed(scene, target, probe)
+            .render_with(
+                scene,
+                scanline3d::FrameOptions::new().probe(&mut *probe),
+                target,
+            )
             .map_err(BenchError::Render)?;
         Ok(BenchFrame {
             stats,
@@ -202,7 +206,7 @@ where
             > = std::boxed::Box::default();
             r.set_dither(dither);
             scanline3d::internals::set_order_any(&mut *r, order);
-            r.render_probed(scene, target, probe)
+            r.render_with(scene, scanline3d::FrameOptions::new().probe(probe), target)
         }
         // A scene without attribute stores keeps a renderer without them: the pipeline
         // compiled without the stores' tests, which a microcontroller runs for it. Only the
@@ -366,7 +370,7 @@ pub enum Bench {
     /// methods are measured against).
     ShadowNone,
     /// [`Bench::ShadowNone`] with the projected planar shadow of both models on the ground
-    /// ([`scanline3d::Renderer::render_layered`]; the two shadows overlap and darken once).
+    /// ([`scanline3d::FrameOptions::layered`]; the two shadows overlap and darken once).
     Shadow,
     /// [`Bench::ShadowNone`] with a soft blob shadow under each model
     /// ([`scanline3d::shadow::ShadowMethod::Blob`]).

@@ -13,7 +13,7 @@ use scanline3d::{
     shadow::Edges, shadow::Layering, shadow::Outline, shadow::PlanarShadow, shadow::ShadowLight,
     shadow::ShadowMethod, shadow::VolumeShadow,
 };
-use scanline3d::{Layers, Renderer};
+use scanline3d::{FrameOptions, Layers, Renderer};
 use scanline3d::{Light, Material};
 use scanline3d::{Object, Scene};
 
@@ -139,7 +139,7 @@ impl ShadowScene {
 
 /// Renders the shadow scene — a torus and a cube above a ground square, one directional light —
 /// at 240 × 240 with options `o`: drawn by [`scanline3d::Renderer::render`] when it needs no layers
-/// (no shadow, an opaque torus), else by [`scanline3d::Renderer::render_layered`].
+/// (no shadow, an opaque torus), else by [`scanline3d::FrameOptions::layered`].
 /// [`BenchFrame::renderer_ram_bytes`] counts the [`Layers`] too.
 pub fn render_shadow_scene<S, C, D, P>(
     o: &ShadowScene,
@@ -334,12 +334,13 @@ where
         let mut r: std::boxed::Box<Renderer<S, C, 240, 240, VERTICES, TRIANGLES, ACTIVE>> =
             std::boxed::Box::default();
         r.set_dither(dither);
+        let options = FrameOptions::new().probe(probe);
         let stats = if plain {
-            r.render_probed(scene, target, probe)
+            r.render_with(scene, options, target)
         } else {
             let mut layers: std::boxed::Box<Layers<240, 1, RA, HOST_PA>> =
                 std::boxed::Box::default();
-            r.render_layered_probed(scene, layering, &mut layers, target, probe)
+            r.render_with(scene, options.layered(layering, &mut layers), target)
         }
         .map_err(BenchError::Render)?;
         let capacity = scanline3d::Needs::new(V, T, A);
@@ -362,7 +363,7 @@ where
         r.set_dither(dither);
         if plain {
             let stats = r
-                .render_probed(scene, target, probe)
+                .render_with(scene, FrameOptions::new().probe(&mut *probe), target)
                 .map_err(BenchError::Render)?;
             return Ok(BenchFrame {
                 stats,
@@ -371,7 +372,13 @@ where
         }
         let mut layers = Layers::<240, 1, RA, PA>::new();
         let stats = r
-            .render_layered_probed(scene, layering, &mut layers, target, probe)
+            .render_with(
+                scene,
+                FrameOptions::new()
+                    .probe(&mut *probe)
+                    .layered(layering, &mut layers),
+                target,
+            )
             .map_err(BenchError::Render)?;
         Ok(BenchFrame {
             stats,

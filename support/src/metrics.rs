@@ -1,6 +1,6 @@
 //! Error metrics between two renderings of the same scene, computed line by line in O(width)
 //! memory, so that they also run on a device: prepare two renderers (say, fixed point and f32),
-//! draw them strip by strip ([`scanline3d::Renderer::render_strip`]) into two [`StripCapture`]s, and
+//! draw them strip by strip ([`scanline3d::frame::Frame::strip_to`]) into two [`StripCapture`]s, and
 //! feed the strips to [`Metrics::add_line`]. Depth-order mismatches come from rendering
 //! [`scanline3d::color::TriangleId`]s the same way and feeding them to [`Metrics::add_ids`].
 

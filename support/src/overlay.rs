@@ -1,7 +1,7 @@
 //! Text composed into strips: glyphs rasterized once from an embedded-graphics [`MonoFont`],
 //! then copied into the lines of whichever strips a label crosses.
 //!
-//! [`Renderer::render_overlaid`](scanline3d::Renderer::render_overlaid) draws any embedded-graphics
+//! [`FrameOptions::overlay`](scanline3d::FrameOptions::overlay) draws any embedded-graphics
 //! [`Drawable`] into every strip, which runs the drawable's
 //! text layout once per strip: with a one-line strip that is 240 layouts a frame for a label
 //! that covers ten rows. [`Glyphs`] does the font work once, when it is built, and

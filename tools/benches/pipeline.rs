@@ -32,16 +32,27 @@ fn stages<S: Scalar>(c: &mut Criterion) {
         })
     });
     c.bench_function(&format!("{name}/geometry"), |b| {
-        b.iter(|| black_box(r.prepare(&scene).expect("prepare")))
+        b.iter(|| {
+            black_box(
+                r.prepare(&scene, scanline3d::FrameOptions::new())
+                    .expect("prepare")
+                    .stats(),
+            )
+        })
     });
     c.bench_function(&format!("{name}/rasterization"), |b| {
         b.iter_batched(
             || {
                 let mut r2: Box<TorusRenderer<S, Rgb565>> = Box::default();
-                r2.prepare(&scene).expect("prepare");
+                let _ = r2
+                    .prepare(&scene, scanline3d::FrameOptions::new())
+                    .expect("prepare");
                 r2
             },
-            |mut r2| while r2.render_strip(&mut target).expect("strip").is_some() {},
+            |mut r2| {
+                let mut frame = r2.prepared().expect("a prepared frame");
+                while frame.strip_to(&mut target).expect("strip").is_some() {}
+            },
             criterion::BatchSize::LargeInput,
         )
     });

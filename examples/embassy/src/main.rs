@@ -272,7 +272,9 @@ fn start_frame(
 ) -> bool {
     // A frame that does not fit (it always does: the capacities hold for a full turn) is
     // drawn black rather than left half drawn.
-    scene.prepare(renderer, number).is_ok() && pass.begin(renderer, 0..board::SIZE).is_ok()
+    scene
+        .prepare(renderer, number)
+        .is_ok_and(|frame| pass.begin(frame.share(), 0..board::SIZE).is_ok())
 }
 
 /// Draws the strip of the frame starting at row `row` into `buffer`, with the label composed

@@ -58,13 +58,13 @@ fn render(frame: u32, us: u64) -> Result<Vec<u8>, String> {
     let scene = board::BoardScene::new(&shape)?;
     let glyphs = board::glyphs().map_err(|e| format!("glyphs: {e:?}"))?;
     let mut renderer = Box::new(board::renderer::<Q>());
-    scene
+    let mut prepared = scene
         .prepare(&mut renderer, frame)
         .map_err(|e| format!("frame {frame}: {e:?}"))?;
     let label = board::fps_label(us);
     let mut buffer: board::StripBuffer = [[Rgb565::BLACK; board::SIZE]; board::STRIP_LINES];
     let mut out = vec![0u8; board::SIZE * board::SIZE * 2];
-    while let Some(rows) = board::draw_strip(&mut renderer, &glyphs, &label, &mut buffer) {
+    while let Some(rows) = board::draw_strip(&mut prepared, &glyphs, &label, &mut buffer) {
         for (i, row) in rows.enumerate() {
             let dst = &mut out[row * board::SIZE * 2..(row + 1) * board::SIZE * 2];
             for (c, d) in buffer[i].iter().zip(dst.chunks_exact_mut(2)) {

@@ -148,12 +148,14 @@ impl EdgeFrames {
                 .with_edges(edges)
                 .see_through(self.see_through),
         );
-        r.render_layered(scene, &layering, &mut self.layers, target)
-            .map_err(|e| {
-                format!(
-                    "{e} (edges are drawn in one frame: simplify the model with --max-triangles)"
-                )
-            })
+        r.render_with(
+            scene,
+            scanline3d::FrameOptions::new().layered(&layering, &mut self.layers),
+            target,
+        )
+        .map_err(|e| {
+            format!("{e} (edges are drawn in one frame: simplify the model with --max-triangles)")
+        })
     }
 
     /// [`EdgeFrames::draw`] into a target that keeps nothing (for timing).

@@ -541,12 +541,20 @@ fn run<S: Scalar, C: TargetColor>(
                 match depth_check.as_mut() {
                     Some(d) if args.depth != depth::DepthArg::Zbuffer => timed(&mut || {
                         t = HostProbe::timer();
-                        let _ = d.renderer().render_probed(&scene, &mut sink, &mut t);
+                        let _ = d.renderer().render_with(
+                            &scene,
+                            scanline3d::FrameOptions::new().probe(&mut t),
+                            &mut sink,
+                        );
                         t.total().as_nanos() as f64
                     }),
                     _ => timed(&mut || {
                         t = HostProbe::timer();
-                        let _ = r.render_probed(&scene, &mut sink, &mut t);
+                        let _ = r.render_with(
+                            &scene,
+                            scanline3d::FrameOptions::new().probe(&mut t),
+                            &mut sink,
+                        );
                         t.total().as_nanos() as f64
                     }),
                 }
