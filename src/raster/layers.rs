@@ -537,25 +537,31 @@ impl<
                 let (frag, written) = outline_row(t, colors, depth, meta >> 8 != 0);
                 stats.add_row(frag, written);
             });
-            // Translucent triangles, farthest first: their indices sorted by key per row.
-            let mut order = [0u16; PA];
-            let mut n = 0;
-            for j in 0..post.list.len() {
-                if post.meta[j] as u8 == TRANSLUCENT {
-                    order[n] = j as u16;
-                    n += 1;
+            // Translucent triangles, farthest first: their indices sorted by key per row. A
+            // row without any (every row of a frame without translucency) neither fills nor
+            // sorts the index array.
+            let len = post.list.len();
+            if post.meta[..len].iter().any(|&m| m as u8 == TRANSLUCENT) {
+                let mut order = [0u16; PA];
+                let mut n = 0;
+                for j in 0..len {
+                    if post.meta[j] as u8 == TRANSLUCENT {
+                        order[n] = j as u16;
+                        n += 1;
+                    }
                 }
+                let key = &post.key;
+                order[..n].sort_unstable_by(|a, b| key[*b as usize].cmp(&key[*a as usize]));
+                for &j in &order[..n] {
+                    let j = j as usize;
+                    let alpha = (post.meta[j] >> 8) as u32;
+                    let (frag, written) =
+                        translucent_row(post.list.get_mut(j), colors, depth, alpha);
+                    stats.add_row(frag, written);
+                }
+                // Advance (or retire) them after all are drawn: removal reorders the list.
+                post.rows(TRANSLUCENT, row, |_, _, _| {});
             }
-            let key = &post.key;
-            order[..n].sort_unstable_by(|a, b| key[*b as usize].cmp(&key[*a as usize]));
-            for &j in &order[..n] {
-                let j = j as usize;
-                let alpha = (post.meta[j] >> 8) as u32;
-                let (frag, written) = translucent_row(post.list.get_mut(j), colors, depth, alpha);
-                stats.add_row(frag, written);
-            }
-            // Advance (or retire) them after all are drawn: removal reorders the list.
-            post.rows(TRANSLUCENT, row, |_, _, _| {});
         }
         self.next_row = y0 + lines;
         Some((y0, lines))
