@@ -451,10 +451,6 @@ impl<
     /// drawn, and no frame is left prepared. The error's target type is
     /// [`core::convert::Infallible`]: [`Error::widen`] gives it any other.
     #[allow(clippy::type_complexity)]
-    // Inlined so that the caller's strip loop sees which renderer the frame holds: returned
-    // from an outlined `prepare`, the layered frames' inlined rows were up to 4 % dearer on
-    // the Cortex-M4F (scripts/mcu-bench).
-    #[inline(always)]
     pub fn prepare<P, K, O, const L: usize>(
         &mut self,
         scene: &Scene<'_, S, L>,
@@ -569,6 +565,9 @@ impl<
     /// # Errors
     ///
     /// As [`Frame::strip_to`]; the target is checked once, before the first strip.
+    // Inlined: the layered frames' rows, inlined into it, were up to 4 % dearer on the
+    // Cortex-M4F behind an outlined `draw_to` (scripts/mcu-bench). `prepare` is not: inlined,
+    // it took the 16 KB part's last bytes of stack.
     #[inline(always)]
     pub fn draw_to<D>(mut self, target: &mut D) -> Result<Stats, Error<D::Error>>
     where
