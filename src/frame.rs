@@ -221,6 +221,9 @@ pub trait FrameKind<S, const W: usize, const LINES: usize>: sealed::Sealed {
 
 /// What a prepared frame's strips draw with ([`Plain`] or [`LayeredStrips`]). Sealed.
 pub trait StripSource<const W: usize, const LINES: usize>: sealed::Sealed {
+    /// Whether [`Frame::draw_to`]'s loop is inlined into its caller.
+    #[doc(hidden)]
+    const INLINE_LOOP: bool;
     #[doc(hidden)]
     #[allow(clippy::type_complexity)]
     fn draw<
@@ -271,6 +274,7 @@ impl<S, const W: usize, const LINES: usize> FrameKind<S, W, LINES> for Plain {
 }
 
 impl<const W: usize, const LINES: usize> StripSource<W, LINES> for Plain {
+    const INLINE_LOOP: bool = false;
     #[inline(always)]
     fn draw<
         S: Scalar,
@@ -328,6 +332,7 @@ impl<'l, S, const W: usize, const LINES: usize, const RA: usize, const PA: usize
 impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize> StripSource<W, LINES>
     for LayeredStrips<'_, W, LINES, RA, PA>
 {
+    const INLINE_LOOP: bool = true;
     #[inline(always)]
     fn draw<
         S: Scalar,
@@ -565,11 +570,34 @@ impl<
     /// # Errors
     ///
     /// As [`Frame::strip_to`]; the target is checked once, before the first strip.
-    // Inlined: the layered frames' rows, inlined into it, were up to 4 % dearer on the
-    // Cortex-M4F behind an outlined `draw_to` (scripts/mcu-bench). `prepare` is not: inlined,
-    // it took the 16 KB part's last bytes of stack.
+    // Inlined (only its loop differs by kind): a layered frame's rows are inlined into its
+    // loop, and behind an outlined `draw_to` they were up to 4 % dearer on the Cortex-M4F
+    // (scripts/mcu-bench); a plain frame's loop inlined there made the 16 KB RISC-V part's
+    // torus 1.7 % dearer. `prepare` is not inlined: that took the 16 KB part's last bytes of
+    // stack.
     #[inline(always)]
-    pub fn draw_to<D>(mut self, target: &mut D) -> Result<Stats, Error<D::Error>>
+    pub fn draw_to<D>(self, target: &mut D) -> Result<Stats, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+    {
+        if K::INLINE_LOOP {
+            self.draw_all_inlined(target)
+        } else {
+            self.draw_all(target)
+        }
+    }
+
+    /// [`Frame::draw_to`]'s loop, not inlined.
+    fn draw_all<D>(self, target: &mut D) -> Result<Stats, Error<D::Error>>
+    where
+        D: DrawTarget<Color = C>,
+    {
+        self.draw_all_inlined(target)
+    }
+
+    /// [`Frame::draw_to`]'s loop.
+    #[inline(always)]
+    fn draw_all_inlined<D>(mut self, target: &mut D) -> Result<Stats, Error<D::Error>>
     where
         D: DrawTarget<Color = C>,
     {
