@@ -570,11 +570,11 @@ impl<
     /// # Errors
     ///
     /// As [`Frame::strip_to`]; the target is checked once, before the first strip.
-    // Inlined (only its loop differs by kind): a layered frame's rows are inlined into its
-    // loop, and behind an outlined `draw_to` they were up to 4 % dearer on the Cortex-M4F
-    // (scripts/mcu-bench); a plain frame's loop inlined there made the 16 KB RISC-V part's
-    // torus 1.7 % dearer. `prepare` is not inlined: that took the 16 KB part's last bytes of
-    // stack.
+    // Inlined, and its loop chosen by kind (the shapes the benchmark firmware measured
+    // cheapest, scripts/mcu-bench): a layered frame's rows are inlined into its loop, and
+    // behind an outlined `draw_to` they were up to 4 % dearer on the Cortex-M4F; a plain
+    // frame's strips are drawn by out-of-line code anyway and its loop stays out of line.
+    // `prepare` is not inlined: that took the 16 KB part's last bytes of stack.
     #[inline(always)]
     pub fn draw_to<D>(self, target: &mut D) -> Result<Stats, Error<D::Error>>
     where
