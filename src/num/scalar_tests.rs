@@ -484,3 +484,45 @@ fn sin_cos_within_one_step() {
         assert!((c.to_f64() - libm::cos(a_q)).abs() <= 1.0 / 65536.0);
     }
 }
+
+/// `Fx`'s equality and order (on the raw bits) are `fixed`'s, on edge and pseudo-random
+/// values of each fraction width.
+#[test]
+fn comparisons_are_those_of_fixed() {
+    fn check<T: fixed::traits::Fixed<Bits = i32>>(bits: &[i32])
+    where
+        Fx<T>: Ord + core::hash::Hash,
+    {
+        for &a in bits {
+            for &b in bits {
+                let (fa, fb) = (T::from_bits(a), T::from_bits(b));
+                assert_eq!(Fx(fa) == Fx(fb), fa == fb, "{a} == {b}");
+                assert_eq!(Fx(fa).cmp(&Fx(fb)), fa.cmp(&fb), "{a} cmp {b}");
+                assert_eq!(Fx(fa) < Fx(fb), fa < fb);
+                assert_eq!(Fx(fa) >= Fx(fb), fa >= fb);
+            }
+        }
+    }
+    let mut bits = [0i32; 49];
+    bits[..9].copy_from_slice(&[
+        i32::MIN,
+        i32::MIN + 1,
+        -65536,
+        -1,
+        0,
+        1,
+        65535,
+        65536,
+        i32::MAX,
+    ]);
+    let mut x = 0x2545_f491_u32;
+    for b in &mut bits[9..] {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        *b = x as i32;
+    }
+    check::<fixed::types::I16F16>(&bits);
+    check::<fixed::types::I20F12>(&bits);
+    check::<fixed::types::I12F20>(&bits);
+}
