@@ -366,11 +366,7 @@ impl Scalar for micromath::F32 {
 /// `Fx<I16F16>` is the default number type of the fixed-point pipeline. The operators
 /// saturate at the type's range instead of wrapping (release) or panicking (debug); a value at a
 /// rail is treated as invalid by [`Scalar::is_valid`]. Division by zero saturates.
-///
-/// Equality, order and hashing are those of the raw bits (the same as `fixed`'s for one type;
-/// written out because `fixed`'s comparisons, generic over two fraction widths, are library
-/// calls through `typenum` in an unoptimized build).
-#[derive(Copy, Clone, Debug, Default)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[repr(transparent)]
 pub struct Fx<T>(pub T);
 
@@ -384,46 +380,6 @@ pub struct FxRecip {
 
 macro_rules! impl_fx {
     ($t:ident, $frac:expr, $name:expr) => {
-        impl PartialEq for Fx<$t> {
-            #[inline(always)]
-            fn eq(&self, o: &Self) -> bool {
-                self.0.to_bits() == o.0.to_bits()
-            }
-        }
-        impl Eq for Fx<$t> {}
-        impl PartialOrd for Fx<$t> {
-            #[inline(always)]
-            fn partial_cmp(&self, o: &Self) -> Option<core::cmp::Ordering> {
-                Some(self.cmp(o))
-            }
-            #[inline(always)]
-            fn lt(&self, o: &Self) -> bool {
-                self.0.to_bits() < o.0.to_bits()
-            }
-            #[inline(always)]
-            fn le(&self, o: &Self) -> bool {
-                self.0.to_bits() <= o.0.to_bits()
-            }
-            #[inline(always)]
-            fn gt(&self, o: &Self) -> bool {
-                self.0.to_bits() > o.0.to_bits()
-            }
-            #[inline(always)]
-            fn ge(&self, o: &Self) -> bool {
-                self.0.to_bits() >= o.0.to_bits()
-            }
-        }
-        impl Ord for Fx<$t> {
-            #[inline(always)]
-            fn cmp(&self, o: &Self) -> core::cmp::Ordering {
-                self.0.to_bits().cmp(&o.0.to_bits())
-            }
-        }
-        impl core::hash::Hash for Fx<$t> {
-            fn hash<H: core::hash::Hasher>(&self, state: &mut H) {
-                self.0.to_bits().hash(state);
-            }
-        }
         impl Fx<$t> {
             /// Builds a value from a float literal (rounds to nearest, saturates; NaN → the
             /// negative rail): [`Scalar::lit`], callable without the trait in scope.
