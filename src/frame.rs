@@ -11,13 +11,14 @@
 use core::ops::Range;
 
 use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::pixelcolor::raw::ToBytes;
+use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Drawable;
 
 use crate::error::{Error, StripBufferTooSmall};
 use crate::num::scalar::Scalar;
 use crate::raster::layers::Layers;
-use crate::raster::send_rows;
 use crate::raster::shadow::Layering;
 use crate::raster::strip::StripCanvas;
 use crate::renderer::Renderer;
@@ -766,8 +767,15 @@ impl<
         let (vw, vh) = (r.vw, r.vh);
         self.overlay
             .compose(&mut StripCanvas::new(&mut r.color[..n], y0, vh as u32));
+        let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(vw as u32, n as u32));
         self.probe.enter(Stage::Output);
-        let sent = send_rows(target, &r.color[..n], y0, vw);
+        let sent = target.fill_contiguous(
+            &area,
+            r.color[..n]
+                .iter()
+                .flat_map(|line| line[..vw].iter())
+                .copied(),
+        );
         self.probe.enter(Stage::Raster);
         if let Err(e) = sent {
             // The frame is abandoned: its later strips are `None`.

@@ -5,14 +5,14 @@
 use core::marker::PhantomData;
 
 use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Dimensions, Size};
+use embedded_graphics_core::geometry::{Dimensions, Point, Size};
+use embedded_graphics_core::primitives::Rectangle;
 use heapless::Vec;
 
 use crate::geometry::project::{ScreenVertex, MAX_SCREEN};
 use crate::num::scalar::Scalar;
 use crate::raster::attrs::{ActiveExtra, FREE, TRI};
 use crate::raster::depth_mode::DrawOrder;
-use crate::raster::send_rows;
 use crate::raster::textured::VertexExtra;
 use crate::raster::{ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scene::color::TargetColor;
@@ -499,7 +499,16 @@ impl<
             {}
             total.add_pass(&self.stats);
         }
-        send_rows(target, &self.color[..vh], 0, vw).map_err(Error::Target)?;
+        let area = Rectangle::new(Point::zero(), Size::new(vw as u32, vh as u32));
+        target
+            .fill_contiguous(
+                &area,
+                self.color[..vh]
+                    .iter()
+                    .flat_map(|line| line[..vw].iter())
+                    .copied(),
+            )
+            .map_err(Error::Target)?;
         Ok(total)
     }
 

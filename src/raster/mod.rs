@@ -44,10 +44,6 @@ pub(crate) use crate::kernel::records::{
     FAST, FLAT, FLAT_BIT, LAST_IN_ROUTINE, MID_LEFT, SWITCH_IN_ROUTINE,
 };
 use crate::scene::color::{TargetColor, BAYER};
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Point, Size};
-use embedded_graphics_core::pixelcolor::PixelColor;
-use embedded_graphics_core::primitives::Rectangle;
 
 /// Fraction bits of interpolated colour channels (channel units, so 0..=255·2²⁰ < 2²⁸ fits an
 /// `i32`; step 2⁻²⁰ of a channel unit).
@@ -205,26 +201,6 @@ pub(crate) fn pack_zrgb<C: TargetColor>(z: i64, r: i64, g: i64, b: i64) -> [i32;
         pack_rb::<C>(r, b) as i32,
         (g as i32) << packed_g_shift::<C>(),
     ]
-}
-
-/// Sends the strip `lines` (`lines[i][..vw]` is screen row `y0 + i`) to `target` with one
-/// `fill_contiguous`, at its place on the screen: every sink that hands finished lines to a
-/// [`DrawTarget`] (a frame's strips, a strip pass's, the passes' whole frame).
-#[inline(always)]
-pub(crate) fn send_rows<C: PixelColor, D: DrawTarget<Color = C>, const W: usize>(
-    target: &mut D,
-    lines: &[[C; W]],
-    y0: usize,
-    vw: usize,
-) -> Result<(), D::Error> {
-    let area = Rectangle::new(
-        Point::new(0, y0 as i32),
-        Size::new(vw as u32, lines.len() as u32),
-    );
-    target.fill_contiguous(
-        &area,
-        lines.iter().flat_map(|line| line[..vw].iter()).copied(),
-    )
 }
 
 #[cfg(test)]

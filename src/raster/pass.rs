@@ -9,13 +9,14 @@
 use core::ops::Range;
 
 use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Point, Size};
+use embedded_graphics_core::primitives::Rectangle;
 
 use crate::error::Error;
 use crate::kernel::records::ActiveList;
 use crate::num::scalar::Scalar;
 use crate::raster::attrs::{ActiveExtra, TRI};
 use crate::raster::seek::seek;
-use crate::raster::send_rows;
 use crate::raster::strip::{strip_rows, PassMut};
 use crate::renderer::Renderer;
 use crate::scene::color::TargetColor;
@@ -291,7 +292,13 @@ impl<
             return Ok(None);
         };
         // The prepared frame's width (a viewport asked for since applies to the next frame).
-        if let Err(e) = send_rows(target, &self.color[..n], y0, renderer.vw) {
+        let vw = renderer.vw;
+        let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(vw as u32, n as u32));
+        let pixels = self.color[..n]
+            .iter()
+            .flat_map(|line| line[..vw].iter())
+            .copied();
+        if let Err(e) = target.fill_contiguous(&area, pixels) {
             self.next_row = self.end_row;
             return Err(Error::Target(e));
         }
