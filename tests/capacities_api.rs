@@ -247,6 +247,7 @@ fn overflow_policy_error_is_the_default() {
         r.prepare(&scene, scanline3d::FrameOptions::new()),
         Err(Error::Shortfall(_))
     ));
+    assert!(r.prepared().is_none(), "nothing prepared");
 }
 
 /// Renders `scene` with `r` into a fresh 64 × 64 frame; panics on a pixel written twice.

@@ -82,6 +82,7 @@ fn strips_as_big_endian_bytes_equal_render() {
     let shape = scanline3d_support::demo::torus::<Q>().unwrap();
     let scene = board::BoardScene::new(&shape).unwrap();
     let mut r = Box::new(board::renderer::<Q>());
+    assert!(r.prepared().is_none(), "nothing prepared");
     let mut prepared = scene.prepare(&mut r, 3).unwrap();
     assert_eq!(
         prepared.strip_be(&mut [0u8; 479]),
