@@ -28,6 +28,12 @@ use riscv_semihosting::{debug, hprintln};
 use scanline3d::fixed::types::I16F16;
 use scanline3d::{probe::Probe, probe::Stage, Fx, Scalar};
 use scanline3d_support::demo::{render_bench, Bench};
+// The 16 KB parts run the cube scenes only: their build compiles only those scenes' renderers
+// (`render_bench_cube`), not every scene's.
+#[cfg(small_part)]
+use scanline3d_support::demo::render_bench_cube as render_scene;
+#[cfg(not(small_part))]
+use scanline3d_support::demo::render_bench as render_scene;
 use scanline3d_support::hash::{HashTarget, NullTarget};
 
 #[cfg(all(target_arch = "arm", not(feature = "microbit")))]
@@ -398,7 +404,7 @@ fn bench<S: Scalar, const DITHER: bool>(scene: Bench) {
     // The renderer alone: one `render` call into a target that does nothing.
     let mut null = NullTarget::<Rgb565>::new(240, 240);
     let mut ft = FrameTimer { start: 0, ticks: 0 };
-    let r = render_bench::<S, Rgb565, _, _>(scene, 0.0, dither, &mut null, &mut ft);
+    let r = render_scene::<S, Rgb565, _, _>(scene, 0.0, dither, &mut null, &mut ft);
     let ticks = ft.ticks as u64;
     let suffix = if dither { "_dithered" } else { "" };
     let frame = match r {
@@ -425,7 +431,7 @@ fn bench<S: Scalar, const DITHER: bool>(scene: Bench) {
         ticks: [0; 7],
     };
     let mut target = HashTarget::<Rgb565>::new(240, 240);
-    let _ = render_bench::<S, Rgb565, _, _>(scene, 0.0, dither, &mut target, &mut probe);
+    let _ = render_scene::<S, Rgb565, _, _>(scene, 0.0, dither, &mut target, &mut probe);
     let i = |k: usize| timer::instructions(probe.ticks[k]);
     hprintln!(
         "BENCH scene={}{} number={} instructions={} vertices={} lighting={} triangles={} setup={} raster={} output={} hash={:016x} pixels={} renderer_ram={} drawn={} written={}",

@@ -216,6 +216,45 @@ where
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
     P: scanline3d::probe::Probe,
 {
+    render_bench_of::<S, C, D, P, false>(bench, spin_deg, dither, target, probe)
+}
+
+/// [`render_bench`] compiled for the cube scenes only ([`Bench::Cube`], [`Bench::CubePainter`],
+/// [`Bench::CubeNoDepth`]); any other scene is [`BenchError::NotCompiled`]. For a firmware that
+/// runs only those (the 16 KB parts' benchmark): `render_bench` holds a copy of every scene's
+/// renderer, which such a firmware's build would compile and optimize for nothing.
+pub fn render_bench_cube<S, C, D, P>(
+    bench: Bench,
+    spin_deg: f64,
+    dither: bool,
+    target: &mut D,
+    probe: &mut P,
+) -> Result<BenchFrame, BenchError<D::Error>>
+where
+    S: Scalar,
+    C: scanline3d::TargetColor,
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+    P: scanline3d::probe::Probe,
+{
+    render_bench_of::<S, C, D, P, true>(bench, spin_deg, dither, target, probe)
+}
+
+/// [`render_bench`], or [`render_bench_cube`] with `CUBE_ONLY`: the other scenes' arms are then
+/// behind a constant condition of the instantiation (`const { CUBE_ONLY }`), which the compiler
+/// leaves out of the build.
+fn render_bench_of<S, C, D, P, const CUBE_ONLY: bool>(
+    bench: Bench,
+    spin_deg: f64,
+    dither: bool,
+    target: &mut D,
+    probe: &mut P,
+) -> Result<BenchFrame, BenchError<D::Error>>
+where
+    S: Scalar,
+    C: scanline3d::TargetColor,
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+    P: scanline3d::probe::Probe,
+{
     use scanline3d::Shading;
     macro_rules! go_with {
         ($objects:expr, $camera:expr, $lights:expr, $v:expr, $t:expr, $a:expr) => {{
@@ -274,6 +313,7 @@ where
                 8
             )
         }
+        _ if const { CUBE_ONLY } => Err(BenchError::NotCompiled(bench)),
         Bench::Torus => render_torus_strip::<S, C, D, P, 1>(spin_deg, dither, target, probe),
         Bench::Csg => crate::demo_csg::render_csg::<S, C, D, P>(spin_deg, dither, target, probe),
         Bench::ShadowNone

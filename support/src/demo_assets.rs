@@ -39,6 +39,9 @@ pub enum BenchError<E> {
         /// The scene's capacities.
         capacity: scanline3d::Needs,
     },
+    /// The scene is not in this build ([`crate::demo::render_bench_cube`] draws only the cube
+    /// scenes).
+    NotCompiled(Bench),
 }
 
 impl<E: core::fmt::Display> core::fmt::Display for BenchError<E> {
@@ -50,6 +53,9 @@ impl<E: core::fmt::Display> core::fmt::Display for BenchError<E> {
                 f,
                 "the benchmark frame needed {needed:?}, more than its scene's capacities {capacity:?}"
             ),
+            BenchError::NotCompiled(b) => {
+                write!(f, "the benchmark scene {} is not compiled into this build", b.name())
+            }
         }
     }
 }
@@ -326,6 +332,7 @@ impl<S: Scalar> Floor<S> {
 /// The benchmark scenes, shared by the examples, the host tests and the microcontroller
 /// benchmark so that every figure is measured on the same frames.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Bench {
     /// A flat-shaded cube filling about a third of the screen.
     Cube,
