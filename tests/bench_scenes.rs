@@ -22,9 +22,30 @@ fn frame<S: Scalar>(b: Bench, spin: f64) -> (Frame<Rgb565>, scanline3d_support::
     (f, r)
 }
 
+/// The full turn of every scene in four tests (a quarter of `Bench::ALL` each): the debug test
+/// run's longest test was this one as a whole (44 s unoptimized), which the test threads could
+/// not share.
 #[test]
-fn every_scene_renders_over_a_full_turn() {
-    for b in Bench::ALL {
+fn every_scene_renders_over_a_full_turn_1_of_4() {
+    full_turn(0);
+}
+#[test]
+fn every_scene_renders_over_a_full_turn_2_of_4() {
+    full_turn(1);
+}
+#[test]
+fn every_scene_renders_over_a_full_turn_3_of_4() {
+    full_turn(2);
+}
+#[test]
+fn every_scene_renders_over_a_full_turn_4_of_4() {
+    full_turn(3);
+}
+
+/// The scenes of quarter `part` (0..4) of `Bench::ALL` over a full turn.
+fn full_turn(part: usize) {
+    let quarter = Bench::ALL.len().div_ceil(4);
+    for &b in Bench::ALL.iter().skip(part * quarter).take(quarter) {
         for spin in (0..360).step_by(15) {
             frame::<Q>(b, spin as f64);
             frame::<f32>(b, spin as f64);
