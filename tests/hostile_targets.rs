@@ -22,7 +22,6 @@
 
 use crate::common;
 
-use std::collections::HashSet;
 use std::fmt::Debug;
 use std::sync::mpsc;
 use std::time::Duration;
@@ -329,7 +328,11 @@ fn ambient_only<S: Scalar>(s: &Setup<S>) -> Vec<Family> {
 /// instead (a Gouraud gradient between a clamped specular highlight and the rest leaves the
 /// family's surface).
 struct Allowed {
-    set: HashSet<[u8; 3]>,
+    /// The allowed colours: bit `(r·(G+1) + g)·(B+1) + b` for channel maxima R, G, B (a bit set
+    /// rather than a hash set: the unoptimized test build spent most of this test hashing).
+    set: Vec<u64>,
+    /// Channel maxima + 1 (the strides of `set`).
+    dims: [usize; 3],
     lo: [u8; 3],
     hi: [u8; 3],
     hull: bool,
@@ -341,7 +344,8 @@ impl Allowed {
     fn new<C: Px>(families: &[Family], hull: bool) -> Self {
         let max = C::CHANNEL_MAX;
         let grey = max[1] == 0;
-        let mut set = HashSet::new();
+        let dims = max.map(|m| m as usize + 1);
+        let mut set = vec![0u64; (dims[0] * dims[1] * dims[2]).div_ceil(64)];
         let (mut lo, mut hi) = ([255u8; 3], [0u8; 3]);
         let mut bright = true;
         const N: usize = 200;
@@ -369,7 +373,8 @@ impl Allowed {
                     for r in range[0].0..=range[0].1 {
                         for g in range[1].0..=range[1].1 {
                             for b in range[2].0..=range[2].1 {
-                                set.insert([r, g, b]);
+                                let k = Self::index(dims, [r, g, b]);
+                                set[k / 64] |= 1 << (k % 64);
                             }
                         }
                     }
@@ -382,6 +387,7 @@ impl Allowed {
         }
         Allowed {
             set,
+            dims,
             lo,
             hi,
             hull,
@@ -393,8 +399,17 @@ impl Allowed {
         if self.hull {
             (0..3).all(|c| self.lo[c] <= u[c] && u[c] <= self.hi[c])
         } else {
-            self.set.contains(&u)
+            // A channel past its maximum is not a colour of the type: not allowed.
+            (0..3).all(|c| (u[c] as usize) < self.dims[c]) && {
+                let k = Self::index(self.dims, u);
+                self.set[k / 64] >> (k % 64) & 1 == 1
+            }
         }
+    }
+
+    /// The bit of colour `u` in the set.
+    fn index(dims: [usize; 3], u: [u8; 3]) -> usize {
+        (u[0] as usize * dims[1] + u[1] as usize) * dims[2] + u[2] as usize
     }
 }
 

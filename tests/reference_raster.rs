@@ -433,9 +433,19 @@ fn compare_scene<const N: usize>(case: usize, tris: &[RefTri], m: &mut Measure) 
         let one = std::slice::from_ref(&flat);
         let id = render::<TriangleId, N>(one);
         let p = prepared[ti].as_ref();
+        // Every pixel of the frame is checked; the edge functions only inside the triangle's
+        // pixel bounding box (outside it no centre is covered: `bbox` rounds outwards).
+        let bbox = p.map(|p| p.bbox(n as i64));
+        let inside = |px: usize, py: usize| {
+            bbox.is_some_and(|(x0, y0, x1, y1)| {
+                let (x, y) = (px as i64, py as i64);
+                x0 <= x && x <= x1 && y0 <= y && y <= y1
+            })
+        };
         for py in 0..n {
             for px in 0..n {
-                let want = p.is_some_and(|p| p.weights(px as i64, py as i64).is_some());
+                let want = inside(px, py)
+                    && p.is_some_and(|p| p.weights(px as i64, py as i64).is_some());
                 if (id.px[py * n + px].0 != 0) != want {
                     m.single_coverage_mismatches += 1;
                     m.single_coverage.add(1.0, || {
