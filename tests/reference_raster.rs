@@ -444,8 +444,8 @@ fn compare_scene<const N: usize>(case: usize, tris: &[RefTri], m: &mut Measure) 
         };
         for py in 0..n {
             for px in 0..n {
-                let want = inside(px, py)
-                    && p.is_some_and(|p| p.weights(px as i64, py as i64).is_some());
+                let want =
+                    inside(px, py) && p.is_some_and(|p| p.weights(px as i64, py as i64).is_some());
                 if (id.px[py * n + px].0 != 0) != want {
                     m.single_coverage_mismatches += 1;
                     m.single_coverage.add(1.0, || {

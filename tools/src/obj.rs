@@ -726,16 +726,7 @@ pub static INDICES: [[u16; 3]; {nt}] = [
     }
 }
 
-/// Writes `text` to `path` through a temporary file and a rename: never a half-written file.
-pub fn write_atomic(path: &Path, text: &str) -> Result<(), String> {
-    let tmp = path.with_extension("partial");
-    std::fs::write(&tmp, text)
-        .and_then(|_| std::fs::rename(&tmp, path))
-        .map_err(|e| {
-            let _ = std::fs::remove_file(&tmp);
-            format!("{}: {e}", path.display())
-        })
-}
+pub use crate::atomic::write_atomic;
 
 /// A simplified mesh and the geometric error the simplification introduced.
 pub struct Simplified {

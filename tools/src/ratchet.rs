@@ -10,7 +10,6 @@
 use std::collections::BTreeMap;
 use std::fmt;
 use std::fmt::Write as _;
-use std::path::Path;
 
 /// The committed baseline, relative to the repository root.
 pub const BASELINE_PATH: &str = "mcu-bench/baseline.txt";
@@ -290,17 +289,4 @@ pub fn format(rows: &[(Key, u64)]) -> String {
     s
 }
 
-/// Writes `text` to `path` atomically: a temporary file in the same directory, then a rename
-/// over `path`, so an interrupted update never leaves a partial baseline.
-pub fn write_atomic(path: &Path, text: &str) -> Result<(), String> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".tmp");
-    let tmp = std::path::PathBuf::from(tmp);
-    let r = std::fs::write(&tmp, text)
-        .and_then(|()| std::fs::rename(&tmp, path))
-        .map_err(|e| format!("writing {}: {e}", path.display()));
-    if r.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    r
-}
+pub use crate::atomic::write_atomic;

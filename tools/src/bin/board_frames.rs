@@ -11,7 +11,7 @@
 //! 240 × 240 RGB565 big-endian, row-major, 115 200 bytes. `--png` also writes
 //! `DIR/host-KKKK.png`. Files are written atomically (a temporary file, then a rename).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
@@ -21,6 +21,7 @@ use embedded_graphics::prelude::*;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::Fx;
 use scanline3d_support::demo::board;
+use scanline3d_tools::atomic::write_atomic;
 
 type Q = Fx<I16F16>;
 
@@ -73,12 +74,6 @@ fn render(frame: u32, us: u64) -> Result<Vec<u8>, String> {
         }
     }
     Ok(out)
-}
-
-fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let tmp = path.with_extension("tmp");
-    std::fs::write(&tmp, bytes).map_err(|e| format!("{}: {e}", tmp.display()))?;
-    std::fs::rename(&tmp, path).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 fn png_bytes(be565: &[u8]) -> Result<Vec<u8>, String> {

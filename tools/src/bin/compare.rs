@@ -643,7 +643,38 @@ fn plot(
     let pts: Vec<&Row> = rows.iter().filter(|r| r.reference == "f64").collect();
     let err = |r: &Row| r.metrics.mean_abs().max(ZERO_FLOOR);
     let ymax = pts.iter().map(|r| err(r)).fold(0.01, f64::max) * 2.0;
-    let root = BitMapBackend::new(path, (1280, 620)).into_drawing_area();
+    // Drawn into memory and encoded with the `png` crate the tools already use (plotters' own
+    // file output would compile a second image-rs version), then written atomically.
+    const SIZE: (u32, u32) = (1280, 620);
+    let mut rgb = vec![0u8; SIZE.0 as usize * SIZE.1 as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area();
+        draw_plot(&root, &pts, mcu, ymax)?;
+        root.present()?;
+    }
+    let mut bytes = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut bytes, SIZE.0, SIZE.1);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        // A plot is mostly flat colour: the best compression with adaptive filters keeps the
+        // published copy (docs/) small.
+        enc.set_compression(png::Compression::Best);
+        enc.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
+        enc.write_header()?.write_image_data(&rgb)?;
+    }
+    scanline3d_tools::atomic::write_atomic(path, &bytes)?;
+    Ok(())
+}
+
+/// The plot's two panels (host time and Cortex-M0 instructions against error) on `root`.
+fn draw_plot(
+    root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    pts: &[&Row],
+    mcu: &BTreeMap<(String, String, String), u64>,
+    ymax: f64,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let err = |r: &Row| r.metrics.mean_abs().max(ZERO_FLOOR);
     root.fill(&WHITE)?;
     let (title, body) = root.split_vertically(40);
     title.titled(
@@ -683,7 +714,6 @@ fn plot(
         ymax,
         false,
     )?;
-    root.present()?;
     Ok(())
 }
 
