@@ -10,8 +10,8 @@ use crate::num::scalar::Scalar;
 use crate::raster::attrs::{lit_mode, FREE, LIGHTS, MATERIAL, MODE_PHONG};
 use crate::raster::fog::FogSpan;
 use crate::raster::phong::{
-    PhongLight, PhongLights, PhongMaterial, PhongPoint, PhongPoints, MAX_PHONG_LIGHTS, TONE_FILMIC,
-    TONE_NONE, TONE_REINHARD,
+    band_step, PhongLight, PhongLights, PhongMaterial, PhongPoint, PhongPoints, MAX_PHONG_LIGHTS,
+    TONE_FILMIC, TONE_NONE, TONE_REINHARD,
 };
 use crate::raster::textured::{q_from_depth, VertexExtra};
 use crate::renderer::Renderer;
@@ -252,6 +252,10 @@ impl<
                 let s: i64 = (0..3).map(|j| l.dir[j] as i64 * v[j] as i64).sum();
                 *x = (s >> 14) as i32;
             }
+            let bands = match m.shading {
+                Shading::Toon { bands } => bands.get(),
+                _ => 0,
+            };
             let pm = PhongMaterial {
                 color: m.color,
                 k: [
@@ -263,10 +267,8 @@ impl<
                 v,
                 lv,
                 tone,
-                bands: match m.shading {
-                    Shading::Toon { bands } => bands.get(),
-                    _ => 0,
-                },
+                bands,
+                band_step: band_step(bands),
             };
             pm.store(&mut self.xactive[slot]);
             self.xactive[slot].kind = MATERIAL;

@@ -66,6 +66,15 @@ pub(crate) struct PhongMaterial {
     pub(crate) tone: u8,
     /// [`crate::Shading::Toon`]'s bands (1..=255), 0 for Phong.
     pub(crate) bands: u8,
+    /// One band's step of `N·L`, [`band_step`]`(bands)`: Q1.14, 64..=2¹⁴ (step 2⁻¹⁴), worked out
+    /// once per object, so that a toon span does not divide.
+    pub(crate) band_step: u16,
+}
+
+/// One of `bands` equal steps of `N·L`, `⌊1/bands⌋` in Q1.14 (64..=2¹⁴; a whole step for 0 or
+/// 1 band). A division: for the per-object setup ([`PhongMaterial`]), not a span.
+pub(crate) const fn band_step(bands: u8) -> u16 {
+    (ONE / if bands == 0 { 1 } else { bands as i32 }) as u16
 }
 
 /// [`PhongMaterial::tone`]: the lit channel clamped to 255 (no tone map, or the clamp curve).
@@ -224,7 +233,8 @@ impl PhongMaterial {
             | (self.color[2] as i64) << 16
             | (self.shininess as i64) << 24
             | (self.tone as i64) << 32
-            | (self.bands as i64) << 40;
+            | (self.bands as i64) << 40
+            | (self.band_step as i64) << 48;
         words[4] = pack3(self.v);
         for k in 0..MAX_PHONG_LIGHTS {
             words[5 + k] = self.lv[k] as i64;
@@ -242,6 +252,7 @@ impl PhongMaterial {
             lv: [w[5] as i32, w[6] as i32, w[7] as i32, w[8] as i32],
             tone: (w[3] >> 32) as u8,
             bands: (w[3] >> 40) as u8,
+            band_step: (w[3] >> 48) as u16,
         }
     }
 }
@@ -326,15 +337,15 @@ impl ShadeCtx {
     /// unpacking the lights' structure: the fractions were computed when they were stored.
     /// With toon's bands for `TOON` only: a Phong span leaves them 0 (they are read by
     /// [`band`]`::<true>` alone), so that its context costs what it did before toon (their
-    /// division is a library call of about 70 instructions on the M0: 1.4 % of fast Phong's
-    /// raster stage there).
+    /// division, now worked out per object in [`PhongMaterial::band_step`], was a library call
+    /// of about 70 instructions per span on the M0: 1.4 % of fast Phong's raster stage there).
     pub(crate) fn from_entries<const TOON: bool>(
         lights: Option<&ActiveExtra>,
         m: &PhongMaterial,
     ) -> Self {
         let mut c = Self::without_bands(&PhongLights::default(), m);
         if TOON {
-            c.set_bands(m.bands);
+            c.set_bands(m);
         }
         if let Some(e) = lights {
             let w = e.words();
@@ -358,15 +369,15 @@ impl ShadeCtx {
     #[cfg(test)]
     pub(crate) fn new(l: &PhongLights, m: &PhongMaterial) -> Self {
         let mut c = Self::without_bands(l, m);
-        c.set_bands(m.bands);
+        c.set_bands(m);
         c
     }
 
-    /// Toon's bands (0 for Phong) and one band's step of `N·L`.
+    /// Toon's bands (0 for Phong) and one band's step of `N·L`, as material `m` holds them.
     #[inline(always)]
-    fn set_bands(&mut self, bands: u8) {
-        self.bands = bands as i32;
-        self.band_step = ONE / (bands as i32).max(1);
+    fn set_bands(&mut self, m: &PhongMaterial) {
+        self.bands = m.bands as i32;
+        self.band_step = m.band_step as i32;
     }
 
     /// The context of the lights `l` and material `m`, toon's bands left 0. Inlined: with no

@@ -48,6 +48,7 @@ fn shade_matches_the_model_in_floating_point() {
         lv: [(lv * ONE as f64).round() as i32, 0, 0, 0],
         tone: TONE_NONE,
         bands: 0,
+        band_step: band_step(0),
     };
     let mut worst = 0.0f64;
     for i in 0..200 {
@@ -109,6 +110,7 @@ fn pool_payloads_round_trip() {
         lv: [-12000, 16384, 0, -1],
         tone: TONE_FILMIC,
         bands: 255,
+        band_step: band_step(255),
     };
     m.store(&mut e);
     assert_eq!(PhongMaterial::load(&e), m);
@@ -122,6 +124,7 @@ fn toon_bands_follow_the_definition() {
     for bands in [1u8, 2, 3, 4, 5, 7, 16, 255] {
         let m = PhongMaterial {
             bands,
+            band_step: band_step(bands),
             ..PhongMaterial::default()
         };
         let c = ShadeCtx::new(&PhongLights::default(), &m);
