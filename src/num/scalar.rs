@@ -144,6 +144,16 @@ pub trait Scalar:
     /// be the result of an overflow).
     #[must_use]
     fn is_valid(self) -> bool;
+    /// `self == o`, for setup code that compares many values ([`crate::mesh::mesh_adjacency`]
+    /// matches every pair of edges by their ends' positions). The fixed-point types compare
+    /// their raw bits here: `fixed`'s own `==` accepts two fraction widths and, in an
+    /// unoptimized build, works them out on every call (most of `mesh_adjacency`'s time in a
+    /// debug build). The same result as `==`.
+    #[must_use]
+    #[inline]
+    fn same(self, o: Self) -> bool {
+        self == o
+    }
     /// Absolute value.
     #[must_use]
     fn abs(self) -> Self {
@@ -366,11 +376,7 @@ impl Scalar for micromath::F32 {
 /// `Fx<I16F16>` is the default number type of the fixed-point pipeline. The operators
 /// saturate at the type's range instead of wrapping (release) or panicking (debug); a value at a
 /// rail is treated as invalid by [`Scalar::is_valid`]. Division by zero saturates.
-///
-/// Equality, order and hashing compare the raw bits (the same as comparing the values, as the
-/// two sides have one type): `fixed`'s own comparisons accept any two fraction widths and, in an
-/// unoptimized build, work the widths out at run time on every call.
-#[derive(Copy, Clone, Debug, Default)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[repr(transparent)]
 pub struct Fx<T>(pub T);
 
@@ -395,46 +401,6 @@ macro_rules! impl_fx {
             #[must_use]
             pub fn to_bits(self) -> i32 {
                 self.0.to_bits()
-            }
-        }
-        impl PartialEq for Fx<$t> {
-            #[inline(always)]
-            fn eq(&self, o: &Self) -> bool {
-                self.0.to_bits() == o.0.to_bits()
-            }
-        }
-        impl Eq for Fx<$t> {}
-        impl PartialOrd for Fx<$t> {
-            #[inline(always)]
-            fn partial_cmp(&self, o: &Self) -> Option<core::cmp::Ordering> {
-                Some(self.cmp(o))
-            }
-            #[inline(always)]
-            fn lt(&self, o: &Self) -> bool {
-                self.0.to_bits() < o.0.to_bits()
-            }
-            #[inline(always)]
-            fn le(&self, o: &Self) -> bool {
-                self.0.to_bits() <= o.0.to_bits()
-            }
-            #[inline(always)]
-            fn gt(&self, o: &Self) -> bool {
-                self.0.to_bits() > o.0.to_bits()
-            }
-            #[inline(always)]
-            fn ge(&self, o: &Self) -> bool {
-                self.0.to_bits() >= o.0.to_bits()
-            }
-        }
-        impl Ord for Fx<$t> {
-            #[inline(always)]
-            fn cmp(&self, o: &Self) -> core::cmp::Ordering {
-                self.0.to_bits().cmp(&o.0.to_bits())
-            }
-        }
-        impl core::hash::Hash for Fx<$t> {
-            fn hash<H: core::hash::Hasher>(&self, state: &mut H) {
-                self.0.to_bits().hash(state);
             }
         }
         impl Add for Fx<$t> {
@@ -556,6 +522,10 @@ macro_rules! impl_fx {
             }
             fn tan(self) -> Self {
                 Self::from_f64(libm::tan(self.to_f64()))
+            }
+            #[inline]
+            fn same(self, o: Self) -> bool {
+                self.0.to_bits() == o.0.to_bits()
             }
             fn is_valid(self) -> bool {
                 self.0 != $t::MAX && self.0 != $t::MIN

@@ -484,3 +484,43 @@ fn sin_cos_within_one_step() {
         assert!((c.to_f64() - libm::cos(a_q)).abs() <= 1.0 / 65536.0);
     }
 }
+
+#[test]
+fn same_is_equality() {
+    // `Scalar::same` (the fixed-point types' bit comparison) against `==`, on equal raw values,
+    // neighbours and pseudo-random pairs; the floats keep `==`'s answers (0.0 is -0.0, NaN is
+    // not NaN).
+    fn check<T>()
+    where
+        Fx<T>: Scalar,
+        T: fixed::traits::Fixed<Bits = i32>,
+    {
+        let mut x = 0x1234_5678u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x as i32
+        };
+        for _ in 0..2000 {
+            let a = next();
+            for b in [
+                a,
+                a.wrapping_add(1),
+                a.wrapping_sub(1),
+                next(),
+                i32::MIN,
+                i32::MAX,
+            ] {
+                let (p, q) = (Fx(T::from_bits(a)), Fx(T::from_bits(b)));
+                assert_eq!(p.same(q), p == q, "{a:#x} {b:#x}");
+            }
+        }
+    }
+    check::<fixed::types::I16F16>();
+    check::<fixed::types::I20F12>();
+    check::<fixed::types::I12F20>();
+    assert!(0.0f32.same(-0.0) && 0.0f64.same(-0.0));
+    assert!(!f32::NAN.same(f32::NAN) && !f64::NAN.same(f64::NAN));
+    assert!(1.5f32.same(1.5) && !1.5f64.same(1.25));
+}

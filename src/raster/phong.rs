@@ -74,7 +74,8 @@ pub(crate) struct PhongMaterial {
 /// One of `bands` equal steps of `N·L`, `⌊1/bands⌋` in Q1.14 (64..=2¹⁴; a whole step for 0 or
 /// 1 band). A division: for the per-object setup ([`PhongMaterial`]), not a span.
 pub(crate) const fn band_step(bands: u8) -> u16 {
-    (ONE / if bands == 0 { 1 } else { bands as i32 }) as u16
+    // Unsigned: a signed division would keep a panic path for `i32::MIN / -1`.
+    ((ONE as u32) / if bands == 0 { 1 } else { bands as u32 }) as u16
 }
 
 /// [`PhongMaterial::tone`]: the lit channel clamped to 255 (no tone map, or the clamp curve).

@@ -168,6 +168,12 @@ impl core::fmt::Display for AdjacencyError {
 
 impl core::error::Error for AdjacencyError {}
 
+/// Whether two vertex positions are equal (the same corner of a mesh), with [`Scalar::same`].
+#[inline]
+fn same_position<S: Scalar>(p: Vec3<S>, q: Vec3<S>) -> bool {
+    p[0].same(q[0]) && p[1].same(q[1]) && p[2].same(q[2])
+}
+
 /// Each triangle's neighbours, into `out[..triangles]`: `out[t][e]` is the triangle across edge
 /// `e` of triangle `t` (edge 0 joins its vertices 0 and 1, edge 1 vertices 1 and 2, edge 2
 /// vertices 2 and 0), or [`NO_NEIGHBOUR`]. Edges are matched by their ends' positions, so a
@@ -191,7 +197,7 @@ pub fn mesh_adjacency<S: Scalar>(
     }
     // Vertices are the same corner when their positions are equal (a mesh with split normals
     // or texture seams has several records per corner).
-    let same = |a: u16, b: u16| a == b || pos[a as usize] == pos[b as usize];
+    let same = |a: u16, b: u16| a == b || same_position(pos[a as usize], pos[b as usize]);
     if n >= NO_NEIGHBOUR as usize {
         return Err(AdjacencyError::TooManyTriangles { triangles: n });
     }
@@ -253,7 +259,7 @@ pub fn check_adjacency<S: Scalar>(
     let table = table
         .get(..n)
         .ok_or(AdjacencyError::BufferTooSmall { needed: n })?;
-    let same = |a: u16, b: u16| a == b || pos[a as usize] == pos[b as usize];
+    let same = |a: u16, b: u16| a == b || same_position(pos[a as usize], pos[b as usize]);
     for (t, adj) in table.iter().enumerate() {
         for (e, &u) in adj.iter().enumerate() {
             if u == NO_NEIGHBOUR {
