@@ -2,7 +2,7 @@
 //! vertex transform, geometry (transform, lighting, clipping, projection, culling, bucketing),
 //! rasterization (triangle setup, spans, output to a null target) and the whole frame.
 //!
-//! `cargo bench --bench pipeline`
+//! `cargo bench --manifest-path host-bench/Cargo.toml` (from the repository root)
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use embedded_graphics::pixelcolor::Rgb565;
