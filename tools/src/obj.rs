@@ -726,8 +726,6 @@ pub static INDICES: [[u16; 3]; {nt}] = [
     }
 }
 
-pub use crate::atomic::write_atomic;
-
 /// A simplified mesh and the geometric error the simplification introduced.
 pub struct Simplified {
     pub mesh: BigMesh,

@@ -288,5 +288,3 @@ pub fn format(rows: &[(Key, u64)]) -> String {
     }
     s
 }
-
-pub use crate::atomic::write_atomic;

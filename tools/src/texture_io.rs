@@ -9,7 +9,7 @@ use std::path::Path;
 
 use scanline3d::{limits::MAX_TEXTURE_SIZE, Wrap};
 
-use super::obj::write_atomic;
+use crate::atomic::write_atomic;
 
 /// The colour key chosen when no opaque texel has it: magenta (red 31, green 0, blue 31).
 pub const PREFERRED_KEY: u16 = 0xF81F;

@@ -4,7 +4,8 @@
 
 use scanline3d_tools::ratchet;
 
-use ratchet::{compare, exceeds, format, parse, write_atomic, Key, BASELINE_PATH};
+use ratchet::{compare, exceeds, format, parse, Key, BASELINE_PATH};
+use scanline3d_tools::atomic::write_atomic;
 
 fn row(scene: &str, number: &str, core: &str, n: u64) -> (Key, u64) {
     (Key::new(scene, number, core), n)

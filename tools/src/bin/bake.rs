@@ -28,10 +28,9 @@ use scanline3d_tools as common;
 use std::path::PathBuf;
 
 use clap::{Parser, ValueEnum};
+use common::atomic::write_atomic;
 use common::csg::load_csg;
-use common::obj::{
-    bake_with_uvs, parse_obj, simplify, to_obj_with_uvs, write_atomic, NormalSource,
-};
+use common::obj::{bake_with_uvs, parse_obj, simplify, to_obj_with_uvs, NormalSource};
 use common::texture_io::bake_texture;
 use scanline3d::Wrap;
 

@@ -641,15 +641,13 @@ fn plot(
     path: &std::path::Path,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let pts: Vec<&Row> = rows.iter().filter(|r| r.reference == "f64").collect();
-    let err = |r: &Row| r.metrics.mean_abs().max(ZERO_FLOOR);
-    let ymax = pts.iter().map(|r| err(r)).fold(0.01, f64::max) * 2.0;
     // Drawn into memory and encoded with the `png` crate the tools already use (plotters' own
     // file output would compile a second image-rs version), then written atomically.
     const SIZE: (u32, u32) = (1280, 620);
     let mut rgb = vec![0u8; SIZE.0 as usize * SIZE.1 as usize * 3];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area();
-        draw_plot(&root, &pts, mcu, ymax)?;
+        draw_plot(&root, &pts, mcu)?;
         root.present()?;
     }
     let mut bytes = Vec::new();
@@ -672,9 +670,9 @@ fn draw_plot(
     root: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
     pts: &[&Row],
     mcu: &BTreeMap<(String, String, String), u64>,
-    ymax: f64,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let err = |r: &Row| r.metrics.mean_abs().max(ZERO_FLOOR);
+    let ymax = pts.iter().map(|r| err(r)).fold(0.01, f64::max) * 2.0;
     root.fill(&WHITE)?;
     let (title, body) = root.split_vertically(40);
     title.titled(

@@ -20,6 +20,7 @@ use scanline3d_support::demo::{render_bench, render_torus_sized, Bench, SMALL_PA
 use scanline3d_support::hash::HashTarget;
 use serde_json::{json, Value};
 
+use scanline3d_tools::atomic::write_atomic;
 use scanline3d_tools::ratchet;
 
 /// The budget for the default torus, fixed point, on the Cortex-M0 instruction stream.
@@ -288,7 +289,7 @@ fn run() -> Result<(), String> {
     });
     let out = std::path::Path::new("target/mcu-bench");
     std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
-    ratchet::write_atomic(
+    write_atomic(
         &out.join("report.json"),
         &serde_json::to_string_pretty(
             &rows.iter().chain(&small).chain(&strips).collect::<Vec<_>>(),
@@ -337,7 +338,7 @@ fn run() -> Result<(), String> {
     if let Ok(old) = std::fs::read_to_string("BENCHMARKS.md") {
         append_kept_blocks(&mut md, &old);
     }
-    ratchet::write_atomic(std::path::Path::new("BENCHMARKS.md"), &md)?;
+    write_atomic(std::path::Path::new("BENCHMARKS.md"), &md)?;
     println!("{}", table(&rows));
     if let Some((i, ram, ok)) = budget {
         println!(
@@ -367,7 +368,7 @@ fn run() -> Result<(), String> {
                     ratchet::compare(&old, &measured).summary(&baseline_path)
                 );
             }
-            ratchet::write_atomic(
+            write_atomic(
                 std::path::Path::new(&baseline_path),
                 &ratchet::format(&measured),
             )?;
