@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # usage: prof.py ELF -> runs QEMU (one instruction per TB, exec log streamed through a FIFO),
 # histograms PCs between frame_start_marker and frame_end_marker, prints per-function counts.
-import sys, subprocess, re, collections, os, bisect, pickle
+import sys, subprocess, re, collections, os, bisect, pickle, signal
 elf = sys.argv[1]
 fifo = "/tmp/m4f-prof-%d.fifo" % os.getpid()
 if os.path.exists(fifo): os.remove(fifo)
@@ -17,7 +17,10 @@ start=[s[0] for s in syms if "frame_start_marker" in s[2]][0]
 end=[s[0] for s in syms if "frame_end_marker" in s[2]][0]
 q=subprocess.Popen(["timeout","600","qemu-system-arm","-machine",os.environ.get("QEMU_MACHINE","mps2-an386"),"-nographic","-monitor","none",
     "-serial","null","-semihosting-config","enable=on,target=native","-icount","shift=7,align=off,sleep=off",
-    "-singlestep","-d","exec,nochain","-D",fifo,"-kernel",elf], stdout=subprocess.DEVNULL)
+    "-singlestep","-d","exec,nochain","-D",fifo,"-kernel",elf], stdout=subprocess.DEVNULL,
+    # A session of its own: the kill below reaches QEMU, not only `timeout` (killing `timeout`
+    # alone left QEMU running, a core busy, after the script had ended).
+    start_new_session=True)
 pcs=collections.Counter(); on=False; total=0
 rx=re.compile(r"Trace \d+: \S+ \[[0-9a-f]+/([0-9a-f]+)/")
 with open(fifo) as fh:
@@ -28,7 +31,7 @@ with open(fifo) as fh:
         if pc==start: on=True; continue
         if pc==end: break
         if on: pcs[pc]+=1; total+=1
-q.kill(); q.wait(); os.remove(fifo)
+os.killpg(q.pid, signal.SIGKILL); q.wait(); os.remove(fifo)
 starts=[s[0] for s in syms]
 f=collections.Counter()
 for pc,n in pcs.items():
