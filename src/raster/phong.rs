@@ -501,8 +501,9 @@ fn hard<const TOON: bool>(p: i32) -> i32 {
 }
 
 /// The lit colour (Q8.14 per channel, clamped to 0..=255) of a point with the interpolated
-/// normal `n` (Q1.14, at most unit length plus the planes' rounding; zero lights ambient
-/// only) at position `x` (read for point lights only: `POINTS`, [`PointsCtx`]). No division: `1/|n|`
+/// normal `n` (Q1.14, each component within ±[`NORMAL_MAX`]: at most unit length plus the
+/// planes' rounding inside a triangle, [`outside`] where the point may lie outside; zero lights
+/// ambient only) at position `x` (read for point lights only: `POINTS`, [`PointsCtx`]). No division: `1/|n|`
 /// is a normalized reciprocal ([`recip_norm`]) of `⌊√(n·n)⌋`; 64-bit products are 32 × 32-bit
 /// ones ([`mul_wide`]).
 pub(crate) fn shade<const POINTS: bool, const TOON: bool>(
@@ -511,11 +512,8 @@ pub(crate) fn shade<const POINTS: bool, const TOON: bool>(
     c: &ShadeCtx,
     pts: &PointsCtx,
 ) -> [i32; 3] {
-    // |n| ≤ 2^14 inside the triangle (a mix of unit normals, plus rounding); a fast-Phong
-    // segment's end may lie a pixel outside, where a sliver's planes take any value: clamped
-    // to 2^14 + 2^10 a component, so that each dot product with a unit direction, and n·n,
-    // stays below 2^30.
-    let n = n.map(|v| v.clamp(-(ONE + 1024), ONE + 1024));
+    // Each component within ±NORMAL_MAX (the caller's part): each dot product with a unit
+    // direction, and n·n, stays below 2^30.
     let dot = |x: [i32; 3]| n[0] * x[0] + n[1] * x[1] + n[2] * x[2];
     let len = isqrt(dot(n).max(0) as u32) as i32; // Q1.14
     let [ambient, diffuse, specular] = c.k;
@@ -563,6 +561,18 @@ pub(crate) fn shade<const POINTS: bool, const TOON: bool>(
         out[ch] = v.clamp(0, WHITE14) as i32;
     }
     out
+}
+
+/// The largest normal component [`shade`] takes (Q1.14): 2¹⁴ + 2¹⁰.
+const NORMAL_MAX: i32 = ONE + 1024;
+
+/// A normal (Q1.14) interpolated at a point that may lie outside its triangle, clamped for
+/// [`shade`]: a fast-Phong segment's end may lie a pixel past the span, where a sliver's planes
+/// take any value. Inside the triangle the planes stay within a unit plus their rounding, so
+/// the per-pixel loops pass their normals as they are.
+#[inline(always)]
+fn outside(n: [i32; 3]) -> [i32; 3] {
+    n.map(|v| v.clamp(-NORMAL_MAX, NORMAL_MAX))
 }
 
 /// [`shade`]'s channels with a tone curve: `material · (Σ) + specular` exposed radiance
@@ -763,8 +773,10 @@ impl Span<'_> {
             step[k] = e.step32(k);
         }
         let factors = channel_factors::<C>();
-        let lit = |nv: &[i32; 6], z: i32| {
+        // `ends`: a fast-Phong segment's end, which may lie past the span (see [`outside`]).
+        let lit = |nv: &[i32; 6], z: i32, ends: bool| {
             let n = [nv[0] >> 16, nv[1] >> 16, nv[2] >> 16];
+            let n = if ends { outside(n) } else { n };
             if !FX {
                 return channels(shade::<false, TOON>(n, [0; 3], self.ctx, pts), &factors);
             }
@@ -808,7 +820,7 @@ impl Span<'_> {
                     } else {
                         half
                     };
-                    cs[k] = out(lit(&nv, z), t);
+                    cs[k] = out(lit(&nv, z, false), t);
                     written += 1;
                 }
                 z = z.wrapping_add(gz);
@@ -819,13 +831,13 @@ impl Span<'_> {
             }
             return written;
         }
-        let mut c0 = lit(&nv, z);
+        let mut c0 = lit(&nv, z, false);
         while i < n {
             let len = seg.min(n - i);
             for k in 0..planes {
                 nv[k] = nv[k].wrapping_add(step[k].wrapping_mul(len));
             }
-            let c1 = lit(&nv, z.wrapping_add(gz.wrapping_mul(len)));
+            let c1 = lit(&nv, z.wrapping_add(gz.wrapping_mul(len)), true);
             // A whole segment's step by a shift (8 px), a shorter last one by a division.
             let dc = [0, 1, 2].map(|k| {
                 if len == FAST_SEGMENT {
