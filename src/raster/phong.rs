@@ -351,7 +351,9 @@ impl ShadeCtx {
         if let Some(e) = lights {
             let w = e.words();
             c.count = (w[8] as usize).min(MAX_PHONG_LIGHTS);
-            for k in 0..MAX_PHONG_LIGHTS {
+            // The stored lights only ([`shade`] reads no more): a scene with one light
+            // unpacks one, per span.
+            for k in 0..c.count {
                 c.dir[k] = unpack3(w[k]);
                 c.full[k] = [
                     (w[k] >> 48) as u8,
