@@ -119,6 +119,13 @@ pub(crate) fn edge_new(xa: i32, ya: i32, xb: i32, yb: i32, row: i32) -> Option<E
 /// can do anything (the setup keeps its portable attribute words out of line only then).
 pub(crate) const SETUP_KERNELS: bool = cfg!(scanline3d_thumb);
 
+/// Whether the pooled kinds' row (`raster::kind::pool_row`) calls the textured span out of
+/// line, in a function of its own, rather than where the compiler chooses. On the Thumb cores
+/// the textured rows were then 0.3-2.7 % cheaper on Cortex-M4F and M33 (the Phong rows 0.1-0.5 %)
+/// and unchanged on M0; on RISC-V (rv32imac) the textured rows were 1.1-4.3 % dearer, so the
+/// compiler keeps the choice there (`scripts/mcu-bench`; CHANGELOG has the figures).
+pub(crate) const TEXTURED_SPAN_OUT_OF_LINE: bool = cfg!(scanline3d_thumb);
+
 /// Whether [`transform_q16`] and [`transform_dir_q16`] can do anything (a caller keeps its
 /// fallback out of line only then).
 pub(crate) const TRANSFORM: bool = cfg!(scanline3d_thumb_v6m);

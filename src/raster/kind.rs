@@ -266,6 +266,9 @@ fn pool_row<C: TargetColor>(
             &mut colors[xs as usize..xe as usize],
         );
         let written = match k {
+            TEXTURED | TEXTURED_FLAT if crate::kernel::TEXTURED_SPAN_OUT_OF_LINE => {
+                crate::raster::textured::span_out_of_line::<C>(a, pool, lc, xs, row, zs, cs, test)
+            }
             TEXTURED | TEXTURED_FLAT => {
                 crate::raster::textured::span::<C>(a, pool, lc, xs, row, zs, cs, test)
             }
