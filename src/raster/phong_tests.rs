@@ -55,7 +55,7 @@ fn shade_matches_the_model_in_floating_point() {
         let a = i as f64 * 0.1;
         let n = unit([a.sin(), (a * 0.7).cos(), 0.5 + (a * 1.3).sin().abs()]);
         // A shorter normal (as interpolation gives) must light the same.
-        let got = shade::<false, false>(
+        let got = shade::<false, false, false>(
             q(n.map(|c| c * 0.8)),
             [0; 3],
             &ShadeCtx::new(&lights, &m),
