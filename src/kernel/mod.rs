@@ -88,6 +88,22 @@ pub(crate) fn udiv_small(n: u32, d: u32) -> (u32, u32) {
     (n / d, n % d)
 }
 
+/// `n / len` (toward zero) for `len ≥ 1`: a span segment's step. Where the core has no divide
+/// instruction (ARMv6-M) by shifts, adds and 32-bit products for `len` up to 15 (a fast-Phong
+/// segment's or a short perspective-textured segment's length), the division above that;
+/// elsewhere the division. (The `scanline3d_no_divide` cfg of `build.rs`, as [`udiv_small`].)
+#[inline(always)]
+pub(crate) fn div_segment(n: i32, len: i32) -> i32 {
+    #[cfg(scanline3d_no_divide)]
+    return crate::kernel::wide::div_by_small_shift_add(n, len);
+    // `/` as the spans had it (`wrapping_div` compiles to other code: fast Phong +0.5 % on
+    // the M4F).
+    #[cfg(not(scanline3d_no_divide))]
+    {
+        n / len
+    }
+}
+
 impl Edge {
     /// The edge `a → b` (`a.y < b.y`) at pixel row `row` (on the screen, 0..=1024), for
     /// coordinates within ±[`records::COORD_LIMIT`]: every product is under 2³⁰ and the sum

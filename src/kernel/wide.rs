@@ -443,6 +443,102 @@ pub(crate) fn udiv_shift_subtract(n: u32, d: u32) -> (u32, u32) {
     }
 }
 
+/// `n / 3` (floor) for every `u32`, by shifts and adds: `q ≈ n·0.0101…₂` from below, then
+/// the remainder `r = n − 3q` (0..=15 here) corrects it, `r·11 >> 5` = `r/3` for such `r`
+/// (the method of Warren's *Hacker's Delight*, 10–18). Checked against `/` in the tests.
+#[inline(always)]
+fn udiv3(n: u32) -> u32 {
+    let mut q = (n >> 2) + (n >> 4);
+    q += q >> 4;
+    q += q >> 8;
+    q += q >> 16;
+    let r = n - q * 3;
+    q + ((r * 11) >> 5)
+}
+
+/// `n / 5` (floor) for every `u32`, as [`udiv3`]: `q ≈ n·0.00110011…₂`, `r = n − 5q` below
+/// 32, `r·13 >> 6` = `r/5` for such `r`.
+#[inline(always)]
+fn udiv5(n: u32) -> u32 {
+    let mut q = (n >> 3) + (n >> 4);
+    q += q >> 4;
+    q += q >> 8;
+    q += q >> 16;
+    let r = n - q * 5;
+    q + ((r * 13) >> 6)
+}
+
+/// `n / 7` (floor) for every `u32`, as [`udiv3`]: `q ≈ n·0.001001…₂`, `r = n − 7q` below 64,
+/// `(r + 1) >> 3` = `r/7` for such `r`.
+#[inline(always)]
+fn udiv7(n: u32) -> u32 {
+    let mut q = (n >> 1) + (n >> 4);
+    q += q >> 6;
+    q += (q >> 12) + (q >> 24);
+    q >>= 2;
+    let r = n - q * 7;
+    q + ((r + 1) >> 3)
+}
+
+/// `⌈2¹⁹/d⌉` for `d` in 9..=15 (index `d − 9`), the reciprocals of [`udiv_chunks`].
+const RECIP19: [u32; 7] = {
+    let mut t = [0u32; 7];
+    let mut i = 0;
+    while i < 7 {
+        let d = i as u32 + 9;
+        t[i] = ((1 << 19) + d - 1) / d;
+        i += 1;
+    }
+    t
+};
+
+/// `n / d` (floor) for every `u32` and `d` in 9..=15, in 32-bit products: the quotient's 10,
+/// 11 and 11 bits from the top, each of a partial numerator `x = r·2^bits + chunk` below
+/// `d·2¹¹ ≤ 2¹⁵` (`r` the remainder so far) as `x·⌈2¹⁹/d⌉ >> 19`. That is exact for such `x`:
+/// the reciprocal's excess `e = m·d − 2¹⁹ < d` adds `x·e/(d·2¹⁹) < 1/d` to `x/d`, whose
+/// fraction is at most `(d − 1)/d`; `x·m < 2¹⁵·2¹⁶`.
+#[inline(always)]
+fn udiv_chunks(n: u32, d: u32) -> u32 {
+    let m = RECIP19[(d - 9) as usize];
+    let (mut q, mut r) = (0u32, 0u32);
+    for (shift, bits) in [(22, 10), (11, 11), (0, 11)] {
+        let x = (r << bits) | ((n >> shift) & ((1 << bits) - 1));
+        let qi = (x * m) >> 19;
+        r = x - qi * d;
+        q = (q << bits) | qi;
+    }
+    q
+}
+
+/// `n / len` (toward zero, as Rust's `/`) for `1 ≤ len ≤ 15` and any `n`, without a division:
+/// shifts for 1, 2, 4, 8, [`udiv3`], [`udiv5`], [`udiv7`] (6: 3 after 2), [`udiv_chunks`]
+/// for 9 to 15, on `|n|`, the sign put back. Other divisors take `/`. A span's segment step
+/// on cores without a divide instruction (ARMv6-M: the library's division takes some tens of
+/// instructions, these about ten to thirty).
+#[inline]
+#[cfg_attr(not(any(test, scanline3d_no_divide)), allow(dead_code))]
+pub(crate) fn div_by_small_shift_add(n: i32, len: i32) -> i32 {
+    let a = n.unsigned_abs();
+    let q = match len {
+        1 => a,
+        2 => a >> 1,
+        3 => udiv3(a),
+        4 => a >> 2,
+        5 => udiv5(a),
+        6 => udiv3(a >> 1),
+        7 => udiv7(a),
+        8 => a >> 3,
+        9..=15 => udiv_chunks(a, len as u32),
+        _ => return n.wrapping_div(len),
+    };
+    // q ≤ 2³¹ (2³¹ for n = i32::MIN, len = 1: wraps back to i32::MIN, as `wrapping_div`).
+    if n < 0 {
+        (q as i32).wrapping_neg()
+    } else {
+        q as i32
+    }
+}
+
 /// `(m·v) >> l` (floor) for `0 < m ≤ 2³⁰`, `1 ≤ l ≤ 16` and `|v| < 2^l`, in 32-bit
 /// products: with `m = mh·2¹⁵ + ml`, both `mh·v` and `ml·v` are below 2³¹; for `l ≤ 15` the
 /// first term shifted is a whole multiple of `2^l`, and for `l = 16` the two floors nest. The
@@ -522,6 +618,56 @@ mod split_tests {
                 + (1 << 15))
                 >> 16;
             assert_eq!(dot3_q16_small_split(c, d), want as i32);
+        }
+    }
+
+    /// The shift-and-add division against `wrapping_div`: every numerator below 2¹⁸ in
+    /// magnitude, random ones over the whole `i32` range, and the ends, for each divisor
+    /// 1..=17 (16 and 17 take `/` themselves).
+    #[test]
+    fn shift_add_division_equals_native() {
+        let check = |n: i32, len: i32| {
+            assert_eq!(
+                div_by_small_shift_add(n, len),
+                n.wrapping_div(len),
+                "{n} / {len}"
+            );
+        };
+        for len in 1..=17 {
+            for n in -(1 << 18)..=1 << 18 {
+                check(n, len);
+            }
+            for n in [i32::MIN, i32::MIN + 1, i32::MAX, i32::MAX - 1, -1, 0, 1] {
+                check(n, len);
+            }
+            let mut s = 0x9e37_79b9 ^ len as u32;
+            for i in 0..200_000u32 {
+                check((xorshift(&mut s) >> (i % 8)) as i32, len);
+            }
+        }
+    }
+
+    /// [`udiv_chunks`]'s step: every partial numerator below `d·2¹¹`, every divisor.
+    #[test]
+    fn chunk_step_is_exact() {
+        for d in 9..=15u32 {
+            let m = RECIP19[(d - 9) as usize];
+            for x in 0..d << 11 {
+                assert_eq!((x * m) >> 19, x / d, "{x} / {d}");
+            }
+        }
+    }
+
+    /// The unsigned divisions over every `u32` (about 43 billion operations, a few minutes:
+    /// run with `cargo test --release -p scanline3d -- --ignored every_u32`).
+    #[test]
+    #[ignore]
+    fn shift_add_division_every_u32() {
+        for n in 0..=u32::MAX {
+            assert_eq!((udiv3(n), udiv5(n), udiv7(n)), (n / 3, n / 5, n / 7), "{n}");
+            for d in 9..=15 {
+                assert_eq!(udiv_chunks(n, d), n / d, "{n} / {d}");
+            }
         }
     }
 }

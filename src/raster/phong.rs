@@ -16,6 +16,7 @@
 //! diffuse and specular up to 255); the lit channel Q8.14 (0..=255·2¹⁴).
 
 use crate::geometry::project::{DEPTH_FRAC_BITS, DEPTH_MAX};
+use crate::kernel::div_segment;
 use crate::num::scalar::{bitlen32, mul_wide, recip_norm};
 use crate::raster::attrs::{ActiveExtra, POINTS};
 use crate::raster::fog::FogSpan;
@@ -876,12 +877,13 @@ impl Span<'_> {
                 nv[k] = nv[k].wrapping_add(step[k].wrapping_mul(len));
             }
             let c1 = lit(&nv, z.wrapping_add(gz.wrapping_mul(len)), true);
-            // A whole segment's step by a shift (8 px), a shorter last one by a division.
+            // A whole segment's step by a shift (8 px), a shorter last one by a division
+            // ([`div_segment`]: shifts and adds where the core has no divide instruction).
             let dc = [0, 1, 2].map(|k| {
                 if len == FAST_SEGMENT {
                     (c1[k] - c0[k]) >> 3
                 } else {
-                    (c1[k] - c0[k]) / len
+                    div_segment(c1[k] - c0[k], len)
                 }
             });
             let mut c = c0;

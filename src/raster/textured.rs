@@ -16,6 +16,7 @@
 use crate::geometry::project::{
     vertex_frac_bits, ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS,
 };
+use crate::kernel::div_segment;
 use crate::num::scalar::{mul_wide, recip_norm};
 use crate::raster::attrs::*;
 use crate::raster::fog::FogSpan;
@@ -436,8 +437,8 @@ impl TexSpan<'_> {
                 ]
             } else if len > 1 {
                 [
-                    end[0].wrapping_sub(uv[0]) / len,
-                    end[1].wrapping_sub(uv[1]) / len,
+                    div_segment(end[0].wrapping_sub(uv[0]), len),
+                    div_segment(end[1].wrapping_sub(uv[1]), len),
                 ]
             } else {
                 [0, 0]
@@ -450,7 +451,7 @@ impl TexSpan<'_> {
                 if len == seg && seg.count_ones() == 1 {
                     b.wrapping_sub(a) >> seg.trailing_zeros()
                 } else if len > 1 {
-                    b.wrapping_sub(a) / len
+                    div_segment(b.wrapping_sub(a), len)
                 } else {
                     0
                 }
