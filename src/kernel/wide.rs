@@ -486,7 +486,7 @@ const RECIP19: [u32; 7] = {
     let mut i = 0;
     while i < 7 {
         let d = i as u32 + 9;
-        t[i] = ((1 << 19) + d - 1) / d;
+        t[i] = (1u32 << 19).div_ceil(d);
         i += 1;
     }
     t

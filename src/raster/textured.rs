@@ -16,7 +16,7 @@
 use crate::geometry::project::{
     vertex_frac_bits, ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS,
 };
-use crate::kernel::div_segment;
+use crate::kernel::{div_segment, TEXTURED_PIXELS_SLICED};
 use crate::num::scalar::{mul_wide, recip_norm};
 use crate::raster::attrs::*;
 use crate::raster::fog::FogSpan;
@@ -421,6 +421,14 @@ impl TexSpan<'_> {
         let mut written = 0;
         let mut i = 0;
         let mut uv = self.uv_at(self.x0);
+        // Both lines cut to the span once where the pixel loop slices them: each segment's
+        // slices then need no bounds check of their own. (Elsewhere left as they were: on
+        // rv32imac the indexed loop over the cut lines was 5-9 % dearer.)
+        let (zs, cs) = if TEXTURED_PIXELS_SLICED {
+            (&mut zs[..n as usize], &mut cs[..n as usize])
+        } else {
+            (zs, cs)
+        };
         while i < n {
             let len = seg.min(n - i);
             let end = if seg == 1 {
@@ -470,41 +478,57 @@ impl TexSpan<'_> {
                     dfa[c] = by(fa[c], (fogc[c] * f1) << 5);
                 }
             }
-            for x in i..i + len {
-                let z16 = (z >> DEPTH_FRAC_BITS) as u16;
-                let k = x as usize;
-                if passes::<T>(z16, zs[k]) {
-                    let col = tex.col_index(u >> 16, wl, 0);
-                    let rw = tex.col_index(v >> 16, hl, 1);
-                    let texel = texels[(rw << wl) | col];
-                    if texel as u32 != key {
-                        let t = [
-                            (texel >> 11) as i32,
-                            ((texel >> 5) & 63) as i32,
-                            (texel & 31) as i32,
-                        ];
-                        let (m, a) = if FOG { (lf, fa) } else { (l, [0; 3]) };
-                        let ch = [0, 1, 2].map(|c| {
-                            ((t[c] * m[c] + a[c] + (1 << 20)) >> 21)
-                                .clamp(0, C::CHANNEL_MAX[c] as i32)
-                                as u8
-                        });
-                        zs[k] = z16;
-                        cs[k] = C::from_channels(ch);
-                        written += 1;
+            // One pixel, its depth and colour at the places `$zk` and `$ck`: tested, written,
+            // and the interpolants stepped.
+            macro_rules! pixel {
+                ($zk:expr, $ck:expr) => {{
+                    let z16 = (z >> DEPTH_FRAC_BITS) as u16;
+                    if passes::<T>(z16, $zk) {
+                        let col = tex.col_index(u >> 16, wl, 0);
+                        let rw = tex.col_index(v >> 16, hl, 1);
+                        let texel = texels[(rw << wl) | col];
+                        if texel as u32 != key {
+                            let t = [
+                                (texel >> 11) as i32,
+                                ((texel >> 5) & 63) as i32,
+                                (texel & 31) as i32,
+                            ];
+                            let (m, a) = if FOG { (lf, fa) } else { (l, [0; 3]) };
+                            let ch = [0, 1, 2].map(|c| {
+                                ((t[c] * m[c] + a[c] + (1 << 20)) >> 21)
+                                    .clamp(0, C::CHANNEL_MAX[c] as i32) as u8
+                            });
+                            $zk = z16;
+                            $ck = C::from_channels(ch);
+                            written += 1;
+                        }
                     }
-                }
-                z = z.wrapping_add(gz);
-                for c in 0..3 {
-                    if FOG {
-                        lf[c] = lf[c].wrapping_add(dlf[c]);
-                        fa[c] += dfa[c];
-                    } else {
-                        l[c] = l[c].wrapping_add(gl[c]);
+                    z = z.wrapping_add(gz);
+                    for c in 0..3 {
+                        if FOG {
+                            lf[c] = lf[c].wrapping_add(dlf[c]);
+                            fa[c] += dfa[c];
+                        } else {
+                            l[c] = l[c].wrapping_add(gl[c]);
+                        }
                     }
+                    u = u.wrapping_add(step[0]);
+                    v = v.wrapping_add(step[1]);
+                }};
+            }
+            let (a, b) = (i as usize, (i + len) as usize);
+            if TEXTURED_PIXELS_SLICED {
+                // The segment's pixels as slices of both lines: no index or bounds check in
+                // the loop (indexed, its index and modulation spilled on the M0: two
+                // instructions more a written pixel).
+                for (zk, ck) in zs[a..b].iter_mut().zip(cs[a..b].iter_mut()) {
+                    pixel!(*zk, *ck);
                 }
-                u = u.wrapping_add(step[0]);
-                v = v.wrapping_add(step[1]);
+            } else {
+                for x in i..i + len {
+                    let k = x as usize;
+                    pixel!(zs[k], cs[k]);
+                }
             }
             if FOG {
                 l = l_end;
