@@ -2,8 +2,8 @@
 //! with one counting pass (a bucket sort over the rows), so that the strip pass takes each
 //! row's new triangles in order without a list link per triangle.
 
+use crate::kernel::records::TriRecord;
 use crate::num::scalar::Scalar;
-use crate::raster::TriRecord;
 use crate::scene::color::TargetColor;
 
 use crate::kernel::records::bucket_row;

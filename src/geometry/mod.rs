@@ -17,10 +17,10 @@ use crate::geometry::cull::{facing, Facing};
 use crate::geometry::project::{
     pack_channels, pack_flat_channels, unpack_channels, ScreenVertex, Viewport, COORD_LIMIT,
 };
+use crate::kernel::records::{TriRecord, FLAT_BIT};
 use crate::num::math::{Mat4, Vec3};
 use crate::num::scalar::Scalar;
 use crate::raster::textured::VertexExtra;
-use crate::raster::{TriRecord, FLAT_BIT};
 use crate::scene::camera::Projection;
 use crate::scene::color::TargetColor;
 use crate::scene::shade::{PreparedLight, Shading};

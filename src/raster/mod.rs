@@ -30,6 +30,7 @@ pub(crate) mod layers;
 pub(crate) mod no_depth;
 pub(crate) mod pass;
 pub(crate) mod phong;
+pub(crate) mod phong_entries;
 pub(crate) mod seek;
 pub(crate) mod setup;
 pub(crate) mod shadow;
