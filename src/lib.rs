@@ -237,9 +237,9 @@ pub mod math {
 /// the per-vertex and per-triangle attribute records (for RAM budgets).
 pub mod limits {
     pub use crate::error::MAX_TRANSLUCENT;
+    pub use crate::geometry::phong_entries::MAX_PHONG_LIGHTS;
     pub use crate::geometry::project::{COORD_LIMIT, DEPTH_FRAC_BITS, MAX_SCREEN, SUBPIXEL_BITS};
     pub use crate::num::scalar::NDC_FRAC_BITS;
-    pub use crate::raster::phong::MAX_PHONG_LIGHTS;
     pub use crate::raster::shadow::{BLOB_RINGS, BLOB_SIDES};
     pub use crate::raster::COLOR_FRAC_BITS;
     pub use crate::renderer::{

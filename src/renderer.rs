@@ -9,11 +9,11 @@ use embedded_graphics_core::geometry::{Dimensions, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
 use heapless::Vec;
 
+use crate::geometry::attrs::VertexExtra;
+use crate::geometry::pool::{ActiveExtra, FREE, TRI};
 use crate::geometry::project::{ScreenVertex, MAX_SCREEN};
 use crate::num::scalar::Scalar;
-use crate::raster::attrs::{ActiveExtra, FREE, TRI};
 use crate::raster::depth_mode::DrawOrder;
-use crate::raster::textured::VertexExtra;
 use crate::raster::{ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
 use crate::scene::color::TargetColor;
 use crate::scene::Scene;

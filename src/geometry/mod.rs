@@ -7,11 +7,15 @@ pub(crate) mod attrs;
 pub(crate) mod bin;
 pub(crate) mod clip;
 pub(crate) mod cull;
+pub(crate) mod fog;
 pub(crate) mod object_setup;
+pub(crate) mod phong_entries;
+pub(crate) mod pool;
 pub(crate) mod project;
 
 use heapless::Vec;
 
+use crate::geometry::attrs::VertexExtra;
 use crate::geometry::clip::{clip_triangle, outcode, ClipVertex, NEEDS_CLIP};
 use crate::geometry::cull::{facing, Facing};
 use crate::geometry::project::{
@@ -20,7 +24,6 @@ use crate::geometry::project::{
 use crate::kernel::records::{TriRecord, FLAT_BIT};
 use crate::num::math::{Mat4, Vec3};
 use crate::num::scalar::Scalar;
-use crate::raster::textured::VertexExtra;
 use crate::scene::camera::Projection;
 use crate::scene::color::TargetColor;
 use crate::scene::shade::{PreparedLight, Shading};

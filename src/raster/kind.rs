@@ -17,10 +17,11 @@
 //! [`FLAT`], all used (textured, Phong, fast Phong, toon). A fifth pool kind needs one more
 //! bit: the row routine testing [`FAST`] before the routine bits would free those two.
 
+use crate::geometry::attrs::VertexExtra;
+use crate::geometry::pool::{ActiveExtra, FREE, MODE_FAST_PHONG, MODE_PHONG, MODE_TOON};
 use crate::geometry::project::ScreenVertex;
-use crate::raster::attrs::{ActiveExtra, FREE, MODE_FAST_PHONG, MODE_PHONG, MODE_TOON};
 use crate::raster::span::{LESS, NONE};
-use crate::raster::textured::{attach_textured, VertexExtra};
+use crate::raster::textured::attach_textured;
 use crate::raster::*;
 use crate::scene::color::TargetColor;
 

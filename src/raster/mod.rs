@@ -21,7 +21,6 @@
 //! ~1000 px), i.e. at most seven divisions. Per row: one or two additions per edge and one
 //! per attribute. Per pixel: one addition per attribute, a shift, a compare and stores.
 
-pub(crate) mod attrs;
 pub(crate) mod depth_mode;
 pub(crate) mod fog;
 pub(crate) mod kind;
@@ -30,7 +29,6 @@ pub(crate) mod layers;
 pub(crate) mod no_depth;
 pub(crate) mod pass;
 pub(crate) mod phong;
-pub(crate) mod phong_entries;
 pub(crate) mod seek;
 pub(crate) mod setup;
 pub(crate) mod shadow;

@@ -13,9 +13,9 @@ use embedded_graphics_core::geometry::{Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
 
 use crate::error::Error;
+use crate::geometry::pool::{ActiveExtra, TRI};
 use crate::kernel::records::ActiveList;
 use crate::num::scalar::Scalar;
-use crate::raster::attrs::{ActiveExtra, TRI};
 use crate::raster::seek::seek;
 use crate::raster::strip::{strip_rows, PassMut};
 use crate::renderer::Renderer;

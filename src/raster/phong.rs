@@ -15,17 +15,15 @@
 //! Formats: directions and normals Q1.14 (`i32`, step 2⁻¹⁴); coefficients Q8.14 (ambient,
 //! diffuse and specular up to 255); the lit channel Q8.14 (0..=255·2¹⁴).
 
+use crate::geometry::phong_entries::{
+    fraction, unpack3, PhongLights, PhongMaterial, PhongPoints, MAX_PHONG_LIGHTS, ONE, TONE_NONE,
+    TONE_REINHARD,
+};
+use crate::geometry::pool::{ActiveExtra, POINTS};
 use crate::geometry::project::{DEPTH_FRAC_BITS, DEPTH_MAX};
 use crate::kernel::div_segment;
 use crate::num::scalar::{bitlen32, mul_wide, recip_norm};
-use crate::raster::attrs::{ActiveExtra, POINTS};
 use crate::raster::fog::FogSpan;
-pub use crate::raster::phong_entries::MAX_PHONG_LIGHTS;
-pub(crate) use crate::raster::phong_entries::{
-    band_step, PhongLight, PhongLights, PhongMaterial, PhongPoint, PhongPoints, TONE_FILMIC,
-    TONE_NONE, TONE_REINHARD,
-};
-use crate::raster::phong_entries::{fraction, unpack3, ONE};
 use crate::raster::span::{by_depth_test, passes};
 use crate::raster::{ActiveTri, DepthTest, COLOR_FRAC_BITS};
 use crate::scene::color::TargetColor;

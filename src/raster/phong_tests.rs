@@ -2,6 +2,7 @@
 //! pool payloads, the tone curves and the toon bands.
 
 use super::*;
+use crate::geometry::phong_entries::{band_step, PhongLight, TONE_FILMIC};
 
 #[test]
 fn integer_square_root() {

@@ -14,11 +14,11 @@
 //! for each triangle that crosses the row (and a setup for each textured one above it), and a
 //! look at the vertices of every triangle that starts above it.
 
+use crate::geometry::attrs::VertexExtra;
+use crate::geometry::pool::{ActiveExtra, FREE};
 use crate::kernel::records::{first_pixel, ActiveList, ScreenVertex, TriRecord};
-use crate::raster::attrs::{ActiveExtra, FREE};
 use crate::raster::depth_mode::{painter_insert, painter_key};
 use crate::raster::kind::{enter, needs_pool};
-use crate::raster::textured::VertexExtra;
 use crate::raster::SpanMode;
 use crate::scene::color::TargetColor;
 

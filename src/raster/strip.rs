@@ -260,7 +260,7 @@ pub(crate) struct FrameView<'a, C> {
 /// row it stops before, and its counts.
 pub(crate) struct PassMut<'a, const W: usize, const ACTIVE: usize, const ZL: usize> {
     pub(crate) active: &'a mut ActiveList<ACTIVE>,
-    pub(crate) pool: &'a mut [crate::raster::attrs::ActiveExtra],
+    pub(crate) pool: &'a mut [crate::geometry::pool::ActiveExtra],
     pub(crate) ord: Option<&'a mut [i16]>,
     /// The depth lines as an array, as the renderer held them before the pass had this type
     /// (a constant length for the row loop's indexing; whether a slice would cost more was
@@ -416,7 +416,7 @@ pub(crate) fn strip_rows<
 #[inline(always)]
 pub(crate) fn draw_list_row<C: TargetColor, const N: usize, const XA: usize>(
     active: &mut crate::raster::ActiveList<N>,
-    pool: &mut [crate::raster::attrs::ActiveExtra],
+    pool: &mut [crate::geometry::pool::ActiveExtra],
     row: usize,
     colors: &mut [C],
     depth: &mut [u16],
@@ -436,7 +436,7 @@ pub(crate) fn draw_list_row<C: TargetColor, const N: usize, const XA: usize>(
 #[inline(never)]
 fn draw_row_pooled<C: TargetColor, const N: usize>(
     active: &mut crate::raster::ActiveList<N>,
-    pool: &mut [crate::raster::attrs::ActiveExtra],
+    pool: &mut [crate::geometry::pool::ActiveExtra],
     row: usize,
     colors: &mut [C],
     depth: &mut [u16],
@@ -453,7 +453,7 @@ fn draw_row_pooled<C: TargetColor, const N: usize>(
 #[inline(always)]
 fn row_loop<C: TargetColor, const N: usize, const POOLED: bool>(
     active: &mut crate::raster::ActiveList<N>,
-    pool: &mut [crate::raster::attrs::ActiveExtra],
+    pool: &mut [crate::geometry::pool::ActiveExtra],
     row: usize,
     colors: &mut [C],
     depth: &mut [u16],

@@ -2,7 +2,7 @@
 //! as the geometry stage stores them in the attribute pool ([`ActiveExtra`]'s payloads) and
 //! the Phong spans load them ([`crate::raster::phong`]), with their formats.
 
-use crate::raster::attrs::{ActiveExtra, POINTS};
+use crate::geometry::pool::{ActiveExtra, POINTS};
 use crate::scene::effects::MAX_PHONG_POINT_LIGHTS;
 
 /// The most directional lights Phong shading takes (more are left out of it).
