@@ -356,7 +356,7 @@ impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize> Strip
         // are per renderer line); caller's lines get a copy.
         let (y0, n) = renderer.draw_strip_layered(self.layers, limit, probe)?;
         if let Some(ext) = ext {
-            let vw = renderer.vw;
+            let vw = renderer.geo.vw;
             for (dst, src) in ext.iter_mut().zip(&renderer.color[..n]) {
                 dst[..vw].copy_from_slice(&src[..vw]);
             }
@@ -655,7 +655,7 @@ impl<
         self.overlay.compose(&mut StripCanvas::new(
             &mut lines[..n],
             y0,
-            self.renderer.vh as u32,
+            self.renderer.geo.vh as u32,
         ));
         self.after_strip();
         Some(y0..y0 + n)
@@ -678,7 +678,7 @@ impl<
         C::Bytes: AsRef<[u8]>,
     {
         let bpp = core::mem::size_of::<C::Bytes>();
-        let vw = self.renderer.vw;
+        let vw = self.renderer.geo.vw;
         let row_bytes = vw * bpp;
         if self.is_complete() {
             return Ok(None);
@@ -694,8 +694,11 @@ impl<
             return Ok(None);
         };
         let r = &mut *self.renderer;
-        self.overlay
-            .compose(&mut StripCanvas::new(&mut r.color[..n], y0, r.vh as u32));
+        self.overlay.compose(&mut StripCanvas::new(
+            &mut r.color[..n],
+            y0,
+            r.geo.vh as u32,
+        ));
         for (line, dst) in r.color[..n].iter().zip(out.chunks_exact_mut(row_bytes)) {
             for (c, d) in line[..vw].iter().zip(dst.chunks_exact_mut(bpp)) {
                 d.copy_from_slice(c.to_be_bytes().as_ref());
@@ -721,7 +724,7 @@ impl<
     /// target error).
     #[must_use]
     pub fn is_complete(&self) -> bool {
-        self.renderer.next_row >= self.renderer.vh
+        self.renderer.next_row >= self.renderer.geo.vh
     }
 
     /// The frame's statistics: the geometry stage's, and the strips' counts so far (complete
@@ -734,7 +737,7 @@ impl<
     /// The viewport the frame was prepared for (width, height).
     #[must_use]
     pub fn viewport(&self) -> (usize, usize) {
-        (self.renderer.vw, self.renderer.vh)
+        (self.renderer.geo.vw, self.renderer.geo.vh)
     }
 
     /// Draws the next strip in the renderer's lines, composes the overlay and sends the strip
@@ -764,7 +767,7 @@ impl<
             return Ok(None);
         };
         let r = &mut *self.renderer;
-        let (vw, vh) = (r.vw, r.vh);
+        let (vw, vh) = (r.geo.vw, r.geo.vh);
         self.overlay
             .compose(&mut StripCanvas::new(&mut r.color[..n], y0, vh as u32));
         let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(vw as u32, n as u32));

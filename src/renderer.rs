@@ -2,16 +2,14 @@
 //! object (`geometry.rs`), binning (`bin.rs`), then one strip pass over the screen
 //! (`strip.rs`).
 
-use core::marker::PhantomData;
-
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Dimensions, Point, Size};
 use embedded_graphics_core::primitives::Rectangle;
-use heapless::Vec;
 
-use crate::geometry::attrs::VertexExtra;
-use crate::geometry::pool::{ActiveExtra, FREE, TRI};
+use crate::geometry::pool::ActiveExtra;
 use crate::geometry::project::{ScreenVertex, MAX_SCREEN};
+use crate::geometry::stores::Stores;
+use crate::geometry::vertex_extra::VertexExtra;
 use crate::num::scalar::Scalar;
 use crate::raster::depth_mode::DrawOrder;
 use crate::raster::{ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
@@ -130,19 +128,10 @@ pub struct Renderer<
     const XA: usize = 0,
     const ZL: usize = LINES,
 > {
-    pub(crate) verts: Vec<ScreenVertex, VERTS>,
-    /// Texture attributes of the first `XV` vertices of the store (see "Textures").
-    pub(crate) xverts: [VertexExtra; XV],
-    /// Extra planes of up to `XA` active textured triangles.
-    pub(crate) xactive: [ActiveExtra; XA],
-    pub(crate) tris: Vec<TriRecord, TRIS>,
+    /// The geometry stage's stores: vertices, triangles, attribute stores, row buckets and the
+    /// prepared frame's viewport.
+    pub(crate) geo: Stores<S, C, H, VERTS, TRIS, XV, XA>,
     pub(crate) active: ActiveList<ACTIVE>,
-    /// Per row: during geometry the number of triangles whose first row it is; then the index
-    /// of the first of them in `tris` (sorted by first row).
-    pub(crate) heads: [u16; H],
-    /// Per row: during geometry the change of the active-triangle count (+1 for each triangle
-    /// starting, −1 for each ending); then the insertion cursors of the bucket sort.
-    pub(crate) starts: [i16; H],
     pub(crate) color: [[C; W]; LINES],
     /// The depth lines, one per strip line (16-bit depth, 0 = nearest, 65535 = the far plane;
     /// cleared to 65535): `ZL = LINES`, or none (`ZL = 0`, [`NoDepthRenderer`]).
@@ -151,11 +140,8 @@ pub struct Renderer<
     /// How a renderer without depth lines orders a row's triangles (unused with depth lines).
     pub(crate) order: DrawOrder,
     pub(crate) dither: bool,
-    /// Next row to rasterize (`vh` when no frame is prepared).
+    /// Next row to rasterize (`geo.vh` when no frame is prepared).
     pub(crate) next_row: usize,
-    /// Viewport actually drawn, `vw ≤ W`, `vh ≤ H` (default `W × H`): the prepared frame's.
-    pub(crate) vw: usize,
-    pub(crate) vh: usize,
     /// The viewport [`Renderer::set_viewport`] asked for (1..=`W`, 1..=`H`, so that a u16
     /// holds it): taken by the next frame's geometry stage, or at once when no frame is being
     /// drawn.
@@ -163,17 +149,16 @@ pub struct Renderer<
     pub(crate) background: C,
     pub(crate) stats: Stats,
     pub(crate) overflow: OverflowPolicy,
-    /// Of the prepared frame, under [`OverflowPolicy::DrawWhatFits`]: the triangles needed but
-    /// not stored (the frame needed `stats.drawn + store_skipped` triangles; its other needs
-    /// are in `stats`), and those dropped from a full active list so far.
-    pub(crate) store_skipped: u32,
+    /// Of the prepared frame, under [`OverflowPolicy::DrawWhatFits`]: the triangles dropped
+    /// from a full active list so far (those needed but not stored are `geo.store_skipped`:
+    /// the frame needed `stats.drawn + geo.store_skipped` triangles; its other needs are in
+    /// `stats`).
     pub(crate) active_skipped: u32,
     /// Which frame the renderer holds, for the [`crate::StripPass`]es drawing it: advanced by
     /// every geometry stage; odd once a frame a strip pass can draw is prepared (by
     /// [`Renderer::prepare`] or a render), even while none is (before the first, during a
     /// geometry stage, after one that failed, and for a layered frame).
     pub(crate) frame_id: u32,
-    pub(crate) _s: PhantomData<S>,
 }
 
 impl<
@@ -241,29 +226,20 @@ impl<
         #[allow(clippy::let_unit_value)]
         let () = Self::CHECK;
         Renderer {
-            verts: Vec::new(),
-            xverts: [VertexExtra::NONE; XV],
-            xactive: [ActiveExtra::EMPTY; XA],
-            tris: Vec::new(),
+            geo: Stores::new(W, H),
             active: ActiveList::new(),
-            heads: [0; H],
-            starts: [0; H],
             color: [[fill; W]; LINES],
             depth: [[u16::MAX; W]; ZL],
             depth_test: DepthTest::Less,
             order: DrawOrder::FarToNear,
             dither: false,
             next_row: H,
-            vw: W,
-            vh: H,
             want_viewport: (W as u16, H as u16),
             background: fill,
             stats: Stats::ZERO,
             overflow: OverflowPolicy::Error,
-            store_skipped: 0,
             active_skipped: 0,
             frame_id: 0,
-            _s: PhantomData,
         }
     }
 
@@ -296,7 +272,7 @@ impl<
         let s = &self.stats;
         let needed = Needs::new(
             s.vertices as usize,
-            s.drawn as usize + self.store_skipped as usize,
+            s.drawn as usize + self.geo.store_skipped as usize,
             s.max_active as usize,
         );
         // (A textured triangle left out for want of a pool entry is a shortfall too.)
@@ -307,7 +283,7 @@ impl<
             needed,
             capacity: Self::CAPACITY,
             exact: needed.vertices <= VERTS && needed.triangles <= TRIS,
-            skipped: self.store_skipped as usize + self.active_skipped as usize,
+            skipped: self.geo.store_skipped as usize + self.active_skipped as usize,
         })
     }
 
@@ -331,7 +307,7 @@ impl<
         self.overflow = OverflowPolicy::DrawWhatFits;
         let result = self.geometry(scene, &mut NoProbe);
         self.overflow = policy;
-        self.next_row = self.vh;
+        self.next_row = self.geo.vh;
         result?;
         self.measured()
     }
@@ -365,11 +341,11 @@ impl<
         let bb = target.bounding_box();
         let (x0, y0) = (bb.top_left.x as i64, bb.top_left.y as i64);
         let (x1, y1) = (x0 + bb.size.width as i64, y0 + bb.size.height as i64);
-        if x0 <= 0 && y0 <= 0 && x1 >= self.vw as i64 && y1 >= self.vh as i64 {
+        if x0 <= 0 && y0 <= 0 && x1 >= self.geo.vw as i64 && y1 >= self.geo.vh as i64 {
             Ok(())
         } else {
             Err(Error::TargetTooSmall {
-                viewport: Size::new(self.vw as u32, self.vh as u32),
+                viewport: Size::new(self.geo.vw as u32, self.geo.vh as u32),
                 target: bb,
             })
         }
@@ -400,7 +376,7 @@ impl<
     /// applies at once.
     pub fn set_viewport(&mut self, width: usize, height: usize) {
         self.want_viewport = (width.clamp(1, W) as u16, height.clamp(1, H) as u16);
-        if self.next_row >= self.vh {
+        if self.next_row >= self.geo.vh {
             self.take_viewport();
         }
     }
@@ -408,9 +384,9 @@ impl<
     /// Makes the viewport [`Renderer::set_viewport`] asked for the one drawn (no frame is
     /// prepared afterwards).
     pub(crate) fn take_viewport(&mut self) {
-        self.vw = self.want_viewport.0 as usize;
-        self.vh = self.want_viewport.1 as usize;
-        self.next_row = self.vh;
+        self.geo.vw = self.want_viewport.0 as usize;
+        self.geo.vh = self.want_viewport.1 as usize;
+        self.next_row = self.geo.vh;
     }
 
     /// The viewport size (`W × H` unless changed by [`Renderer::set_viewport`]): the one the
@@ -474,7 +450,7 @@ impl<
         let Some(first) = passes.first() else {
             return Ok(Stats::default());
         };
-        let (vw, vh) = (self.vw, self.vh);
+        let (vw, vh) = (self.geo.vw, self.geo.vh);
         if LINES < vh {
             return Err(Error::StripTooShort {
                 lines: LINES,
@@ -514,7 +490,7 @@ impl<
 
     /// Moves the strip pass of the prepared frame to `row` ([`crate::frame::Frame::seek_row`]).
     pub(crate) fn seek_row(&mut self, row: usize) {
-        let vh = self.vh;
+        let vh = self.geo.vh;
         let row = row.min(vh);
         self.clear_active();
         self.next_row = row;
@@ -523,16 +499,16 @@ impl<
         }
         let (mode, painter) = self.setup_mode();
         let rows = crate::raster::seek::Rows {
-            verts: &self.verts,
-            xverts: &self.xverts,
-            tris: &self.tris,
-            heads: &self.heads,
+            verts: &self.geo.verts,
+            xverts: &self.geo.xverts,
+            tris: &self.geo.tris,
+            heads: &self.geo.heads,
             vh,
         };
-        let ord = (ACTIVE <= H).then_some(&mut self.starts[..]);
+        let ord = (ACTIVE <= H).then_some(&mut self.geo.starts[..]);
         let skipped = crate::raster::seek::seek::<C, ACTIVE>(
             &mut self.active,
-            &mut self.xactive,
+            &mut self.geo.xactive,
             ord,
             rows,
             row,
@@ -556,15 +532,53 @@ impl<
         (SpanMode::new::<C>(test, self.dither), painter)
     }
 
+    /// The geometry stage of a frame one strip pass draws: [`Renderer::frame_start`], every
+    /// object through the stage ([`Stores::frame_begin`], [`Stores::frame_object`],
+    /// [`Stores::frame_end`]), then [`Renderer::frame_ready`].
+    pub(crate) fn geometry<E, P: Probe, const L: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        probe: &mut P,
+    ) -> Result<Stats, Error<E>> {
+        self.frame_start();
+        let c = self.geo.frame_begin(scene, false)?;
+        let mut f = crate::geometry::Frame::default();
+        for (index, obj) in scene.objects.iter().enumerate() {
+            self.geo
+                .frame_object(&c, &mut f, scene, obj, index, probe)?;
+        }
+        let stats = self
+            .geo
+            .frame_end(scene, &c, &mut f, ACTIVE, self.overflow, Self::CAPACITY)?;
+        self.frame_ready(scene, stats);
+        // A frame for strip passes too (odd).
+        self.frame_id |= 1;
+        Ok(stats)
+    }
+
+    /// Before a frame's geometry stage: a new frame that no strip pass can draw yet (an even
+    /// `frame_id`), the active list emptied, the viewport [`Renderer::set_viewport`] asked for
+    /// taken.
+    pub(crate) fn frame_start(&mut self) {
+        self.frame_id = (self.frame_id | 1).wrapping_add(1);
+        self.clear_active();
+        self.take_viewport();
+    }
+
+    /// After a geometry stage that succeeded: the frame's statistics and background, and the
+    /// strip pass at its first row.
+    pub(crate) fn frame_ready<const L: usize>(&mut self, scene: &Scene<'_, S, L>, stats: Stats) {
+        self.active_skipped = 0;
+        self.background = crate::scene::color::quantize::<C>(scene.background);
+        self.next_row = 0;
+        self.stats = stats;
+    }
+
     /// Empties the active list and frees the pool entries of its triangles (the frame's
     /// Phong lights and materials stay).
     pub(crate) fn clear_active(&mut self) {
         self.active.clear();
-        for e in self.xactive.iter_mut() {
-            if e.kind == TRI {
-                e.kind = FREE;
-            }
-        }
+        self.geo.free_triangle_entries();
     }
 
     /// The next row the strip pass draws (the viewport's height once the frame is complete or

@@ -6,22 +6,18 @@ use crate::kernel::records::TriRecord;
 use crate::num::scalar::Scalar;
 use crate::scene::color::TargetColor;
 
+use crate::geometry::stores::Stores;
 use crate::kernel::records::bucket_row;
-use crate::renderer::*;
 
 impl<
         S: Scalar,
         C: TargetColor,
-        const W: usize,
         const H: usize,
         const VERTS: usize,
         const TRIS: usize,
-        const ACTIVE: usize,
-        const LINES: usize,
         const XV: usize,
         const XA: usize,
-        const ZL: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
+    > Stores<S, C, H, VERTS, TRIS, XV, XA>
 {
     /// The bucket of a stored triangle (see [`bucket_row`]).
     pub(crate) fn first_row(&self, t: &TriRecord) -> usize {

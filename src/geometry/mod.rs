@@ -12,15 +12,17 @@ pub(crate) mod object_setup;
 pub(crate) mod phong_entries;
 pub(crate) mod pool;
 pub(crate) mod project;
+pub(crate) mod stores;
+pub(crate) mod vertex_extra;
 
 use heapless::Vec;
 
-use crate::geometry::attrs::VertexExtra;
 use crate::geometry::clip::{clip_triangle, outcode, ClipVertex, NEEDS_CLIP};
 use crate::geometry::cull::{facing, Facing};
 use crate::geometry::project::{
     pack_channels, pack_flat_channels, unpack_channels, ScreenVertex, Viewport, COORD_LIMIT,
 };
+use crate::geometry::vertex_extra::VertexExtra;
 use crate::kernel::records::{TriRecord, FLAT_BIT};
 use crate::num::math::{Mat4, Vec3};
 use crate::num::scalar::Scalar;
@@ -30,15 +32,15 @@ use crate::scene::shade::{PreparedLight, Shading};
 use crate::scene::{Object, Scene};
 
 use crate::error::*;
+use crate::geometry::stores::Stores;
 use crate::kernel;
 use crate::kernel::records::{Bins, CullCounts, CullStop};
 pub(crate) use crate::kernel::records::{INVALID, LIT, NEEDS_LIGHT, PROJECTED};
-use crate::renderer::*;
 use crate::stats::*;
 
 pub(crate) use crate::geometry::object_setup::{ObjectSetup, QuickLight};
 
-/// The geometry stage's constants over a frame's objects ([`Renderer::frame_begin`]).
+/// The geometry stage's constants over a frame's objects ([`Stores::frame_begin`]).
 #[derive(Copy, Clone)]
 pub(crate) struct FrameConst<S> {
     pub(crate) vp: Viewport,
@@ -65,33 +67,13 @@ pub(crate) struct Frame {
 impl<
         S: Scalar,
         C: TargetColor,
-        const W: usize,
         const H: usize,
         const VERTS: usize,
         const TRIS: usize,
-        const ACTIVE: usize,
-        const LINES: usize,
         const XV: usize,
         const XA: usize,
-        const ZL: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
+    > Stores<S, C, H, VERTS, TRIS, XV, XA>
 {
-    pub(crate) fn geometry<E, P: Probe, const L: usize>(
-        &mut self,
-        scene: &Scene<'_, S, L>,
-        probe: &mut P,
-    ) -> Result<Stats, Error<E>> {
-        let c = self.frame_begin(scene, false)?;
-        let mut f = Frame::default();
-        for (index, obj) in scene.objects.iter().enumerate() {
-            self.frame_object(&c, &mut f, scene, obj, index, probe)?;
-        }
-        let stats = self.frame_end(scene, &c, &mut f, ACTIVE)?;
-        // A frame for strip passes too (odd).
-        self.frame_id |= 1;
-        Ok(stats)
-    }
-
     /// The geometry stage's start: the stores emptied, every object checked for what its
     /// material needs (normals, texture coordinates, attribute stores; with `layered` false, an
     /// opaque material: a translucent one needs [`crate::FrameOptions::layered`]), the camera
@@ -102,14 +84,10 @@ impl<
         scene: &Scene<'_, S, L>,
         layered: bool,
     ) -> Result<FrameConst<S>, Error<E>> {
-        // A new frame, none a strip pass can draw yet (even).
-        self.frame_id = (self.frame_id | 1).wrapping_add(1);
         self.verts.clear();
         self.tris.clear();
-        self.clear_active();
         self.heads = [0; H];
         self.starts = [0; H];
-        self.take_viewport();
         for (i, o) in scene.objects.iter().enumerate() {
             if o.material.shading != Shading::Flat && o.mesh.normals().is_none() {
                 return Err(Error::MissingNormals { object: i });
@@ -258,7 +236,7 @@ impl<
     }
 
     /// The geometry stage's end: the capacities checked (`active`: the most triangles one row
-    /// may hold, [`ACTIVE`] for a plain frame; a layered frame checks each of its lists), the
+    /// may hold, the renderer's `ACTIVE` for a plain frame; a layered frame checks each of its lists), the
     /// buckets sorted and the frame prepared for the strip pass.
     #[inline(always)]
     pub(crate) fn frame_end<E, const L: usize>(
@@ -267,6 +245,8 @@ impl<
         c: &FrameConst<S>,
         f: &mut Frame,
         active: usize,
+        overflow: OverflowPolicy,
+        capacity: Needs,
     ) -> Result<Stats, Error<E>> {
         // In place (no copy of the statistics on the deepest stack).
         let (stats, need, reserved) = (&mut f.stats, f.need, c.reserved);
@@ -295,7 +275,7 @@ impl<
         // Under `OverflowPolicy::Error` the pool must hold that bound, so that no textured
         // triangle is left out.
         if let Some(object) = stores {
-            if XA > 0 && self.overflow == OverflowPolicy::Error && pool > XA {
+            if XA > 0 && overflow == OverflowPolicy::Error && pool > XA {
                 return Err(Error::AttributeStore {
                     object,
                     vertices_needed: stats.attr_vertices as usize,
@@ -310,21 +290,17 @@ impl<
         if need.0 > VERTS || need.1 > TRIS || max as usize > active {
             // Every capacity at once: what the frame needed against all three.
             let needed = Needs::new(need.0, need.1, max as usize);
-            if self.overflow == OverflowPolicy::Error {
+            if overflow == OverflowPolicy::Error {
                 return Err(Error::Shortfall(Shortfall {
                     needed,
-                    capacity: Self::CAPACITY,
+                    capacity,
                     exact: need.0 <= VERTS && need.1 <= TRIS,
                     skipped: 0,
                 }));
             }
         }
         self.store_skipped = store_skipped.min(u32::MAX as usize) as u32;
-        self.active_skipped = 0;
         self.sort_buckets();
-        self.background = crate::scene::color::quantize::<C>(scene.background);
-        self.next_row = 0;
-        self.stats = *stats;
         Ok(*stats)
     }
 

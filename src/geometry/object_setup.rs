@@ -37,7 +37,7 @@ pub(crate) struct ObjectSetup<'o, 'a, S: Scalar, const L: usize> {
     /// For the attribute stores, in one word (the deepest stack of a frame, on a 16 KB part,
     /// has no room for two): bits 0..=24, `1 − near/far` in Q0.24 for a perspective camera,
     /// 0 for an orthographic one (the textured vertices' `near/w` from their depth,
-    /// [`q_from_depth`]); bits 25..=31, a Phong object's material entry in the pool (0: not
+    /// [`q_from_depth`](crate::geometry::vertex_extra::q_from_depth)); bits 25..=31, a Phong object's material entry in the pool (0: not
     /// Phong; at most 127 Phong objects).
     pub(crate) extra: u32,
 }

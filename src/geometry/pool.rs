@@ -24,13 +24,13 @@ pub(crate) struct ActiveExtra {
     /// Texel coordinates of the first vertex, Q16.16 texels (a Phong triangle: the pool
     /// index of the frame's lights entry, −1 for none).
     pub(crate) base: [i32; 2],
-    /// The lit colour of a flat triangle, channel units with [`COLOR_FRAC_BITS`].
+    /// The lit colour of a flat triangle, channel units with [`COLOR_FRAC_BITS`](crate::raster::COLOR_FRAC_BITS).
     pub(crate) flat: [i32; 3],
     pub(crate) texture: Option<&'static Texture>,
     /// The colour key (a Phong triangle: the pool index of its material entry).
     pub(crate) key: u16,
     pub(crate) has_key: bool,
-    /// [`VertexExtra::mode`].
+    /// [`VertexExtra::mode`](crate::geometry::vertex_extra::VertexExtra::mode).
     pub(crate) mode: u8,
     /// Fraction bits of `U`/`Q` and `V`/`Q` (0..=15).
     pub(crate) f: u8,
@@ -55,15 +55,15 @@ pub(crate) const FOG: u8 = 4;
 /// right after the [`LIGHTS`] entry.
 pub(crate) const POINTS: u8 = 5;
 
-/// [`VertexExtra::mode`] of a vertex of a [`crate::Shading::Phong`] object (after the
+/// [`VertexExtra::mode`](crate::geometry::vertex_extra::VertexExtra::mode) of a vertex of a [`crate::Shading::Phong`] object (after the
 /// texture modes' indices).
 pub(crate) const MODE_PHONG: u8 = 4;
-/// [`VertexExtra::mode`] of a vertex of a [`crate::Shading::FastPhong`] object.
+/// [`VertexExtra::mode`](crate::geometry::vertex_extra::VertexExtra::mode) of a vertex of a [`crate::Shading::FastPhong`] object.
 pub(crate) const MODE_FAST_PHONG: u8 = 5;
-/// [`VertexExtra::mode`] of a vertex of a [`crate::Shading::Toon`] object.
+/// [`VertexExtra::mode`](crate::geometry::vertex_extra::VertexExtra::mode) of a vertex of a [`crate::Shading::Toon`] object.
 pub(crate) const MODE_TOON: u8 = 6;
 
-/// [`VertexExtra::mode`] of a vertex of an object lit per pixel with `shading` (the pool kind
+/// [`VertexExtra::mode`](crate::geometry::vertex_extra::VertexExtra::mode) of a vertex of an object lit per pixel with `shading` (the pool kind
 /// its triangles get, `kind::enter`); `None` for a shading lit per vertex or face.
 pub(crate) fn lit_mode(shading: crate::Shading) -> Option<u8> {
     match shading {

@@ -17,9 +17,9 @@
 //! [`FLAT`], all used (textured, Phong, fast Phong, toon). A fifth pool kind needs one more
 //! bit: the row routine testing [`FAST`] before the routine bits would free those two.
 
-use crate::geometry::attrs::VertexExtra;
 use crate::geometry::pool::{ActiveExtra, FREE, MODE_FAST_PHONG, MODE_PHONG, MODE_TOON};
 use crate::geometry::project::ScreenVertex;
+use crate::geometry::vertex_extra::VertexExtra;
 use crate::raster::span::{LESS, NONE};
 use crate::raster::textured::attach_textured;
 use crate::raster::*;

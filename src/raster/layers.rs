@@ -152,7 +152,7 @@ impl<
         self.overflow = OverflowPolicy::DrawWhatFits;
         let result = self.geometry_layered(scene, layering, layers, &mut NoProbe);
         self.overflow = policy;
-        self.next_row = self.vh;
+        self.next_row = self.geo.vh;
         result?;
         self.measured()
     }
@@ -239,18 +239,19 @@ impl<
                 && scene.objects[i].material.alpha == 255
                 && layering.receivers.contains(&i)
         };
-        let c = self.frame_begin(scene, true)?;
+        self.frame_start();
+        let c = self.geo.frame_begin(scene, true)?;
         let mut f = crate::geometry::Frame::default();
         for (i, o) in scene.objects.iter().enumerate() {
             if receiver(i) {
-                self.frame_object(&c, &mut f, scene, o, i, probe)?;
+                self.geo.frame_object(&c, &mut f, scene, o, i, probe)?;
             }
         }
-        let end = |r: &Self| r.verts.len().min(u16::MAX as usize) as u16;
+        let end = |r: &Self| r.geo.verts.len().min(u16::MAX as usize) as u16;
         layers.bounds[0] = end(self);
         for (i, o) in scene.objects.iter().enumerate() {
             if !receiver(i) && o.material.alpha == 255 {
-                self.frame_object(&c, &mut f, scene, o, i, probe)?;
+                self.geo.frame_object(&c, &mut f, scene, o, i, probe)?;
             }
         }
         layers.bounds[1] = end(self);
@@ -264,7 +265,7 @@ impl<
                 let o = &scene.objects[i];
                 let reach = crate::raster::volume::volume_reach(
                     &scene.camera,
-                    (self.vw, self.vh),
+                    (self.geo.vw, self.geo.vh),
                     o,
                     v.reach,
                 );
@@ -289,7 +290,7 @@ impl<
                         transform: m.mul(&o.transform),
                         material,
                     };
-                    self.frame_object(&c, &mut f, scene, &flat, i, probe)?;
+                    self.geo.frame_object(&c, &mut f, scene, &flat, i, probe)?;
                 } else if let Some(rings) = s.blob_rings(&m, o) {
                     let mesh = crate::Mesh::new(&disc, &BLOB_FAN)
                         .map_err(|_| Error::Layers(LayerError::Shadow))?;
@@ -299,7 +300,7 @@ impl<
                             transform,
                             material,
                         };
-                        self.frame_object(&c, &mut f, scene, &ring, i, probe)?;
+                        self.geo.frame_object(&c, &mut f, scene, &ring, i, probe)?;
                     }
                 }
             }
@@ -340,12 +341,16 @@ impl<
         layers.translucent.clear();
         for (i, o) in scene.objects.iter().enumerate() {
             if o.material.alpha < 255 {
-                self.frame_object(&c, &mut f, scene, o, i, probe)?;
+                self.geo.frame_object(&c, &mut f, scene, o, i, probe)?;
                 // Cannot fail: counted above.
                 let _ = layers.translucent.push((end(self), o.material.alpha));
             }
         }
-        self.frame_end(scene, &c, &mut f, usize::MAX)?;
+        let overflow = self.overflow;
+        let stats = self
+            .geo
+            .frame_end(scene, &c, &mut f, usize::MAX, overflow, Self::CAPACITY)?;
+        self.frame_ready(scene, stats);
         // Each list's most triangles on one row, against its capacity: all three at once.
         let [receivers, overlays, opaque] =
             [0u8, 1, 2].map(|list| self.layer_overlap(&layers.bounds, list));
@@ -357,7 +362,7 @@ impl<
         if self.overflow == OverflowPolicy::Error
             && (receivers > RA || overlays > PA || opaque > ACTIVE)
         {
-            self.next_row = self.vh;
+            self.next_row = self.geo.vh;
             return Err(Error::Shortfall(Shortfall {
                 needed,
                 capacity,
@@ -375,9 +380,9 @@ impl<
     /// triangles, 2: the other opaque ones) covering one row, by a sweep over the row-change counts (in `starts`, free
     /// once the buckets are sorted).
     fn layer_overlap(&mut self, bounds: &[u16; 4], list: u8) -> usize {
-        let vh = self.vh;
-        self.starts[..vh].fill(0);
-        for t in self.tris.iter() {
+        let vh = self.geo.vh;
+        self.geo.starts[..vh].fill(0);
+        for t in self.geo.tris.iter() {
             let i = t.v[1] as usize;
             let group = if i < bounds[0] as usize {
                 0
@@ -389,18 +394,18 @@ impl<
             if group != list {
                 continue;
             }
-            let [a, b, c] = t.indices().map(|k| self.verts[k].y as i32);
+            let [a, b, c] = t.indices().map(|k| self.geo.verts[k].y as i32);
             let first = first_pixel(a.min(b).min(c)).clamp(0, vh as i32) as usize;
             let end = first_pixel(a.max(b).max(c)).clamp(0, vh as i32) as usize;
             if first < end {
-                self.starts[first] += 1;
+                self.geo.starts[first] += 1;
                 if end < vh {
-                    self.starts[end] -= 1;
+                    self.geo.starts[end] -= 1;
                 }
             }
         }
         let (mut cur, mut max) = (0i32, 0i32);
-        for &s in &self.starts[..vh] {
+        for &s in &self.geo.starts[..vh] {
             cur += s as i32;
             max = max.max(cur);
         }
@@ -416,7 +421,7 @@ impl<
         probe: &mut P,
     ) -> Option<(usize, usize)> {
         let y0 = self.next_row;
-        let (vw, vh) = (self.vw, self.vh);
+        let (vw, vh) = (self.geo.vw, self.geo.vh);
         if y0 >= vh {
             return None;
         }
@@ -438,23 +443,23 @@ impl<
             }
             layers.stencil[l][..vw].fill(0);
             let end = if row + 1 < vh {
-                self.heads[row + 1] as usize
+                self.geo.heads[row + 1] as usize
             } else {
-                self.tris.len()
+                self.geo.tris.len()
             };
-            let bucket = self.heads[row] as usize..end;
+            let bucket = self.geo.heads[row] as usize..end;
             if !bucket.is_empty() {
                 probe.enter(Stage::Setup);
             }
             for t in bucket {
-                let rec = self.tris[t];
+                let rec = self.geo.tris[t];
                 if !self.setup_layered(&rec, row, mode, layers) {
                     self.active_skipped = self.active_skipped.saturating_add(1);
                 }
             }
             probe.enter(Stage::Raster);
             let Renderer {
-                xactive,
+                geo,
                 active,
                 color,
                 depth,
@@ -466,7 +471,7 @@ impl<
             let (colors, depth) = (&mut color[l][..vw], &mut depth[l][..vw]);
             draw_list_row::<C, RA, XA>(
                 &mut layers.receivers,
-                xactive,
+                &mut geo.xactive,
                 row,
                 colors,
                 depth,
@@ -502,7 +507,7 @@ impl<
             });
             draw_list_row::<C, ACTIVE, XA>(
                 active,
-                xactive,
+                &mut geo.xactive,
                 row as usize,
                 colors,
                 depth,
@@ -576,7 +581,7 @@ impl<
         mode: SpanMode,
         layers: &mut Layers<W, LINES, RA, PA>,
     ) -> bool {
-        let (verts, h) = (&self.verts[..], self.vh as i32);
+        let (verts, h) = (&self.geo.verts[..], self.geo.vh as i32);
         let v = rec.v[1] as usize;
         if v >= layers.bounds[1] as usize {
             // A shadow polygon or a translucent triangle: unpacked rows (no fast path).
@@ -626,10 +631,10 @@ impl<
                 enter::<C, $n>(
                     pooled,
                     &mut $list,
-                    &mut self.xactive,
+                    &mut self.geo.xactive,
                     rec,
                     verts,
-                    &self.xverts,
+                    &self.geo.xverts,
                     row as i32,
                     h,
                     mode,

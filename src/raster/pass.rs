@@ -194,7 +194,7 @@ impl<
         let frame = renderer.view();
         // The frame's own pool entries (lights, materials, fog); the renderer's triangle
         // entries are its own pass's.
-        for (mine, theirs) in self.pool.iter_mut().zip(renderer.xactive.iter()) {
+        for (mine, theirs) in self.pool.iter_mut().zip(renderer.geo.xactive.iter()) {
             *mine = if theirs.kind == TRI {
                 ActiveExtra::EMPTY
             } else {
@@ -292,7 +292,7 @@ impl<
             return Ok(None);
         };
         // The prepared frame's width (a viewport asked for since applies to the next frame).
-        let vw = renderer.vw;
+        let vw = renderer.geo.vw;
         let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(vw as u32, n as u32));
         let pixels = self.color[..n]
             .iter()

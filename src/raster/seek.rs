@@ -14,8 +14,8 @@
 //! for each triangle that crosses the row (and a setup for each textured one above it), and a
 //! look at the vertices of every triangle that starts above it.
 
-use crate::geometry::attrs::VertexExtra;
 use crate::geometry::pool::{ActiveExtra, FREE};
+use crate::geometry::vertex_extra::VertexExtra;
 use crate::kernel::records::{first_pixel, ActiveList, ScreenVertex, TriRecord};
 use crate::raster::depth_mode::{painter_insert, painter_key};
 use crate::raster::kind::{enter, needs_pool};

@@ -17,6 +17,7 @@ use crate::raster::span::LESS;
 use crate::raster::{ActiveList, SpanMode};
 use crate::scene::color::{rgb565_word, rgb565_words_mut, TargetColor};
 
+use crate::geometry::stores::Stores;
 use crate::kernel;
 use crate::renderer::*;
 use crate::stats::*;
@@ -163,18 +164,13 @@ impl<
         limit: usize,
         probe: &mut P,
     ) -> Option<(usize, usize)> {
-        if self.next_row >= self.vh {
+        if self.next_row >= self.geo.vh {
             return None;
         }
         let (mode, painter) = self.setup_mode();
         let Renderer {
-            verts,
-            xverts,
-            xactive,
-            tris,
+            geo,
             active,
-            heads,
-            starts,
             color,
             depth,
             depth_test,
@@ -183,10 +179,19 @@ impl<
             stats,
             active_skipped,
             next_row,
+            ..
+        } = self;
+        let Stores {
+            verts,
+            xverts,
+            xactive,
+            tris,
+            heads,
+            starts,
             vw,
             vh,
             ..
-        } = self;
+        } = geo;
         let frame = FrameView {
             rows: Rows {
                 verts,
@@ -224,13 +229,13 @@ impl<
         let (mode, painter) = self.setup_mode();
         FrameView {
             rows: Rows {
-                verts: &self.verts,
-                xverts: &self.xverts,
-                tris: &self.tris,
-                heads: &self.heads,
-                vh: self.vh,
+                verts: &self.geo.verts,
+                xverts: &self.geo.xverts,
+                tris: &self.geo.tris,
+                heads: &self.geo.heads,
+                vh: self.geo.vh,
             },
-            vw: self.vw,
+            vw: self.geo.vw,
             background: self.background,
             depth_test: self.depth_test,
             dither: self.dither,

@@ -13,11 +13,11 @@
 //! additions, shifts and masks for the texel's address, a load, the depth test and one
 //! product per channel for the lighting (a 32-bit `muls`, one cycle on a Cortex-M0+).
 
-use crate::geometry::attrs::{mode_of, VertexExtra};
 use crate::geometry::pool::*;
 use crate::geometry::project::{
     vertex_frac_bits, ScreenVertex, DEPTH_FRAC_BITS, DEPTH_MAX, SUBPIXELS,
 };
+use crate::geometry::vertex_extra::{mode_of, VertexExtra};
 use crate::kernel::{div_segment, TEXTURED_PIXELS_SLICED};
 use crate::num::scalar::{mul_wide, recip_norm};
 use crate::raster::fog::FogSpan;
