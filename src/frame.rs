@@ -354,10 +354,13 @@ impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize> Strip
     ) -> Option<(usize, usize)> {
         // The layered strip is drawn in the renderer's lines (the layers' stencil and lists
         // are per renderer line); caller's lines get a copy.
-        let (y0, n) = renderer.draw_strip_layered(self.layers, limit, probe)?;
+        let (y0, n) =
+            renderer
+                .ras
+                .draw_strip_layered(&mut renderer.geo, self.layers, limit, probe)?;
         if let Some(ext) = ext {
             let vw = renderer.geo.vw;
-            for (dst, src) in ext.iter_mut().zip(&renderer.color[..n]) {
+            for (dst, src) in ext.iter_mut().zip(&renderer.ras.color[..n]) {
                 dst[..vw].copy_from_slice(&src[..vw]);
             }
         }
@@ -602,7 +605,7 @@ impl<
             while self.send(target)?.is_some() {}
         }
         self.end();
-        Ok(self.renderer.stats)
+        Ok(self.renderer.ras.stats)
     }
 
     /// [`Frame::draw_to`]'s loop for a layered frame.
@@ -629,7 +632,7 @@ impl<
             }
         }
         self.end();
-        Ok(self.renderer.stats)
+        Ok(self.renderer.ras.stats)
     }
 
     /// Draws the next strip into `lines`, colour lines that the caller owns, and returns its
@@ -695,11 +698,11 @@ impl<
         };
         let r = &mut *self.renderer;
         self.overlay.compose(&mut StripCanvas::new(
-            &mut r.color[..n],
+            &mut r.ras.color[..n],
             y0,
             r.geo.vh as u32,
         ));
-        for (line, dst) in r.color[..n].iter().zip(out.chunks_exact_mut(row_bytes)) {
+        for (line, dst) in r.ras.color[..n].iter().zip(out.chunks_exact_mut(row_bytes)) {
             for (c, d) in line[..vw].iter().zip(dst.chunks_exact_mut(bpp)) {
                 d.copy_from_slice(c.to_be_bytes().as_ref());
             }
@@ -717,21 +720,21 @@ impl<
     /// The next row the frame's strips start at (the viewport's height once it is complete).
     #[must_use]
     pub fn next_row(&self) -> usize {
-        self.renderer.next_row
+        self.renderer.ras.next_row
     }
 
     /// Whether every strip of the frame has been drawn (or the frame was abandoned after a
     /// target error).
     #[must_use]
     pub fn is_complete(&self) -> bool {
-        self.renderer.next_row >= self.renderer.geo.vh
+        self.renderer.ras.next_row >= self.renderer.geo.vh
     }
 
     /// The frame's statistics: the geometry stage's, and the strips' counts so far (complete
     /// once the last strip is drawn).
     #[must_use]
     pub fn stats(&self) -> Stats {
-        self.renderer.stats
+        self.renderer.ras.stats
     }
 
     /// The viewport the frame was prepared for (width, height).
@@ -769,12 +772,12 @@ impl<
         let r = &mut *self.renderer;
         let (vw, vh) = (r.geo.vw, r.geo.vh);
         self.overlay
-            .compose(&mut StripCanvas::new(&mut r.color[..n], y0, vh as u32));
+            .compose(&mut StripCanvas::new(&mut r.ras.color[..n], y0, vh as u32));
         let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(vw as u32, n as u32));
         self.probe.enter(Stage::Output);
         let sent = target.fill_contiguous(
             &area,
-            r.color[..n]
+            r.ras.color[..n]
                 .iter()
                 .flat_map(|line| line[..vw].iter())
                 .copied(),
@@ -782,7 +785,7 @@ impl<
         self.probe.enter(Stage::Raster);
         if let Err(e) = sent {
             // The frame is abandoned: its later strips are `None`.
-            self.renderer.next_row = vh;
+            self.renderer.ras.next_row = vh;
             return Err(Error::Target(e));
         }
         Ok(Some(y0..y0 + n))

@@ -206,10 +206,10 @@ pub use num::math::Mat4;
 pub use num::scalar::{Fx, Scalar};
 pub use raster::depth_mode::DrawOrder;
 pub use raster::layers::Layers;
-pub use raster::no_depth::NoDepthRenderer;
 pub use raster::pass::StripPass;
 pub use raster::strip::StripCanvas;
 pub use raster::DepthTest;
+pub use renderer::no_depth::NoDepthRenderer;
 pub use renderer::{Error, Needs, OverflowPolicy, Renderer, Shortfall, Stats};
 pub use scene::camera::{Camera, Projection};
 pub use scene::color::TargetColor;
@@ -318,8 +318,8 @@ pub use embedded_graphics_core::draw_target::DrawTarget;
 pub mod internals {
     pub use crate::geometry::project::{pack_channels, Viewport};
     pub use crate::kernel::wide::recip_norm;
-    pub use crate::raster::no_depth::set_order_any;
     pub use crate::raster::shadow::plane_basis;
+    pub use crate::renderer::no_depth::set_order_any;
     pub use crate::renderer::{ram_formula, ACTIVE_BYTES, TRIANGLE_BYTES, VERTEX_BYTES};
 }
 

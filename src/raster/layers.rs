@@ -7,22 +7,24 @@
 
 use heapless::Vec;
 
+use crate::error::Error;
 use crate::error::{LayerError, MAX_TRANSLUCENT};
+use crate::geometry::stores::Stores;
 use crate::kernel;
-use crate::kernel::records::{first_pixel, ActiveList, ScreenVertex, TriRecord};
+use crate::kernel::records::{ActiveList, ScreenVertex, TriRecord};
 use crate::num::scalar::Scalar;
 use crate::raster::kind::enter;
 use crate::raster::layer_rows::{
     blend, darken_span, div255, outline_row, shadow_row, translucent_row, volume_row, Darken, Post,
 };
-use crate::raster::shadow::{blob_disc, Edges, Layering, ShadowLight, ShadowMethod, BLOB_FAN};
+use crate::raster::shadow::{Edges, ShadowLight};
+use crate::raster::state::Raster;
 use crate::raster::strip::draw_list_row;
-use crate::raster::volume::{volume_sign, Lines, Pick};
+use crate::raster::volume::volume_sign;
 use crate::raster::SpanMode;
-use crate::renderer::*;
 use crate::scene::color::{rgb565_word, rgb565_words_mut, TargetColor};
-use crate::scene::shade::Material;
-use crate::scene::{Object, Scene};
+use crate::scene::Scene;
+use crate::stats::{Probe, Stage};
 
 /// [`Layers`] post-list entry kinds.
 const SHADOW: u8 = 1;
@@ -45,32 +47,32 @@ pub struct Layers<const W: usize, const LINES: usize, const RA: usize, const PA:
     /// or the shadow volumes' count (modulo 256: a pixel inside at most 255 nested volumes
     /// counts right). During the geometry stage, a bit per triangle of one object (which faces
     /// turn toward the light or the eye).
-    stencil: [[u8; W]; LINES],
-    receivers: ActiveList<RA>,
-    post: ActiveList<PA>,
+    pub(crate) stencil: [[u8; W]; LINES],
+    pub(crate) receivers: ActiveList<RA>,
+    pub(crate) post: ActiveList<PA>,
     /// Per post-list entry: kind in bits 0..=7, opacity (0..=255) in bits 8..=15.
-    meta: [u16; PA],
+    pub(crate) meta: [u16; PA],
     /// Per post-list entry: back-to-front sort key (larger is drawn first).
-    key: [u64; PA],
+    pub(crate) key: [u64; PA],
     /// Vertex-store index where the receivers' vertices end, the opaque objects' vertices
     /// end, the shadow polygons' (or volumes') vertices end and the outlines' vertices end;
     /// the translucent objects' vertices follow.
-    bounds: [u16; 4],
+    pub(crate) bounds: [u16; 4],
     /// The translucent objects: the vertex-store index where each one's vertices end, and its
     /// opacity.
-    translucent: Vec<(u16, u8), MAX_TRANSLUCENT>,
+    pub(crate) translucent: Vec<(u16, u8), MAX_TRANSLUCENT>,
     /// The shadow's blend per channel value, for channels of at most 6 bits (RGB565):
     /// `round((c·(255 − α) + s·α)/255)`, in the channel's units.
-    lut: [[u8; 64]; 3],
+    pub(crate) lut: [[u8; 64]; 3],
     /// The shadow's colour in the target's channel units, and its opacity (0: no shadow).
-    shadow: ([u8; 3], u8),
+    pub(crate) shadow: ([u8; 3], u8),
     /// The shadow is blobs: nested discs that each darken (no stencil).
-    blob: bool,
+    pub(crate) blob: bool,
     /// The shadow is volumes, counted in the stencil.
-    volume: bool,
+    pub(crate) volume: bool,
     /// The outlines are drawn without the depth test ([`crate::shadow::Outline::see_through`]).
-    see_through: bool,
-    skipped: u32,
+    pub(crate) see_through: bool,
+    pub(crate) skipped: u32,
 }
 
 impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize>
@@ -100,7 +102,7 @@ impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize>
     }
 
     /// Shadow and translucent triangles left out of the last frame for want of room (only
-    /// under [`OverflowPolicy::DrawWhatFits`]).
+    /// under [`crate::OverflowPolicy::DrawWhatFits`]).
     #[must_use]
     pub fn skipped(&self) -> u32 {
         self.skipped
@@ -115,313 +117,31 @@ impl<const W: usize, const LINES: usize, const RA: usize, const PA: usize> Defau
     }
 }
 
-impl<
-        S: Scalar,
-        C: TargetColor,
-        const W: usize,
+impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const ACTIVE: usize>
+    Raster<C, W, LINES, ZL, ACTIVE>
+{
+    /// Draws the next strip of a layered frame into the renderer's lines; its first row and
+    /// height, or `None` when the frame is complete.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn draw_strip_layered<
+        S,
         const H: usize,
         const VERTS: usize,
         const TRIS: usize,
-        const ACTIVE: usize,
-        const LINES: usize,
         const XV: usize,
         const XA: usize,
-        const ZL: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
-{
-    /// Measures what a layered frame of `scene` needs ([`Needs`], with the `layers`' lists:
-    /// [`Needs::receivers`] for `RA`, [`Needs::overlays`] for `PA`, and the vertices the
-    /// shadow polygons, volumes and outlines add): runs the layered frame's geometry stage
-    /// (as [`crate::FrameOptions::layered`] does, whatever the overflow policy) and leaves no
-    /// frame prepared. For sizing a device's renderer and layers on the host, as
-    /// [`Renderer::needs`] for a plain frame; check with
-    /// `worst.fits(&Device::CAPACITY.with_layers(RA, PA))`.
-    ///
-    /// # Errors
-    ///
-    /// As [`crate::FrameOptions::layered`] for a layering that cannot be drawn, and as
-    /// [`Renderer::needs`] when this renderer's stores are too small to measure the frame
-    /// exactly.
-    pub fn needs_layered<const L: usize, const RA: usize, const PA: usize>(
-        &mut self,
-        scene: &Scene<'_, S, L>,
-        layering: &Layering<'_, S>,
-        layers: &mut Layers<W, LINES, RA, PA>,
-    ) -> Result<Needs, Error<core::convert::Infallible>> {
-        let policy = self.overflow;
-        self.overflow = OverflowPolicy::DrawWhatFits;
-        let result = self.geometry_layered(scene, layering, layers, &mut NoProbe);
-        self.overflow = policy;
-        self.next_row = self.geo.vh;
-        result?;
-        self.measured()
-    }
-
-    /// The geometry stage of a layered frame: the receivers' objects first, then the other
-    /// opaque ones, the casters' shadow polygons and the translucent objects, each group's
-    /// vertices contiguous in the store (which is how the strip pass tells them apart).
-    pub(crate) fn geometry_layered<
-        E,
         P: Probe,
-        const L: usize,
         const RA: usize,
         const PA: usize,
     >(
         &mut self,
-        scene: &Scene<'_, S, L>,
-        layering: &Layering<'_, S>,
-        layers: &mut Layers<W, LINES, RA, PA>,
-        probe: &mut P,
-    ) -> Result<Stats, Error<E>> {
-        if ZL == 0 {
-            return Err(Error::NoDepthLines);
-        }
-        let n = scene.objects.len();
-        let bad = |index: usize| Error::Layers(LayerError::NoSuchObject { index });
-        let outlined = layering.outline.map_or(&[][..], |o| o.objects);
-        for &i in layering
-            .receivers
-            .iter()
-            .chain(layering.casters)
-            .chain(outlined)
-        {
-            if i >= n {
-                return Err(bad(i));
-            }
-        }
-        let shadow = match &layering.shadow {
-            Some(s) => Some((s.matrix().ok_or(Error::Layers(LayerError::Shadow))?, s)),
-            None => None,
-        };
-        if let Some(v) = &layering.volume {
-            if shadow.is_some() {
-                return Err(Error::Layers(LayerError::TwoShadows));
-            }
-            check_volume(scene, layering.casters, v, 8 * W * LINES)?;
-        }
-        if let Some(o) = &layering.outline {
-            check_adjacency(scene, o.objects, o.adjacency, 8 * W * LINES)?;
-            check_creases(scene, o)?;
-        }
-        let translucent = scene.objects.iter().any(|o| o.material.alpha < 255);
-        // (A [`crate::color::TriangleId`] target records the opaque triangles only: nothing blends.)
-        if (shadow.is_some() || layering.volume.is_some() || translucent)
-            && C::from_channels([0; 3]).channels().is_none()
-            && C::triangle_id(0).is_none()
-        {
-            return Err(Error::Layers(LayerError::Blending));
-        }
-        if let Some(i) = scene
-            .objects
-            .iter()
-            .position(|o| o.material.alpha < 255 && o.material.needs_attribute_stores())
-        {
-            return Err(Error::Layers(LayerError::Translucent { object: i }));
-        }
-        if scene
-            .objects
-            .iter()
-            .filter(|o| o.material.alpha < 255)
-            .count()
-            > MAX_TRANSLUCENT
-        {
-            return Err(Error::Layers(LayerError::TooManyTranslucent));
-        }
-        if let Some((_, s)) = &shadow {
-            for &i in layering.receivers {
-                if scene.objects[i].material.alpha == 255 && !s.holds(&scene.objects[i]) {
-                    return Err(Error::Layers(LayerError::OffPlane { object: i }));
-                }
-            }
-        }
-        let receiver = |i: usize| {
-            shadow.is_some()
-                && scene.objects[i].material.alpha == 255
-                && layering.receivers.contains(&i)
-        };
-        self.frame_start();
-        let c = self.geo.frame_begin(scene, true)?;
-        let mut f = crate::geometry::Frame::default();
-        for (i, o) in scene.objects.iter().enumerate() {
-            if receiver(i) {
-                self.geo.frame_object(&c, &mut f, scene, o, i, probe)?;
-            }
-        }
-        let end = |r: &Self| r.geo.verts.len().min(u16::MAX as usize) as u16;
-        layers.bounds[0] = end(self);
-        for (i, o) in scene.objects.iter().enumerate() {
-            if !receiver(i) && o.material.alpha == 255 {
-                self.geo.frame_object(&c, &mut f, scene, o, i, probe)?;
-            }
-        }
-        layers.bounds[1] = end(self);
-        layers.shadow = ([0; 3], 0);
-        layers.blob = false;
-        layers.volume = false;
-        let marks = layers.stencil.as_flattened_mut();
-        if let Some(v) = &layering.volume {
-            for (k, &i) in layering.casters.iter().enumerate() {
-                let adjacency = v.adjacency[k].table();
-                let o = &scene.objects[i];
-                let reach = crate::raster::volume::volume_reach(
-                    &scene.camera,
-                    (self.geo.vw, self.geo.vh),
-                    o,
-                    v.reach,
-                );
-                self.volume_object(&c, &mut f, o, adjacency, v, reach, marks, probe);
-            }
-            layers.volume = true;
-            set_blend::<C, W, LINES, RA, PA>(layers, v.color, v.alpha);
-        }
-        if let Some((m, s)) = shadow {
-            // Flat and unlit: only the coverage of these triangles is used.
-            let material = Material::matte(s.color, S::ONE, S::ZERO).flat();
-            let disc = blob_disc::<S>();
-            let blob = s.method == ShadowMethod::Blob;
-            for (i, o) in scene.objects.iter().enumerate() {
-                if !layering.casters.contains(&i) {
-                    continue;
-                }
-                if !blob {
-                    // The caster's triangles flattened onto the plane.
-                    let flat = Object {
-                        mesh: o.mesh,
-                        transform: m.mul(&o.transform),
-                        material,
-                    };
-                    self.geo.frame_object(&c, &mut f, scene, &flat, i, probe)?;
-                } else if let Some(rings) = s.blob_rings(&m, o) {
-                    let mesh = crate::Mesh::new(&disc, &BLOB_FAN)
-                        .map_err(|_| Error::Layers(LayerError::Shadow))?;
-                    for transform in rings {
-                        let ring = Object {
-                            mesh,
-                            transform,
-                            material,
-                        };
-                        self.geo.frame_object(&c, &mut f, scene, &ring, i, probe)?;
-                    }
-                }
-            }
-            let alpha = if blob { s.blob_ring_alpha() } else { s.alpha };
-            set_blend::<C, W, LINES, RA, PA>(layers, s.color, alpha);
-            layers.blob = blob;
-        }
-        layers.bounds[2] = end(self);
-        if let Some(o) = &layering.outline {
-            let cam = &scene.camera;
-            let eye = match cam.projection {
-                crate::Projection::Orthographic { .. } => {
-                    let r = cam.view.m[2];
-                    ([r[0], r[1], r[2]], true)
-                }
-                _ => (cam.eye, false),
-            };
-            layers.see_through = o.see_through;
-            let marks = layers.stencil.as_flattened_mut();
-            for (k, &i) in o.objects.iter().enumerate() {
-                let obj = &scene.objects[i];
-                let pick = match o.edges {
-                    Edges::Silhouette => Pick::Silhouette,
-                    Edges::Crease(tables) => Pick::Crease(tables[k]),
-                    Edges::All => Pick::All,
-                };
-                let lines = Lines {
-                    adjacency: o.adjacency[k].table(),
-                    pick,
-                    see_through: o.see_through,
-                    color: o.color,
-                    eye,
-                };
-                self.outline_object(&c, &mut f, obj, lines, marks, probe);
-            }
-        }
-        layers.bounds[3] = end(self);
-        layers.translucent.clear();
-        for (i, o) in scene.objects.iter().enumerate() {
-            if o.material.alpha < 255 {
-                self.geo.frame_object(&c, &mut f, scene, o, i, probe)?;
-                // Cannot fail: counted above.
-                let _ = layers.translucent.push((end(self), o.material.alpha));
-            }
-        }
-        let overflow = self.overflow;
-        let stats = self
-            .geo
-            .frame_end(scene, &c, &mut f, usize::MAX, overflow, Self::CAPACITY)?;
-        self.frame_ready(scene, stats);
-        // Each list's most triangles on one row, against its capacity: all three at once.
-        let [receivers, overlays, opaque] =
-            [0u8, 1, 2].map(|list| self.layer_overlap(&layers.bounds, list));
-        self.stats.max_receivers = receivers as u32;
-        self.stats.max_overlays = overlays as u32;
-        self.stats.max_active = opaque as u32;
-        let needed = Needs::from_stats(&self.stats);
-        let capacity = Self::CAPACITY.with_layers(RA, PA);
-        if self.overflow == OverflowPolicy::Error
-            && (receivers > RA || overlays > PA || opaque > ACTIVE)
-        {
-            self.next_row = self.geo.vh;
-            return Err(Error::Shortfall(Shortfall {
-                needed,
-                capacity,
-                exact: true,
-                skipped: 0,
-            }));
-        }
-        layers.receivers.clear();
-        layers.post.clear();
-        layers.skipped = 0;
-        Ok(self.stats)
-    }
-
-    /// The most triangles of list `list` (0: receivers, 1: shadow, outline and translucent
-    /// triangles, 2: the other opaque ones) covering one row, by a sweep over the row-change counts (in `starts`, free
-    /// once the buckets are sorted).
-    fn layer_overlap(&mut self, bounds: &[u16; 4], list: u8) -> usize {
-        let vh = self.geo.vh;
-        self.geo.starts[..vh].fill(0);
-        for t in self.geo.tris.iter() {
-            let i = t.v[1] as usize;
-            let group = if i < bounds[0] as usize {
-                0
-            } else if i < bounds[1] as usize {
-                2
-            } else {
-                1
-            };
-            if group != list {
-                continue;
-            }
-            let [a, b, c] = t.indices().map(|k| self.geo.verts[k].y as i32);
-            let first = first_pixel(a.min(b).min(c)).clamp(0, vh as i32) as usize;
-            let end = first_pixel(a.max(b).max(c)).clamp(0, vh as i32) as usize;
-            if first < end {
-                self.geo.starts[first] += 1;
-                if end < vh {
-                    self.geo.starts[end] -= 1;
-                }
-            }
-        }
-        let (mut cur, mut max) = (0i32, 0i32);
-        for &s in &self.geo.starts[..vh] {
-            cur += s as i32;
-            max = max.max(cur);
-        }
-        max as usize
-    }
-
-    /// Draws the next strip of a layered frame into the renderer's lines; its first row and
-    /// height, or `None` when the frame is complete.
-    pub(crate) fn draw_strip_layered<P: Probe, const RA: usize, const PA: usize>(
-        &mut self,
+        geo: &mut Stores<S, C, H, VERTS, TRIS, XV, XA>,
         layers: &mut Layers<W, LINES, RA, PA>,
         limit: usize,
         probe: &mut P,
     ) -> Option<(usize, usize)> {
         let y0 = self.next_row;
-        let (vw, vh) = (self.geo.vw, self.geo.vh);
+        let (vw, vh) = (geo.vw, geo.vh);
         if y0 >= vh {
             return None;
         }
@@ -443,23 +163,22 @@ impl<
             }
             layers.stencil[l][..vw].fill(0);
             let end = if row + 1 < vh {
-                self.geo.heads[row + 1] as usize
+                geo.heads[row + 1] as usize
             } else {
-                self.geo.tris.len()
+                geo.tris.len()
             };
-            let bucket = self.geo.heads[row] as usize..end;
+            let bucket = geo.heads[row] as usize..end;
             if !bucket.is_empty() {
                 probe.enter(Stage::Setup);
             }
             for t in bucket {
-                let rec = self.geo.tris[t];
-                if !self.setup_layered(&rec, row, mode, layers) {
+                let rec = geo.tris[t];
+                if !self.setup_layered(geo, &rec, row, mode, layers) {
                     self.active_skipped = self.active_skipped.saturating_add(1);
                 }
             }
             probe.enter(Stage::Raster);
-            let Renderer {
-                geo,
+            let Raster {
                 active,
                 color,
                 depth,
@@ -573,15 +292,26 @@ impl<
     }
 
     /// Sets triangle `rec` (first covered row `row`) up in its layer's list. False when that
-    /// list is full (under [`OverflowPolicy::DrawWhatFits`]; the triangle is left out).
-    fn setup_layered<const RA: usize, const PA: usize>(
+    /// list is full (under [`crate::OverflowPolicy::DrawWhatFits`]; the triangle is left out).
+    #[allow(clippy::type_complexity)]
+    fn setup_layered<
+        S,
+        const H: usize,
+        const VERTS: usize,
+        const TRIS: usize,
+        const XV: usize,
+        const XA: usize,
+        const RA: usize,
+        const PA: usize,
+    >(
         &mut self,
+        geo: &mut Stores<S, C, H, VERTS, TRIS, XV, XA>,
         rec: &TriRecord,
         row: usize,
         mode: SpanMode,
         layers: &mut Layers<W, LINES, RA, PA>,
     ) -> bool {
-        let (verts, h) = (&self.geo.verts[..], self.geo.vh as i32);
+        let (verts, h) = (&geo.verts[..], geo.vh as i32);
         let v = rec.v[1] as usize;
         if v >= layers.bounds[1] as usize {
             // A shadow polygon or a translucent triangle: unpacked rows (no fast path).
@@ -631,10 +361,10 @@ impl<
                 enter::<C, $n>(
                     pooled,
                     &mut $list,
-                    &mut self.geo.xactive,
+                    &mut geo.xactive,
                     rec,
                     verts,
-                    &self.geo.xverts,
+                    &geo.xverts,
                     row as i32,
                     h,
                     mode,
@@ -663,7 +393,7 @@ fn sort_key(t: &TriRecord, verts: &[ScreenVertex]) -> u64 {
 
 /// The shadow's colour in the target's channel units and its opacity, and the blend table for
 /// channels of at most 6 bits (RGB565), into `layers`.
-fn set_blend<
+pub(crate) fn set_blend<
     C: TargetColor,
     const W: usize,
     const LINES: usize,
@@ -691,7 +421,7 @@ fn set_blend<
 /// Checks each object of `objects` has an adjacency table (`adjacency`, in the same order)
 /// checked against its mesh ([`crate::mesh::Adjacency::is_for`]: two pointer comparisons, the table
 /// itself was checked when it was made), and at most `bits` triangles.
-fn check_adjacency<S: Scalar, E, const L: usize>(
+pub(crate) fn check_adjacency<S: Scalar, E, const L: usize>(
     scene: &Scene<'_, S, L>,
     objects: &[usize],
     adjacency: &[crate::scene::adjacency::Adjacency<'_, S>],
@@ -716,7 +446,7 @@ fn check_adjacency<S: Scalar, E, const L: usize>(
 
 /// Checks an outline's crease tables ([`Edges::Crease`]): one per outlined object, of at least
 /// 3 bits per triangle.
-fn check_creases<S: Scalar, E, const L: usize>(
+pub(crate) fn check_creases<S: Scalar, E, const L: usize>(
     scene: &Scene<'_, S, L>,
     o: &crate::raster::shadow::Outline<'_, S>,
 ) -> Result<(), Error<E>> {
@@ -732,7 +462,7 @@ fn check_creases<S: Scalar, E, const L: usize>(
 }
 
 /// Checks a shadow volume's light, reach and the casters' adjacency tables.
-fn check_volume<S: Scalar, E, const L: usize>(
+pub(crate) fn check_volume<S: Scalar, E, const L: usize>(
     scene: &Scene<'_, S, L>,
     casters: &[usize],
     v: &crate::raster::shadow::VolumeShadow<'_, S>,

@@ -8,21 +8,15 @@
 
 use core::ops::Range;
 
-use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{Point, Size};
-use embedded_graphics_core::primitives::Rectangle;
-
 use crate::error::Error;
 use crate::geometry::pool::{ActiveExtra, TRI};
 use crate::kernel::records::ActiveList;
-use crate::num::scalar::Scalar;
 use crate::raster::seek::seek;
-use crate::raster::strip::{strip_rows, PassMut};
-use crate::renderer::Renderer;
+use crate::raster::strip::{strip_rows, FrameView, PassMut};
 use crate::scene::color::TargetColor;
 use crate::stats::{NoProbe, Stats};
 
-/// A strip pass over the frame a [`Renderer`] prepared, with its own state: for drawing some
+/// A strip pass over the frame a [`crate::Renderer`] prepared, with its own state: for drawing some
 /// of a frame's rows on one core while another core (with its own `StripPass`) draws others,
 /// both reading the same `&Renderer`.
 ///
@@ -79,23 +73,23 @@ pub struct StripPass<
     const XA: usize = 0,
     const ZL: usize = LINES,
 > {
-    active: ActiveList<ACTIVE>,
+    pub(crate) active: ActiveList<ACTIVE>,
     /// The frame's lights, materials and fog entries (copied at [`StripPass::begin`]) and the
     /// entries of this pass's textured and Phong triangles.
-    pool: [ActiveExtra; XA],
-    color: [[C; W]; LINES],
+    pub(crate) pool: [ActiveExtra; XA],
+    pub(crate) color: [[C; W]; LINES],
     /// 16-bit depth, 0 = nearest, 65535 = the far plane (cleared to 65535).
-    depth: [[u16; W]; ZL],
+    pub(crate) depth: [[u16; W]; ZL],
     /// The next row this pass draws, and the row it stops before (`next_row ≥ end_row`: done).
-    next_row: usize,
-    end_row: usize,
-    /// The renderer's frame this pass began on ([`Renderer`]'s `frame_id`, odd; 0: none).
-    frame_id: u32,
+    pub(crate) next_row: usize,
+    pub(crate) end_row: usize,
+    /// The renderer's frame this pass began on ([`crate::Renderer`]'s `frame_id`, odd; 0: none).
+    pub(crate) frame_id: u32,
     /// Whether the pass's triangles were given their Cortex-M routine rows for a dithered
     /// strip (the renderer's dithering may change between strips).
-    dither: bool,
-    stats: Stats,
-    skipped: u32,
+    pub(crate) dither: bool,
+    pub(crate) stats: Stats,
+    pub(crate) skipped: u32,
 }
 
 impl<
@@ -158,153 +152,6 @@ impl<
         }
     }
 
-    /// Begins drawing rows `rows` (clamped to the viewport) of the frame `renderer` holds:
-    /// the next strip starts at `rows.start`, exactly as the whole frame's rows (the triangles
-    /// that cross it are set up at their first rows and stepped down, as
-    /// [`crate::frame::Frame::seek_row`] does). May be called again for other rows of the same frame.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::NoFrame`] when the renderer holds no frame a strip pass can draw (none
-    /// prepared, the last geometry stage failed, or a layered frame).
-    #[allow(clippy::type_complexity)]
-    pub fn begin<
-        S: Scalar,
-        const H: usize,
-        const VERTS: usize,
-        const TRIS: usize,
-        const RL: usize,
-        const XV: usize,
-        const RZ: usize,
-    >(
-        &mut self,
-        renderer: &Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, RL, XV, XA, RZ>,
-        rows: Range<usize>,
-    ) -> Result<(), Error<core::convert::Infallible>> {
-        const {
-            assert!(
-                (RZ == 0) == (ZL == 0),
-                "a pass has depth lines (ZL = LINES) exactly when its renderer has them"
-            )
-        };
-        if renderer.frame_id & 1 == 0 {
-            self.frame_id = 0;
-            return Err(Error::NoFrame);
-        }
-        let frame = renderer.view();
-        // The frame's own pool entries (lights, materials, fog); the renderer's triangle
-        // entries are its own pass's.
-        for (mine, theirs) in self.pool.iter_mut().zip(renderer.geo.xactive.iter()) {
-            *mine = if theirs.kind == TRI {
-                ActiveExtra::EMPTY
-            } else {
-                *theirs
-            };
-        }
-        self.active.clear();
-        let vh = frame.rows.vh;
-        let start = rows.start.min(vh);
-        self.next_row = start;
-        self.end_row = rows.end.min(vh);
-        self.frame_id = renderer.frame_id;
-        self.dither = frame.dither;
-        self.stats = Stats::ZERO;
-        self.skipped = 0;
-        if start < self.end_row {
-            self.skipped = seek::<C, ACTIVE>(
-                &mut self.active,
-                &mut self.pool,
-                None,
-                frame.rows,
-                start,
-                frame.mode,
-                frame.painter,
-                frame.dither,
-            );
-        }
-        Ok(())
-    }
-
-    /// Draws the pass's next strip into `lines`, colour lines the caller owns (as
-    /// [`crate::frame::Frame::strip_into`]: `min(N, LINES, rows left)` rows, each line cleared to
-    /// the background first), and returns its rows, or `None` when the pass's rows are done.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::FrameChanged`] when `renderer` holds another frame than the one the pass
-    /// began on (nothing is drawn).
-    #[allow(clippy::type_complexity)]
-    pub fn render_strip_into<
-        S: Scalar,
-        const H: usize,
-        const VERTS: usize,
-        const TRIS: usize,
-        const RL: usize,
-        const XV: usize,
-        const RZ: usize,
-        const N: usize,
-    >(
-        &mut self,
-        renderer: &Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, RL, XV, XA, RZ>,
-        lines: &mut [[C; W]; N],
-    ) -> Result<Option<Range<usize>>, Error<core::convert::Infallible>> {
-        const { assert!(N >= 1, "a strip buffer needs at least one line") };
-        Ok(self
-            .strip::<S, H, VERTS, TRIS, RL, XV, RZ>(renderer, Some(lines), N)?
-            .map(|(y0, n)| y0..y0 + n))
-    }
-
-    /// Draws the pass's next strip into its own lines and sends it to `target` (rows `y0..`
-    /// at their place in the frame, the viewport's width), returning its rows, or `None` when
-    /// the pass's rows are done.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::FrameChanged`] as [`StripPass::render_strip_into`];
-    /// [`Error::TargetTooSmall`] when the target does not contain the viewport (nothing is
-    /// drawn); [`Error::Target`] when the target fails (the pass's rows are then done).
-    #[allow(clippy::type_complexity)]
-    pub fn render_strip<
-        S: Scalar,
-        D: DrawTarget<Color = C>,
-        const H: usize,
-        const VERTS: usize,
-        const TRIS: usize,
-        const RL: usize,
-        const XV: usize,
-        const RZ: usize,
-    >(
-        &mut self,
-        renderer: &Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, RL, XV, XA, RZ>,
-        target: &mut D,
-    ) -> Result<Option<Range<usize>>, Error<D::Error>> {
-        if renderer.frame_id != self.frame_id || self.frame_id == 0 {
-            return Err(Error::FrameChanged);
-        }
-        if self.next_row >= self.end_row {
-            return Ok(None);
-        }
-        renderer.check_target(target)?;
-        let Some((y0, n)) = self
-            .strip::<S, H, VERTS, TRIS, RL, XV, RZ>(renderer, None, LINES)
-            .map_err(|_| Error::FrameChanged)?
-        else {
-            return Ok(None);
-        };
-        // The prepared frame's width (a viewport asked for since applies to the next frame).
-        let vw = renderer.geo.vw;
-        let area = Rectangle::new(Point::new(0, y0 as i32), Size::new(vw as u32, n as u32));
-        let pixels = self.color[..n]
-            .iter()
-            .flat_map(|line| line[..vw].iter())
-            .copied();
-        if let Err(e) = target.fill_contiguous(&area, pixels) {
-            self.next_row = self.end_row;
-            return Err(Error::Target(e));
-        }
-        Ok(Some(y0..y0 + n))
-    }
-
     /// The rows left to this pass (empty once done or before a [`StripPass::begin`]).
     #[must_use]
     pub fn rows_left(&self) -> Range<usize> {
@@ -325,26 +172,64 @@ impl<
         self.skipped
     }
 
-    /// The next strip: its first row and height, or `None` when the pass's rows are done.
-    #[allow(clippy::type_complexity)]
-    fn strip<
-        S: Scalar,
-        const H: usize,
-        const VERTS: usize,
-        const TRIS: usize,
-        const RL: usize,
-        const XV: usize,
-        const RZ: usize,
-    >(
+    /// Begins drawing rows `rows` of `frame`, prepared with id `frame_id` and pool `pool`
+    /// ([`crate::StripPass::begin`] with the renderer's parts).
+    pub(crate) fn begin_frame(
         &mut self,
-        renderer: &Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, RL, XV, XA, RZ>,
+        frame_id: u32,
+        frame: FrameView<'_, C>,
+        pool: &[ActiveExtra],
+        rows: Range<usize>,
+    ) -> Result<(), Error<core::convert::Infallible>> {
+        if frame_id & 1 == 0 {
+            self.frame_id = 0;
+            return Err(Error::NoFrame);
+        }
+        // The frame's own pool entries (lights, materials, fog); the renderer's triangle
+        // entries are its own pass's.
+        for (mine, theirs) in self.pool.iter_mut().zip(pool.iter()) {
+            *mine = if theirs.kind == TRI {
+                ActiveExtra::EMPTY
+            } else {
+                *theirs
+            };
+        }
+        self.active.clear();
+        let vh = frame.rows.vh;
+        let start = rows.start.min(vh);
+        self.next_row = start;
+        self.end_row = rows.end.min(vh);
+        self.frame_id = frame_id;
+        self.dither = frame.dither;
+        self.stats = Stats::ZERO;
+        self.skipped = 0;
+        if start < self.end_row {
+            self.skipped = seek::<C, ACTIVE>(
+                &mut self.active,
+                &mut self.pool,
+                None,
+                frame.rows,
+                start,
+                frame.mode,
+                frame.painter,
+                frame.dither,
+            );
+        }
+        Ok(())
+    }
+
+    /// The next strip of `frame` (prepared with id `frame_id`, with vertex attribute stores of
+    /// `XV` vertices): its first row and height, or `None` when the pass's rows are done.
+    pub(crate) fn strip_frame<const XV: usize>(
+        &mut self,
+        frame_id: u32,
+        frame: FrameView<'_, C>,
         ext: Option<&mut [[C; W]]>,
         limit: usize,
     ) -> Result<Option<(usize, usize)>, Error<core::convert::Infallible>> {
-        if renderer.frame_id != self.frame_id || self.frame_id == 0 {
+        if frame_id != self.frame_id || self.frame_id == 0 {
             return Err(Error::FrameChanged);
         }
-        let frame = renderer.view();
         if frame.dither != self.dither {
             // As the renderer does when its dithering changes between strips.
             self.dither = frame.dither;

@@ -9,7 +9,6 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
 
-use crate::num::scalar::Scalar;
 use crate::raster::depth_mode::{draw_row_no_depth, painter_insert, painter_key};
 use crate::raster::kind::{draw_row, enter};
 use crate::raster::seek::Rows;
@@ -19,7 +18,7 @@ use crate::scene::color::{rgb565_word, rgb565_words_mut, TargetColor};
 
 use crate::geometry::stores::Stores;
 use crate::kernel;
-use crate::renderer::*;
+use crate::raster::state::Raster;
 use crate::stats::*;
 
 /// The strip being rendered, as a draw target covering the whole `W × H` screen: pixels outside
@@ -138,19 +137,8 @@ impl<'a, C, const W: usize> StripCanvas<'a, C, W> {
     }
 }
 
-impl<
-        S: Scalar,
-        C: TargetColor,
-        const W: usize,
-        const H: usize,
-        const VERTS: usize,
-        const TRIS: usize,
-        const ACTIVE: usize,
-        const LINES: usize,
-        const XV: usize,
-        const XA: usize,
-        const ZL: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
+impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const ACTIVE: usize>
+    Raster<C, W, LINES, ZL, ACTIVE>
 {
     /// Rasterizes the next strip of the prepared frame, at most `limit` rows, into `ext` (the
     /// caller's lines) or, for `None`, into the renderer's own lines. Returns its first row and
@@ -158,18 +146,28 @@ impl<
     /// background (colour) and the far plane (depth) first; without it the frame is drawn over
     /// what the lines hold ([`Renderer::render_passes`]; a constant, so the strip routines of
     /// a frame compile as they did without the option).
-    pub(crate) fn draw_strip<P: Probe, const CLEAR: bool>(
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn draw_strip<
+        S,
+        const H: usize,
+        const VERTS: usize,
+        const TRIS: usize,
+        const XV: usize,
+        const XA: usize,
+        P: Probe,
+        const CLEAR: bool,
+    >(
         &mut self,
+        geo: &mut Stores<S, C, H, VERTS, TRIS, XV, XA>,
         ext: Option<&mut [[C; W]]>,
         limit: usize,
         probe: &mut P,
     ) -> Option<(usize, usize)> {
-        if self.next_row >= self.geo.vh {
+        if self.next_row >= geo.vh {
             return None;
         }
         let (mode, painter) = self.setup_mode();
-        let Renderer {
-            geo,
+        let Raster {
             active,
             color,
             depth,
@@ -224,18 +222,29 @@ impl<
         strip_rows::<C, P, W, ACTIVE, LINES, XV, XA, ZL, CLEAR>(frame, pass, lines, limit, probe)
     }
 
-    /// What a strip pass reads of the prepared frame.
-    pub(crate) fn view(&self) -> FrameView<'_, C> {
+    /// What a strip pass reads of the frame prepared in `geo`.
+    pub(crate) fn view<
+        'a,
+        S,
+        const H: usize,
+        const VERTS: usize,
+        const TRIS: usize,
+        const XV: usize,
+        const XA: usize,
+    >(
+        &self,
+        geo: &'a Stores<S, C, H, VERTS, TRIS, XV, XA>,
+    ) -> FrameView<'a, C> {
         let (mode, painter) = self.setup_mode();
         FrameView {
             rows: Rows {
-                verts: &self.geo.verts,
-                xverts: &self.geo.xverts,
-                tris: &self.geo.tris,
-                heads: &self.geo.heads,
-                vh: self.geo.vh,
+                verts: &geo.verts,
+                xverts: &geo.xverts,
+                tris: &geo.tris,
+                heads: &geo.heads,
+                vh: geo.vh,
             },
-            vw: self.geo.vw,
+            vw: geo.vw,
             background: self.background,
             depth_test: self.depth_test,
             dither: self.dither,

@@ -19,17 +19,18 @@
 
 use crate::geometry::clip::{clip_triangle, ClipVertex, FAR, GUARD, NEAR, NEEDS_CLIP};
 use crate::geometry::project::{pack_flat_channels, COORD_LIMIT};
+use crate::geometry::stores::Stores;
 use crate::geometry::{snapped, vertex_record_keep, Frame, FrameConst, INVALID, PROJECTED};
 use crate::kernel::records::{facing, Facing, ScreenVertex, TriRecord};
 use crate::num::math::{cross, dot, normalize, scale, sub, Mat4, Vec3};
 use crate::num::scalar::Scalar;
 use crate::raster::shadow::{ShadowLight, VolumeShadow};
 use crate::raster::FLAT_BIT;
-use crate::renderer::{Probe, Renderer};
 use crate::scene::adjacency::NO_NEIGHBOUR;
 use crate::scene::color::TargetColor;
 use crate::scene::mesh::Mesh;
 use crate::scene::Object;
+use crate::stats::Probe;
 
 /// One object's outline: its adjacency table, which edges, whether hidden ones show, the
 /// colour (8 bits per channel) and the eye in world space (a point, or a direction toward the
@@ -225,16 +226,12 @@ fn marked(marks: &[u8], t: usize) -> bool {
 impl<
         S: Scalar,
         C: TargetColor,
-        const W: usize,
         const H: usize,
         const VERTS: usize,
         const TRIS: usize,
-        const ACTIVE: usize,
-        const LINES: usize,
         const XV: usize,
         const XA: usize,
-        const ZL: usize,
-    > Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>
+    > Stores<S, C, H, VERTS, TRIS, XV, XA>
 {
     /// The shadow volume of `obj` from `v`'s light, extruded by `reach` (checked valid and
     /// positive; [`volume_reach`] of `v.reach`): its vertices (each mesh vertex and its extruded copy, side by side) and its
@@ -264,7 +261,7 @@ impl<
         };
         mark_faces(&mesh, local, flip, marks);
         let n = positions.len();
-        let base = self.geo.verts.len();
+        let base = self.verts.len();
         f.need.0 += 2 * n;
         if base + 2 * n > VERTS {
             // Counted (the frame's shortfall names it); nothing of it is stored.
@@ -341,7 +338,7 @@ impl<
         clip_of: &impl Fn(usize) -> [S; 4],
         probe: &mut P,
     ) {
-        let fl = v.map(|i| self.geo.verts[i].flags);
+        let fl = v.map(|i| self.verts[i].flags);
         if (fl[0] | fl[1] | fl[2]) & INVALID != 0 {
             f.stats.invalid += 1;
             return;
@@ -365,11 +362,11 @@ impl<
             return;
         }
         f.need.0 += poly.v.len();
-        if self.geo.verts.len() + poly.v.len() > VERTS {
+        if self.verts.len() + poly.v.len() > VERTS {
             f.need.1 += poly.v.len() - 2;
             return;
         }
-        let first = self.geo.verts.len();
+        let first = self.verts.len();
         for p in &poly.v {
             match c.vp.project_out_of_line(p.pos, [0; 3]) {
                 Some(mut sv) => {
@@ -377,7 +374,7 @@ impl<
                     self.push_snapped(sv, f, probe);
                 }
                 None => {
-                    self.geo.verts.truncate(first);
+                    self.verts.truncate(first);
                     f.stats.invalid += 1;
                     return;
                 }
@@ -393,17 +390,17 @@ impl<
     /// screen geometry in another).
     fn push_snapped<P: Probe>(&mut self, mut v: ScreenVertex, f: &Frame, probe: &mut P) {
         if v.flags & PROJECTED != 0 {
-            let index = self.geo.verts.len() - f.stats.color_vertices as usize;
+            let index = self.verts.len() - f.stats.color_vertices as usize;
             (v.x, v.y) = snapped(probe, index, v);
         }
-        let _ = self.geo.verts.push(v);
+        let _ = self.verts.push(v);
     }
 
     /// Stores triangle `v` turned toward the eye: as it is (first index the smallest) when it
     /// faces the eye, else reversed (first index the largest), so that [`volume_sign`] reads
     /// which. Flat (its first vertex's colour, unused: only coverage and depth count).
     fn push_signed(&mut self, v: [usize; 3], f: &mut Frame) {
-        let [a, b, cc] = v.map(|i| &self.geo.verts[i]);
+        let [a, b, cc] = v.map(|i| &self.verts[i]);
         let (mut v, back) = match facing(a, b, cc) {
             Facing::Degenerate => {
                 f.stats.degenerate += 1;
@@ -421,7 +418,7 @@ impl<
         };
         v.rotate_left(pick);
         let rec = [v[0] as u16 | FLAT_BIT, v[1] as u16, v[2] as u16];
-        self.geo.push_tri(rec, &mut f.stats, &mut f.need);
+        self.push_tri(rec, &mut f.stats, &mut f.need);
     }
 
     /// The outline of `obj` in `lines`: the edges its pick chooses ([`Pick::draws`]), two
@@ -525,7 +522,7 @@ impl<
             return;
         };
         // Snapped as the quad's first two vertices (their offsets follow the snapped ends).
-        let index = self.geo.verts.len() - f.stats.color_vertices as usize;
+        let index = self.verts.len() - f.stats.color_vertices as usize;
         (a.x, a.y) = snapped(probe, index, a);
         (b.x, b.y) = snapped(probe, index + 1, b);
         let (dx, dy) = (b.x as i32 - a.x as i32, b.y as i32 - a.y as i32);
@@ -541,27 +538,23 @@ impl<
         };
         let quad = [shift(&a, -1), shift(&b, -1), shift(&b, 1), shift(&a, 1)];
         f.need.0 += 4;
-        if self.geo.verts.len() + 4 > VERTS {
+        if self.verts.len() + 4 > VERTS {
             f.need.1 += 2;
             return;
         }
-        let first = self.geo.verts.len();
+        let first = self.verts.len();
         for v in quad {
-            let _ = self.geo.verts.push(v);
+            let _ = self.verts.push(v);
         }
         for t in [[0, 1, 2], [0, 2, 3]] {
             let v = t.map(|k| first + k);
-            let (a, b, cc) = (
-                &self.geo.verts[v[0]],
-                &self.geo.verts[v[1]],
-                &self.geo.verts[v[2]],
-            );
+            let (a, b, cc) = (&self.verts[v[0]], &self.verts[v[1]], &self.verts[v[2]]);
             let v = match facing(a, b, cc) {
                 Facing::Degenerate => continue,
                 Facing::Front => v,
                 Facing::Back => [v[0], v[2], v[1]],
             };
-            self.geo.push_tri(
+            self.push_tri(
                 [v[0] as u16 | FLAT_BIT, v[1] as u16, v[2] as u16],
                 &mut f.stats,
                 &mut f.need,

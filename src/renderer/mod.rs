@@ -1,6 +1,13 @@
-//! The renderer: its type, its capacities and RAM, and the frame driver — geometry for every
-//! object (`geometry.rs`), binning (`bin.rs`), then one strip pass over the screen
-//! (`strip.rs`).
+//! The renderer: its type, its capacities and RAM, and the frame driver. The renderer owns the
+//! geometry stage's stores ([`Stores`]) and the raster stage's state ([`Raster`]); a frame is
+//! the geometry stage over every object ([`Renderer::geometry`], or the layered frame's in
+//! `layered.rs`), then strip passes ([`Renderer::draw_strip`], [`crate::StripPass`] in
+//! `pass.rs`). The stages' functions take what they read and write as arguments: this driver
+//! is the one place that holds both.
+
+pub(crate) mod layered;
+pub(crate) mod no_depth;
+pub(crate) mod pass;
 
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Dimensions, Point, Size};
@@ -11,8 +18,8 @@ use crate::geometry::project::{ScreenVertex, MAX_SCREEN};
 use crate::geometry::stores::Stores;
 use crate::geometry::vertex_extra::VertexExtra;
 use crate::num::scalar::Scalar;
-use crate::raster::depth_mode::DrawOrder;
-use crate::raster::{ActiveList, ActiveTri, DepthTest, SpanMode, TriRecord, FLAT_BIT};
+use crate::raster::state::Raster;
+use crate::raster::{ActiveList, ActiveTri, DepthTest, TriRecord, FLAT_BIT};
 use crate::scene::color::TargetColor;
 use crate::scene::Scene;
 
@@ -131,29 +138,14 @@ pub struct Renderer<
     /// The geometry stage's stores: vertices, triangles, attribute stores, row buckets and the
     /// prepared frame's viewport.
     pub(crate) geo: Stores<S, C, H, VERTS, TRIS, XV, XA>,
-    pub(crate) active: ActiveList<ACTIVE>,
-    pub(crate) color: [[C; W]; LINES],
-    /// The depth lines, one per strip line (16-bit depth, 0 = nearest, 65535 = the far plane;
-    /// cleared to 65535): `ZL = LINES`, or none (`ZL = 0`, [`NoDepthRenderer`]).
-    pub(crate) depth: [[u16; W]; ZL],
-    pub(crate) depth_test: DepthTest,
-    /// How a renderer without depth lines orders a row's triangles (unused with depth lines).
-    pub(crate) order: DrawOrder,
-    pub(crate) dither: bool,
-    /// Next row to rasterize (`geo.vh` when no frame is prepared).
-    pub(crate) next_row: usize,
+    /// The raster stage's state: the strip lines, the active list, the strip pass's settings
+    /// and position.
+    pub(crate) ras: Raster<C, W, LINES, ZL, ACTIVE>,
     /// The viewport [`Renderer::set_viewport`] asked for (1..=`W`, 1..=`H`, so that a u16
     /// holds it): taken by the next frame's geometry stage, or at once when no frame is being
     /// drawn.
     pub(crate) want_viewport: (u16, u16),
-    pub(crate) background: C,
-    pub(crate) stats: Stats,
     pub(crate) overflow: OverflowPolicy,
-    /// Of the prepared frame, under [`OverflowPolicy::DrawWhatFits`]: the triangles dropped
-    /// from a full active list so far (those needed but not stored are `geo.store_skipped`:
-    /// the frame needed `stats.drawn + geo.store_skipped` triangles; its other needs are in
-    /// `stats`).
-    pub(crate) active_skipped: u32,
     /// Which frame the renderer holds, for the [`crate::StripPass`]es drawing it: advanced by
     /// every geometry stage; odd once a frame a strip pass can draw is prepared (by
     /// [`Renderer::prepare`] or a render), even while none is (before the first, during a
@@ -227,18 +219,9 @@ impl<
         let () = Self::CHECK;
         Renderer {
             geo: Stores::new(W, H),
-            active: ActiveList::new(),
-            color: [[fill; W]; LINES],
-            depth: [[u16::MAX; W]; ZL],
-            depth_test: DepthTest::Less,
-            order: DrawOrder::FarToNear,
-            dither: false,
-            next_row: H,
+            ras: Raster::new(fill, H),
             want_viewport: (W as u16, H as u16),
-            background: fill,
-            stats: Stats::ZERO,
             overflow: OverflowPolicy::Error,
-            active_skipped: 0,
             frame_id: 0,
         }
     }
@@ -269,21 +252,21 @@ impl<
     /// not prepared: the error carries its shortfall.
     #[must_use]
     pub fn shortfall(&self) -> Option<Shortfall> {
-        let s = &self.stats;
+        let s = &self.ras.stats;
         let needed = Needs::new(
             s.vertices as usize,
             s.drawn as usize + self.geo.store_skipped as usize,
             s.max_active as usize,
         );
         // (A textured triangle left out for want of a pool entry is a shortfall too.)
-        if needed.fits(&Self::CAPACITY) && self.active_skipped == 0 {
+        if needed.fits(&Self::CAPACITY) && self.ras.active_skipped == 0 {
             return None;
         }
         Some(Shortfall {
             needed,
             capacity: Self::CAPACITY,
             exact: needed.vertices <= VERTS && needed.triangles <= TRIS,
-            skipped: self.geo.store_skipped as usize + self.active_skipped as usize,
+            skipped: self.geo.store_skipped as usize + self.ras.active_skipped as usize,
         })
     }
 
@@ -307,7 +290,7 @@ impl<
         self.overflow = OverflowPolicy::DrawWhatFits;
         let result = self.geometry(scene, &mut NoProbe);
         self.overflow = policy;
-        self.next_row = self.geo.vh;
+        self.ras.next_row = self.geo.vh;
         result?;
         self.measured()
     }
@@ -316,10 +299,10 @@ impl<
     /// [`Renderer::needs`] and [`Renderer::needs_layered`]).
     pub(crate) fn measured(&self) -> Result<Needs, Error<core::convert::Infallible>> {
         match self.shortfall() {
-            None => Ok(Needs::from_stats(&self.stats)),
+            None => Ok(Needs::from_stats(&self.ras.stats)),
             Some(s) if s.exact => Ok(Needs {
                 triangles: s.needed.triangles,
-                ..Needs::from_stats(&self.stats)
+                ..Needs::from_stats(&self.ras.stats)
             }),
             Some(mut s) => {
                 s.skipped = 0;
@@ -362,7 +345,7 @@ impl<
     /// Sets the depth test.
     #[must_use]
     pub fn with_depth_test(mut self, test: DepthTest) -> Self {
-        self.depth_test = test;
+        self.ras.depth_test = test;
         self
     }
 
@@ -376,7 +359,7 @@ impl<
     /// applies at once.
     pub fn set_viewport(&mut self, width: usize, height: usize) {
         self.want_viewport = (width.clamp(1, W) as u16, height.clamp(1, H) as u16);
-        if self.next_row >= self.geo.vh {
+        if self.ras.next_row >= self.geo.vh {
             self.take_viewport();
         }
     }
@@ -386,7 +369,7 @@ impl<
     pub(crate) fn take_viewport(&mut self) {
         self.geo.vw = self.want_viewport.0 as usize;
         self.geo.vh = self.want_viewport.1 as usize;
-        self.next_row = self.geo.vh;
+        self.ras.next_row = self.geo.vh;
     }
 
     /// The viewport size (`W × H` unless changed by [`Renderer::set_viewport`]): the one the
@@ -398,17 +381,18 @@ impl<
 
     /// Sets the depth test in place.
     pub fn set_depth_test(&mut self, test: DepthTest) {
-        self.depth_test = test;
+        self.ras.depth_test = test;
     }
 
     /// Enables or disables dithering in place (between strips too: the triangles already set
     /// up for the frame are drawn the new way from the next strip on).
     pub fn set_dither(&mut self, on: bool) {
-        if on != self.dither {
-            self.dither = on;
+        if on != self.ras.dither {
+            self.ras.dither = on;
             // The dithered row routine draws only triangles checked for it at setup.
-            self.active
-                .refresh_routine_rows(self.next_row as i32, on && C::can_dither());
+            self.ras
+                .active
+                .refresh_routine_rows(self.ras.next_row as i32, on && C::can_dither());
         }
     }
 
@@ -459,10 +443,10 @@ impl<
         }
         self.begin_target(target)?;
         let background = crate::scene::color::quantize::<C>(first.background);
-        for c in &mut self.color[..vh] {
+        for c in &mut self.ras.color[..vh] {
             c[..vw].fill(background);
         }
-        for d in self.depth.iter_mut().take(vh) {
+        for d in self.ras.depth.iter_mut().take(vh) {
             d[..vw].fill(u16::MAX);
         }
         let mut total = Stats::default();
@@ -473,13 +457,13 @@ impl<
                 .draw_strip::<NoProbe, false>(None, LINES, &mut NoProbe)
                 .is_some()
             {}
-            total.add_pass(&self.stats);
+            total.add_pass(&self.ras.stats);
         }
         let area = Rectangle::new(Point::zero(), Size::new(vw as u32, vh as u32));
         target
             .fill_contiguous(
                 &area,
-                self.color[..vh]
+                self.ras.color[..vh]
                     .iter()
                     .flat_map(|line| line[..vw].iter())
                     .copied(),
@@ -493,11 +477,11 @@ impl<
         let vh = self.geo.vh;
         let row = row.min(vh);
         self.clear_active();
-        self.next_row = row;
+        self.ras.next_row = row;
         if row >= vh {
             return;
         }
-        let (mode, painter) = self.setup_mode();
+        let (mode, painter) = self.ras.setup_mode();
         let rows = crate::raster::seek::Rows {
             verts: &self.geo.verts,
             xverts: &self.geo.xverts,
@@ -507,29 +491,16 @@ impl<
         };
         let ord = (ACTIVE <= H).then_some(&mut self.geo.starts[..]);
         let skipped = crate::raster::seek::seek::<C, ACTIVE>(
-            &mut self.active,
+            &mut self.ras.active,
             &mut self.geo.xactive,
             ord,
             rows,
             row,
             mode,
             painter,
-            self.dither,
+            self.ras.dither,
         );
-        self.active_skipped = self.active_skipped.saturating_add(skipped);
-    }
-
-    /// How the strip pass (and [`crate::frame::Frame::seek_row`]) sets up a triangle, and whether it keeps
-    /// the painter's order. Without depth lines every triangle is set up as for `Less` (its fast
-    /// spans then skip the test).
-    pub(crate) fn setup_mode(&self) -> (SpanMode, bool) {
-        let test = if ZL == 0 {
-            DepthTest::Less
-        } else {
-            self.depth_test
-        };
-        let painter = ZL == 0 && self.order == DrawOrder::FarToNear;
-        (SpanMode::new::<C>(test, self.dither), painter)
+        self.ras.active_skipped = self.ras.active_skipped.saturating_add(skipped);
     }
 
     /// The geometry stage of a frame one strip pass draws: [`Renderer::frame_start`], every
@@ -556,6 +527,18 @@ impl<
         Ok(stats)
     }
 
+    /// The raster stage's next strip of the prepared frame ([`Raster::draw_strip`]: at most
+    /// `limit` rows, into `ext` or the renderer's own lines; `CLEAR`: each line cleared first).
+    pub(crate) fn draw_strip<P: Probe, const CLEAR: bool>(
+        &mut self,
+        ext: Option<&mut [[C; W]]>,
+        limit: usize,
+        probe: &mut P,
+    ) -> Option<(usize, usize)> {
+        self.ras
+            .draw_strip::<S, H, VERTS, TRIS, XV, XA, P, CLEAR>(&mut self.geo, ext, limit, probe)
+    }
+
     /// Before a frame's geometry stage: a new frame that no strip pass can draw yet (an even
     /// `frame_id`), the active list emptied, the viewport [`Renderer::set_viewport`] asked for
     /// taken.
@@ -568,16 +551,16 @@ impl<
     /// After a geometry stage that succeeded: the frame's statistics and background, and the
     /// strip pass at its first row.
     pub(crate) fn frame_ready<const L: usize>(&mut self, scene: &Scene<'_, S, L>, stats: Stats) {
-        self.active_skipped = 0;
-        self.background = crate::scene::color::quantize::<C>(scene.background);
-        self.next_row = 0;
-        self.stats = stats;
+        self.ras.active_skipped = 0;
+        self.ras.background = crate::scene::color::quantize::<C>(scene.background);
+        self.ras.next_row = 0;
+        self.ras.stats = stats;
     }
 
     /// Empties the active list and frees the pool entries of its triangles (the frame's
     /// Phong lights and materials stay).
     pub(crate) fn clear_active(&mut self) {
-        self.active.clear();
+        self.ras.active.clear();
         self.geo.free_triangle_entries();
     }
 
@@ -585,13 +568,13 @@ impl<
     /// when nothing is prepared).
     #[must_use]
     pub fn next_row(&self) -> usize {
-        self.next_row
+        self.ras.next_row
     }
 
     /// The statistics of the frame being drawn (complete once the last strip is drawn).
     #[must_use]
     pub fn stats(&self) -> Stats {
-        self.stats
+        self.ras.stats
     }
 }
 

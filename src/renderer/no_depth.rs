@@ -48,18 +48,18 @@ impl<
     /// The order of the triangles of a row (default [`DrawOrder::FarToNear`]).
     #[must_use]
     pub fn order(&self) -> DrawOrder {
-        self.order
+        self.ras.order
     }
 
     /// Sets the order of the triangles of a row; it applies from the next prepared frame.
     pub fn set_order(&mut self, order: DrawOrder) {
-        self.order = order;
+        self.ras.order = order;
     }
 
     /// [`Self::set_order`] on a renderer by value.
     #[must_use]
     pub fn with_order(mut self, order: DrawOrder) -> Self {
-        self.order = order;
+        self.ras.order = order;
         self
     }
 }
@@ -84,5 +84,5 @@ pub fn set_order_any<
     r: &mut Renderer<S, C, W, H, VERTS, TRIS, ACTIVE, LINES, XV, XA, ZL>,
     order: DrawOrder,
 ) {
-    r.order = order;
+    r.ras.order = order;
 }
