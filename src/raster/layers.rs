@@ -2,7 +2,7 @@
 //! projected polygons (stencilled, so overlaps darken once), the other opaque objects, the
 //! shadow volumes' faces (counted in the stencil, then every pixel with a non-zero count
 //! darkened), the outlines, then the translucent triangles back to front — with the lists and
-//! the stencil lines in a [`Layers`] the caller owns. A frame drawn by [`Renderer::render`]
+//! the stencil lines in a [`Layers`] the caller owns. A frame drawn by [`crate::Renderer::render`]
 //! uses none of this and pays nothing for it: no field, no branch.
 
 use heapless::Vec;

@@ -159,7 +159,7 @@ impl<
     }
 
     /// This pass's counts since its [`StripPass::begin`]: the fragments tested and pixels
-    /// written (the frame's other counts are the renderer's [`Renderer::stats`]).
+    /// written (the frame's other counts are the renderer's [`crate::Renderer::stats`]).
     #[must_use]
     pub fn stats(&self) -> Stats {
         self.stats

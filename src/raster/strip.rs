@@ -144,7 +144,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
     /// caller's lines) or, for `None`, into the renderer's own lines. Returns its first row and
     /// height, or `None` when the frame is complete. `CLEAR`: each line is cleared to the
     /// background (colour) and the far plane (depth) first; without it the frame is drawn over
-    /// what the lines hold ([`Renderer::render_passes`]; a constant, so the strip routines of
+    /// what the lines hold ([`crate::Renderer::render_passes`]; a constant, so the strip routines of
     /// a frame compile as they did without the option).
     #[allow(clippy::type_complexity)]
     pub(crate) fn draw_strip<
@@ -289,7 +289,7 @@ pub(crate) struct PassMut<'a, const W: usize, const ACTIVE: usize, const ZL: usi
 /// The strip pass: rasterizes the next strip of `frame` for `pass`, at most `limit` rows and
 /// as many as `color` has lines (at most `LINES`), stopping before `pass.end_row`. Returns its
 /// first row and height, or `None` when no row is left. `CLEAR`: see
-/// [`Renderer::draw_strip`]. (`XV`, `XA`, `ZL`: the renderer's stores and depth lines, as
+/// [`crate::Renderer::draw_strip`]. (`XV`, `XA`, `ZL`: the renderer's stores and depth lines, as
 /// constants, so that a renderer without them compiles the pass without their tests.)
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
