@@ -11,7 +11,13 @@ use crate::stats::Stats;
 
 /// The raster state of a renderer `W` pixels wide with `LINES` colour lines, `ZL` depth lines
 /// (`LINES`, or 0 without a depth buffer) and `ACTIVE` active triangles, in colour type `C`.
+///
+/// `repr(C)`, fields in this order: built by [`Raster::new`] inside the renderer's
+/// `const_new`, the default layout (the lines first) made LLVM build the colour and depth lines
+/// in a temporary and copy them (256 B more stack in the 16 KB part's torus frame at 64 × 64,
+/// whose stack has 16 B to spare at 112 × 112); in this order it writes them in place.
 #[derive(Debug)]
+#[repr(C)]
 pub(crate) struct Raster<
     C,
     const W: usize,
