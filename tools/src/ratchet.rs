@@ -15,6 +15,8 @@ use std::fmt::Write as _;
 pub const BASELINE_PATH: &str = "mcu-bench/baseline.txt";
 /// What regenerates the baseline from the current measurement.
 pub const UPDATE_COMMAND: &str = "scripts/mcu-bench --update-baseline";
+/// What lowers the baseline to the current measurement where it is cheaper, and only there.
+pub const LOWER_COMMAND: &str = "scripts/mcu-bench --lower-baseline";
 /// How much a row may grow over its baseline, in percent, before the ratchet fails.
 pub const TOLERANCE_PERCENT: u64 = 1;
 
@@ -168,7 +170,7 @@ impl Comparison {
         if !self.improved.is_empty() && self.passed() {
             let _ = writeln!(
                 s,
-                "  some rows got cheaper: `{UPDATE_COMMAND}` lowers the baseline to lock the gain in"
+                "  some rows got cheaper: `{LOWER_COMMAND}` lowers the baseline to lock the gain in"
             );
         }
         s
@@ -248,6 +250,29 @@ pub fn parse(text: &str) -> Result<Counts, String> {
     Ok(rows)
 }
 
+/// The baseline lowered to `measured` where a row got cheaper, every other row as it was: the
+/// gains are locked in, and a row that grew within the tolerance keeps its old count (so
+/// growth within the tolerance cannot creep in through the baseline, as
+/// [`UPDATE_COMMAND`] would let it). Refused (with the reason) unless the comparison passes:
+/// a regressed, new or missing row needs [`UPDATE_COMMAND`] and a reason in its commit.
+pub fn lowered(baseline: &[(Key, u64)], measured: &[(Key, u64)]) -> Result<Counts, String> {
+    let c = compare(baseline, measured);
+    if !c.passed() {
+        return Err(format!(
+            "not lowered: {} regressed, {} new and {} missing rows (use `{UPDATE_COMMAND}` for a \
+             change that moves the rows on purpose)",
+            c.regressed.len(),
+            c.new.len(),
+            c.missing.len()
+        ));
+    }
+    let seen: BTreeMap<&Key, u64> = measured.iter().map(|(k, v)| (k, *v)).collect();
+    Ok(baseline
+        .iter()
+        .map(|(k, b)| (k.clone(), seen.get(k).map_or(*b, |m| (*m).min(*b))))
+        .collect())
+}
+
 /// The baseline file's text for `rows`, in their order, columns aligned.
 pub fn format(rows: &[(Key, u64)]) -> String {
     let w = |f: fn(&Key) -> &str, title: &str| {
@@ -267,7 +292,8 @@ pub fn format(rows: &[(Key, u64)]) -> String {
          # scene, per number type and core, measured in QEMU by scripts/mcu-bench (exact counts: no\n\
          # noise). scripts/mcu-bench fails when a row grows by more than 1 % over this file, or when\n\
          # a row is new or no longer measured. Update it in the same commit as the change that moves\n\
-         # the counts, with `scripts/mcu-bench --update-baseline`; do not edit it by hand.\n\
+         # the counts, with `scripts/mcu-bench --update-baseline` (or `--lower-baseline`, which only\n\
+         # lowers the rows that got cheaper); do not edit it by hand.\n\
          #\n",
     );
     let _ = writeln!(

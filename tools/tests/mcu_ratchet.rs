@@ -4,7 +4,7 @@
 
 use scanline3d_tools::ratchet;
 
-use ratchet::{compare, exceeds, format, parse, Key, BASELINE_PATH};
+use ratchet::{compare, exceeds, format, lowered, parse, Key, BASELINE_PATH};
 use scanline3d_tools::atomic::write_atomic;
 
 fn row(scene: &str, number: &str, core: &str, n: u64) -> (Key, u64) {
@@ -218,4 +218,37 @@ fn the_committed_baseline_parses_and_covers_every_fixed_point_scene() {
             && k.scene.starts_with("torus, ")
             && k.scene.contains(" × ")));
     }
+}
+
+#[test]
+fn lowering_takes_the_cheaper_rows_only_and_refuses_a_failed_comparison() {
+    let base = vec![
+        row("cube", "I16F16", "m0", 1_000_000),
+        row("torus", "I16F16", "m0", 2_000_000),
+        row("phong", "I16F16", "m0", 3_000_000),
+    ];
+    // Cheaper, dearer within the tolerance, unchanged.
+    let now = vec![
+        row("cube", "I16F16", "m0", 900_000),
+        row("torus", "I16F16", "m0", 2_010_000),
+        row("phong", "I16F16", "m0", 3_000_000),
+    ];
+    assert_eq!(
+        lowered(&base, &now).unwrap(),
+        vec![
+            row("cube", "I16F16", "m0", 900_000),
+            row("torus", "I16F16", "m0", 2_000_000),
+            row("phong", "I16F16", "m0", 3_000_000),
+        ]
+    );
+    // A regressed row, a new row, a missing row: refused, with the counts named.
+    let mut regressed = now.clone();
+    regressed[1].1 = 2_030_000;
+    assert!(lowered(&base, &regressed)
+        .unwrap_err()
+        .contains("1 regressed"));
+    let mut new = now.clone();
+    new.push(row("deep", "I16F16", "m0", 1));
+    assert!(lowered(&base, &new).unwrap_err().contains("1 new"));
+    assert!(lowered(&base, &now[..2]).unwrap_err().contains("1 missing"));
 }

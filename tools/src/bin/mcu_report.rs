@@ -4,10 +4,11 @@
 //! host's, a log is incomplete, (with `--enforce-budget`) the budget is not met, or the
 //! performance ratchet fails: a frame's renderer instructions grew by more than 1 % over the
 //! committed baseline `mcu-bench/baseline.txt`, or a row is new or no longer measured
-//! (`mcu_report/ratchet.rs`). `--update-baseline` writes the baseline from this measurement
+//! (`mcu_report/ratchet.rs`). `--lower-baseline` lowers the baseline's rows that got cheaper
+//! (when none regressed). `--update-baseline` writes the baseline from this measurement
 //! instead; `--baseline=PATH` compares with (or updates) another file.
 //!
-//! `cargo run --release -p scanline3d-tools --bin mcu_report -- [--enforce-budget] [--update-baseline]
+//! `cargo run --release -p scanline3d-tools --bin mcu_report -- [--enforce-budget] [--update-baseline | --lower-baseline]
 //! [--baseline=PATH] m0=LOG m4f=LOG [m33=LOG] [microbit=LOG] [rv32imac=LOG] [fe310=LOG]`
 
 use std::collections::BTreeMap;
@@ -91,6 +92,7 @@ fn main() {
 fn run() -> Result<(), String> {
     let mut enforce = false;
     let mut update_baseline = false;
+    let mut lower_baseline = false;
     let mut baseline_path = ratchet::BASELINE_PATH.to_string();
     let mut logs = Vec::new();
     for a in std::env::args().skip(1) {
@@ -98,6 +100,8 @@ fn run() -> Result<(), String> {
             enforce = true;
         } else if a == "--update-baseline" {
             update_baseline = true;
+        } else if a == "--lower-baseline" {
+            lower_baseline = true;
         } else if let Some(p) = a.strip_prefix("--baseline=") {
             baseline_path = p.to_string();
         } else if a.starts_with("--") {
@@ -108,9 +112,12 @@ fn run() -> Result<(), String> {
             return Err(format!("unknown argument {a:?}"));
         }
     }
+    if update_baseline && lower_baseline {
+        return Err("--update-baseline and --lower-baseline exclude each other".into());
+    }
     if logs.is_empty() {
         return Err(
-            "usage: mcu_report [--enforce-budget] [--update-baseline] [--baseline=PATH] m0=LOG m4f=LOG [m33=LOG] [microbit=LOG] [rv32imac=LOG] [fe310=LOG]"
+            "usage: mcu_report [--enforce-budget] [--update-baseline | --lower-baseline] [--baseline=PATH] m0=LOG m4f=LOG [m33=LOG] [microbit=LOG] [rv32imac=LOG] [fe310=LOG]"
                 .into(),
         );
     }
@@ -393,6 +400,20 @@ fn run() -> Result<(), String> {
         print!("{}", c.summary(&baseline_path));
         if let Some(f) = c.failure(&baseline_path) {
             failures.push(f);
+        } else if lower_baseline && failures.is_empty() {
+            let rows = ratchet::lowered(&baseline, &measured)?;
+            write_atomic(
+                std::path::Path::new(&baseline_path),
+                &ratchet::format(&rows),
+            )?;
+            println!(
+                "ratchet: lowered {} rows of {baseline_path} to this measurement (the others kept): commit it with the change",
+                c.improved.len()
+            );
+        } else if lower_baseline {
+            failures.push(format!(
+                "{baseline_path} not lowered: the measurement failed"
+            ));
         }
     }
     if failures.is_empty() {
