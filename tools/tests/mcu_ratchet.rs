@@ -145,7 +145,7 @@ fn improvement_passes_and_is_reported() {
         s.contains("cheaper: torus, dithered | I16F16 | m0: baseline 2682121, measured 2500000 (-182121, -6.79 %)"),
         "{s}"
     );
-    assert!(s.contains("--update-baseline"), "{s}");
+    assert!(s.contains("--lower-baseline"), "{s}");
 }
 
 #[test]
