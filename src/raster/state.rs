@@ -3,6 +3,7 @@
 //! the prepared frame. The renderer owns one beside the geometry stage's stores; the raster
 //! stage's functions are methods of it, and take those stores as an argument.
 
+use crate::error::OverflowPolicy;
 use crate::kernel::records::ActiveList;
 use crate::raster::depth_mode::DrawOrder;
 use crate::raster::{DepthTest, SpanMode};
@@ -12,10 +13,11 @@ use crate::stats::Stats;
 /// The raster state of a renderer `W` pixels wide with `LINES` colour lines, `ZL` depth lines
 /// (`LINES`, or 0 without a depth buffer) and `ACTIVE` active triangles, in colour type `C`.
 ///
-/// `repr(C)`, fields in this order: built by [`Raster::new`] inside the renderer's
-/// `const_new`, the default layout (the lines first) made LLVM build the colour and depth lines
-/// in a temporary and copy them (256 B more stack in the 16 KB part's torus frame at 64 × 64,
-/// whose stack has 16 B to spare at 112 × 112); in this order it writes them in place.
+/// `repr(C)`, fields in this order (the larger alignments first, so that only the tail is
+/// padded): built by [`Raster::new`] inside the renderer's `const_new`, the default layout (the
+/// lines first) made LLVM build the colour and depth lines in a temporary and copy them (256 B
+/// more stack in the 16 KB part's torus frame at 64 × 64, whose stack has 16 B to spare at
+/// 112 × 112); with the active list first it writes them in place.
 #[derive(Debug)]
 #[repr(C)]
 pub(crate) struct Raster<
@@ -27,24 +29,28 @@ pub(crate) struct Raster<
 > {
     /// The triangles crossing the current row, set up (edges, planes, span kind).
     pub(crate) active: ActiveList<ACTIVE>,
+    /// The prepared frame's statistics: the geometry stage's counts, then each strip's.
+    pub(crate) stats: Stats,
+    /// Next row to rasterize (the viewport's height when no frame is prepared).
+    pub(crate) next_row: usize,
+    /// Under [`crate::OverflowPolicy::DrawWhatFits`]: the triangles dropped from a full active
+    /// list so far in the prepared frame (0..=`u32::MAX`, saturating).
+    pub(crate) active_skipped: u32,
     /// The strip's colour lines.
     pub(crate) color: [[C; W]; LINES],
     /// The depth lines, one per strip line (16-bit depth, 0 = nearest, 65535 = the far plane;
     /// cleared to 65535): `ZL = LINES`, or none (`ZL = 0`, [`crate::NoDepthRenderer`]).
     pub(crate) depth: [[u16; W]; ZL],
+    /// The prepared frame's background, quantized to `C`.
+    pub(crate) background: C,
     pub(crate) depth_test: DepthTest,
     /// How a renderer without depth lines orders a row's triangles (unused with depth lines).
     pub(crate) order: DrawOrder,
     pub(crate) dither: bool,
-    /// Next row to rasterize (the viewport's height when no frame is prepared).
-    pub(crate) next_row: usize,
-    /// The prepared frame's background, quantized to `C`.
-    pub(crate) background: C,
-    /// The prepared frame's statistics: the geometry stage's counts, then each strip's.
-    pub(crate) stats: Stats,
-    /// Under [`crate::OverflowPolicy::DrawWhatFits`]: the triangles dropped from a full active
-    /// list so far in the prepared frame (0..=`u32::MAX`, saturating).
-    pub(crate) active_skipped: u32,
+    /// The renderer's overflow policy. The strip pass does not read it (the driver and the
+    /// geometry stage do): it is kept beside the settings above so that the renderer pads one
+    /// tail of one-byte fields, not two (4 B less on a 32-bit core).
+    pub(crate) overflow: OverflowPolicy,
 }
 
 impl<C: Copy, const W: usize, const LINES: usize, const ZL: usize, const ACTIVE: usize>
@@ -60,6 +66,7 @@ impl<C: Copy, const W: usize, const LINES: usize, const ZL: usize, const ACTIVE:
             depth_test: DepthTest::Less,
             order: DrawOrder::FarToNear,
             dither: false,
+            overflow: OverflowPolicy::Error,
             next_row: rows,
             background: fill,
             stats: Stats::ZERO,

@@ -47,10 +47,10 @@ impl<
         layering: &Layering<'_, S>,
         layers: &mut Layers<W, LINES, RA, PA>,
     ) -> Result<Needs, Error<core::convert::Infallible>> {
-        let policy = self.overflow;
-        self.overflow = OverflowPolicy::DrawWhatFits;
+        let policy = self.ras.overflow;
+        self.ras.overflow = OverflowPolicy::DrawWhatFits;
         let result = self.geometry_layered(scene, layering, layers, &mut NoProbe);
-        self.overflow = policy;
+        self.ras.overflow = policy;
         self.ras.next_row = self.geo.vh;
         result?;
         self.measured()
@@ -247,7 +247,7 @@ impl<
                 let _ = layers.translucent.push((end(self), o.material.alpha));
             }
         }
-        let overflow = self.overflow;
+        let overflow = self.ras.overflow;
         let stats = self
             .geo
             .frame_end(scene, &c, &mut f, usize::MAX, overflow, Self::CAPACITY)?;
@@ -260,7 +260,7 @@ impl<
         self.ras.stats.max_active = opaque as u32;
         let needed = Needs::from_stats(&self.ras.stats);
         let capacity = Self::CAPACITY.with_layers(RA, PA);
-        if self.overflow == OverflowPolicy::Error
+        if self.ras.overflow == OverflowPolicy::Error
             && (receivers > RA || overlays > PA || opaque > ACTIVE)
         {
             self.ras.next_row = self.geo.vh;

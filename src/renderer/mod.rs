@@ -145,7 +145,6 @@ pub struct Renderer<
     /// holds it): taken by the next frame's geometry stage, or at once when no frame is being
     /// drawn.
     pub(crate) want_viewport: (u16, u16),
-    pub(crate) overflow: OverflowPolicy,
     /// Which frame the renderer holds, for the [`crate::StripPass`]es drawing it: advanced by
     /// every geometry stage; odd once a frame a strip pass can draw is prepared (by
     /// [`Renderer::prepare`] or a render), even while none is (before the first, during a
@@ -221,7 +220,6 @@ impl<
             geo: Stores::new(W, H),
             ras: Raster::new(fill, H),
             want_viewport: (W as u16, H as u16),
-            overflow: OverflowPolicy::Error,
             frame_id: 0,
         }
     }
@@ -230,19 +228,19 @@ impl<
     /// default [`OverflowPolicy::Error`]).
     #[must_use]
     pub fn with_overflow(mut self, policy: OverflowPolicy) -> Self {
-        self.overflow = policy;
+        self.ras.overflow = policy;
         self
     }
 
     /// Sets the overflow policy in place.
     pub fn set_overflow(&mut self, policy: OverflowPolicy) {
-        self.overflow = policy;
+        self.ras.overflow = policy;
     }
 
     /// The overflow policy.
     #[must_use]
     pub fn overflow(&self) -> OverflowPolicy {
-        self.overflow
+        self.ras.overflow
     }
 
     /// What the last prepared frame (the one being drawn, or drawn last) needed beyond the
@@ -286,10 +284,10 @@ impl<
         &mut self,
         scene: &Scene<'_, S, L>,
     ) -> Result<Needs, Error<core::convert::Infallible>> {
-        let policy = self.overflow;
-        self.overflow = OverflowPolicy::DrawWhatFits;
+        let policy = self.ras.overflow;
+        self.ras.overflow = OverflowPolicy::DrawWhatFits;
         let result = self.geometry(scene, &mut NoProbe);
-        self.overflow = policy;
+        self.ras.overflow = policy;
         self.ras.next_row = self.geo.vh;
         result?;
         self.measured()
@@ -518,9 +516,9 @@ impl<
             self.geo
                 .frame_object(&c, &mut f, scene, obj, index, probe)?;
         }
-        let stats = self
-            .geo
-            .frame_end(scene, &c, &mut f, ACTIVE, self.overflow, Self::CAPACITY)?;
+        let stats =
+            self.geo
+                .frame_end(scene, &c, &mut f, ACTIVE, self.ras.overflow, Self::CAPACITY)?;
         self.frame_ready(scene, stats);
         // A frame for strip passes too (odd).
         self.frame_id |= 1;
