@@ -65,8 +65,14 @@ fn row_end(t: &TriRecord, verts: &[ScreenVertex], row: i32, height: i32) -> Opti
 /// painter's order at all; `dither` whether the strip dithers (the rows left to the Cortex-M
 /// row routine depend on it). Returns the triangles that cross `row` and found no room (only
 /// under [`crate::OverflowPolicy::DrawWhatFits`]: the frame's needs were checked otherwise).
+/// `XA`: the pool's capacity, as a constant, so that a renderer without attribute stores
+/// compiles the seek without the textured and Phong set-up (the strip pass's rows do the same).
+/// Always inlined, as it was into `StripPass::begin` when that method held it: there its caller's
+/// constants (no depth lines, so no painter's order) drop what the frame cannot need; out of
+/// line it kept 2.1 KB in the Pico firmware's RAM code.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn seek<C: TargetColor, const N: usize>(
+#[inline(always)]
+pub(crate) fn seek<C: TargetColor, const N: usize, const XA: usize>(
     active: &mut ActiveList<N>,
     pool: &mut [ActiveExtra],
     ord: Option<&mut [i16]>,
@@ -89,7 +95,7 @@ pub(crate) fn seek<C: TargetColor, const N: usize>(
                 continue;
             };
             let crosses = end > target;
-            let pooled = !pool.is_empty() && needs_pool(rec, rows.xverts);
+            let pooled = XA > 0 && !pool.is_empty() && needs_pool(rec, rows.xverts);
             let before = active.len();
             let kept = if crosses || pooled {
                 enter::<C, N>(

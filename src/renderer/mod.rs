@@ -488,7 +488,7 @@ impl<
             vh,
         };
         let ord = (ACTIVE <= H).then_some(&mut self.geo.starts[..]);
-        let skipped = crate::raster::seek::seek::<C, ACTIVE>(
+        let skipped = crate::raster::seek::seek::<C, ACTIVE, XA>(
             &mut self.ras.active,
             &mut self.geo.xactive,
             ord,
