@@ -12,10 +12,10 @@
 //! constants); a triangle with a pool entry (its index in [`ActiveTri::spare`]) gets
 //! [`POOL`] and its code at [`enter`]. Row state: [`MID_LEFT`] always, and
 //! [`LAST_IN_ROUTINE`] and [`SWITCH_IN_ROUTINE`] for the [`FAST`] kinds only, which the Cortex-M
-//! row routine draws (and, with its row count used up, reads on any triangle); a pool kind
-//! (never fast) has [`DITHER_OK`]'s bit and bit 7 for its code: 4 codes, each with and without
-//! [`FLAT`], all used (textured, Phong, fast Phong, toon). A fifth pool kind needs one more
-//! bit: the row routine testing [`FAST`] before the routine bits would free those two.
+//! row routine draws (and, with its row count used up, tests on any triangle, then draws only a
+//! [`FAST`] one); a pool kind (never fast) has those two bits, [`DITHER_OK`]'s bit and bit 7
+//! for its code: 16 codes, each with and without [`FLAT`], of which 4 are used (textured,
+//! Phong, fast Phong, toon).
 
 use crate::geometry::pool::{ActiveExtra, FREE, MODE_FAST_PHONG, MODE_PHONG, MODE_TOON};
 use crate::geometry::project::ScreenVertex;
@@ -27,16 +27,26 @@ use crate::scene::color::TargetColor;
 
 /// Bit of a pool kind: the triangle has an entry in the attribute pool, [`ActiveTri::spare`].
 pub(crate) const POOL: u8 = 64;
-/// The bits of a pool kind's code (besides [`POOL`] and [`FLAT`]): [`DITHER_OK`]'s, free in
-/// a triangle that is not [`FAST`], and bit 7. ([`LAST_IN_ROUTINE`] and [`SWITCH_IN_ROUTINE`]
-/// are not free: the Cortex-M row routine reads them on any triangle whose routine rows are
-/// used up, and draws it as a fast Gouraud triangle's last or switch row when one is set.)
-const CODE_BITS: u8 = DITHER_OK | 128;
-/// A pool kind's code `n` (0..4) as flag bits.
+/// The bits of a pool kind's code (besides [`POOL`] and [`FLAT`]): [`DITHER_OK`]'s, bit 7,
+/// [`LAST_IN_ROUTINE`]'s and [`SWITCH_IN_ROUTINE`]'s, all free in a triangle that is not
+/// [`FAST`]. (The Cortex-M row routine reads the last two on any triangle whose routine rows
+/// are used up, and leaves it to the portable path unless it is [`FAST`]: the test costs a
+/// fast triangle two instructions at its last row and at its switch, and no other triangle
+/// anything.)
+const CODE_BITS: u8 = DITHER_OK | 128 | LAST_IN_ROUTINE | SWITCH_IN_ROUTINE;
+/// A pool kind's code `n` (0..16) as flag bits (codes 0..4 in the first two bits, as they
+/// were before the routine's bits were freed).
 const fn code(n: u8) -> u8 {
-    POOL | ((n & 1) << 5) | ((n & 2) << 6)
+    POOL | ((n & 1) << 5) | ((n & 2) << 6) | ((n & 4) << 1) | ((n & 8) << 1)
 }
-const _: () = assert!(code(3) & !POOL == CODE_BITS && DITHER_OK == 32 && FAST == 4);
+const _: () = assert!(
+    code(15) & !POOL == CODE_BITS
+        && DITHER_OK == 32
+        && FAST == 4
+        && LAST_IN_ROUTINE == 8
+        && SWITCH_IN_ROUTINE == 16
+        && code(3) == POOL | DITHER_OK | 128
+);
 
 // The kinds. Without a pool entry (the setup decides among these):
 /// Gouraud, 20-bit attribute rows, any depth test and colour type (`Span::fill_gouraud`).

@@ -23,7 +23,7 @@ use crate::geometry::vertex_record;
 use crate::kernel;
 use crate::kernel::records::{
     first_pixel, ActiveList, ActiveTri, Bins, CullCounts, ScreenVertex, Sorted, TriRecord,
-    DITHER_OK, FAST, FLAT, LIT, NEEDS_LIGHT,
+    DITHER_OK, FAST, FLAT, LAST_IN_ROUTINE, LIT, NEEDS_LIGHT, SWITCH_IN_ROUTINE,
 };
 use crate::kernel::records::{CullStop, Edge};
 use crate::num::math::Mat4;

@@ -322,8 +322,24 @@ fn rows_case(n: u32, dither: bool) -> Option<u32> {
         let mut b = ActiveList::<4>::new();
         for row in 0..H {
             for t in tris.iter().filter(|t| first(t) == row) {
-                a.push_with(|r| r.setup::<Rgb565>(t, &v, row, H, mode));
-                b.push_with(|r| r.setup::<Rgb565>(t, &v, row, H, mode));
+                // One triangle in four is set up as a pool kind is (no fast path) and may
+                // carry a pool kind's code in the routine's last and switch bits
+                // (`raster::kind`): the routine must leave it to `draw_row`, which draws it
+                // by its attribute layout alone.
+                let r = next();
+                let m = if r & 3 == 0 {
+                    SpanMode::default()
+                } else {
+                    mode
+                };
+                let code = (r >> 8) as u8 & (LAST_IN_ROUTINE | SWITCH_IN_ROUTINE);
+                for list in [&mut a, &mut b] {
+                    let n = list.len();
+                    list.push_with(|r| r.setup::<Rgb565>(t, &v, row, H, m));
+                    if list.len() > n && list.get_mut(n).flags & FAST == 0 {
+                        list.get_mut(n).flags |= code;
+                    }
+                }
             }
             let (mut ca, mut za) = ([Rgb565::new(0, 0, 0); W], [u16::MAX; W]);
             let (mut cb, mut zb) = (ca, za);

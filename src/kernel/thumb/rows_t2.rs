@@ -385,6 +385,9 @@ core::arch::global_asm!(
     "beq 12b",
     "tst r0, #{last_flag}",
     "beq 26f",
+    // Only a fast triangle's bit: a pool kind keeps a code there (`raster::kind`).
+    "tst r0, #{fast}",
+    "beq 12b",
     // The last row: drawn, then the last record (slot n − 1) moves into slot i, as
     // `ActiveList::swap_remove`.
     "ubfx r6, r1, #0, #15",
@@ -423,6 +426,8 @@ core::arch::global_asm!(
     // `ActiveTri::advance` moves them at the switch (gx stays in r3, r9, r11).
     "26:",
     "tst r0, #{switch_flag}",
+    "beq 12b",
+    "tst r0, #{fast}",
     "beq 12b",
     "ubfx r6, r1, #0, #15",
     "ubfx r9, r3, #0, #15",
@@ -575,6 +580,7 @@ core::arch::global_asm!(
     flags = const o::FLAGS,
     switch_flag = const o::SWITCH,
     last_flag = const o::LAST,
+    fast = const o::FAST,
     mid_left = const o::MID_LEFT,
     row_mid = const o::ROW_MID,
     row_end = const o::ROW_END,
