@@ -686,6 +686,27 @@ pub enum LayerError {
     },
     /// The volumes' `reach` is not a valid positive number.
     Reach,
+    /// A shadow map of `size` texels a side on a renderer of `width × height`: the map's rows
+    /// are drawn as strips of the renderer, so `size` ≤ `W` and ≤ `H`
+    /// ([`crate::shadow::ShadowMap`]).
+    MapLargerThanViewport {
+        /// The map's side.
+        size: usize,
+        /// The renderer's `W`.
+        width: usize,
+        /// The renderer's `H`.
+        height: usize,
+    },
+    /// The point light of a shadow map is inside receiver `object`'s bounding sphere, or its
+    /// receivers are spread over more than [`crate::shadow::MAX_MAP_FOV`] as seen from it:
+    /// one map (one perspective view from the light) cannot see them all.
+    LightInside {
+        /// Index of the object in the scene.
+        object: usize,
+    },
+    /// A shadow map's receivers (or, with none given, the scene's opaque objects) have no
+    /// extent to fit the light's view to: no object, or only empty or degenerate meshes.
+    EmptyBounds,
 }
 
 impl core::fmt::Display for LayerError {
@@ -730,6 +751,22 @@ impl core::fmt::Display for LayerError {
                 "object {object} has {triangles} triangles, the stencil lines mark at most {capacity}"
             ),
             LayerError::Reach => write!(f, "the shadow volumes' reach is not a positive number"),
+            LayerError::MapLargerThanViewport {
+                size,
+                width,
+                height,
+            } => write!(
+                f,
+                "a shadow map of {size} texels a side needs a renderer at least that wide and tall ({width} x {height})"
+            ),
+            LayerError::LightInside { object } => write!(
+                f,
+                "the shadow map's point light is inside receiver {object}, or its receivers are too widely spread around it for one map"
+            ),
+            LayerError::EmptyBounds => write!(
+                f,
+                "the shadow map's receivers have no extent to fit the light's view to"
+            ),
             LayerError::Blending => {
                 write!(f, "the target colour cannot report its channels for blending")
             }

@@ -277,11 +277,12 @@ pub mod color {
 }
 
 /// Shadows and edges: planar (projected) and volume shadows, blob shadows, outlines and
-/// wireframe edges, and how translucent layers are ordered.
+/// wireframe edges, how translucent layers are ordered, and shadow maps.
 pub mod shadow {
     pub use crate::raster::shadow::{
         Edges, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow,
     };
+    pub use crate::raster::shadow_map::{ShadowMap, ShadowMapping, MAP_MARGIN, MAX_MAP_FOV};
 }
 
 /// HDR tone mapping: the curves and the automatic exposure ([`ToneMap`] is

@@ -31,6 +31,7 @@ pub(crate) mod phong;
 pub(crate) mod seek;
 pub(crate) mod setup;
 pub(crate) mod shadow;
+pub(crate) mod shadow_map;
 pub(crate) mod span;
 pub(crate) mod state;
 pub(crate) mod strip;

@@ -6,6 +6,33 @@
 use crate::num::math::{Mat4, Vec3};
 use crate::num::scalar::Scalar;
 
+/// A sphere around `object` in world units, `(centre, radius)`: its transform's origin, and
+/// the mesh's largest distance from its own origin times the transform's largest column length
+/// (its largest scale). Loose for a mesh far from its origin, never too small for an affine
+/// transform. In f64 from the number type's values; a few products per vertex in the number
+/// type (no f64 per vertex, which is soft float on a Cortex-M0; a square that does not fit the
+/// type counts as three times its largest coordinate's square).
+pub(crate) fn object_sphere<S: Scalar>(object: &crate::Object<'_, S>) -> ([f64; 3], f64) {
+    let t = object.transform.m.map(|r| r.map(|v| v.to_f64()));
+    let mut r2 = 0.0f64;
+    for &q in object.mesh.positions() {
+        let d = crate::num::math::dot(q, q);
+        let v = if d.is_valid() {
+            d.to_f64()
+        } else {
+            let m = q.iter().fold(0.0f64, |m, c| m.max(c.to_f64().abs()));
+            3.0 * m * m
+        };
+        r2 = r2.max(v);
+    }
+    let scale = (0..3).fold(0.0f64, |m, j| {
+        m.max(libm::sqrt(
+            t[0][j] * t[0][j] + t[1][j] * t[1][j] + t[2][j] * t[2][j],
+        ))
+    });
+    ([t[0][3], t[1][3], t[2][3]], libm::sqrt(r2) * scale)
+}
+
 /// How a planar shadow is drawn.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 #[non_exhaustive]
@@ -93,8 +120,7 @@ impl<S: Scalar> PlanarShadow<S> {
         m: &Mat4<S>,
         caster: &crate::Object<'_, S>,
     ) -> Option<[Mat4<S>; BLOB_RINGS]> {
-        let t = caster.transform.m.map(|r| r.map(|v| v.to_f64()));
-        let origin = [t[0][3], t[1][3], t[2][3]];
+        let (origin, radius) = object_sphere(caster);
         let c = m.m.map(|r| r.map(|v| v.to_f64()));
         let h: [f64; 4] = core::array::from_fn(|i| {
             c[i][0] * origin[0] + c[i][1] * origin[1] + c[i][2] * origin[2] + c[i][3]
@@ -103,27 +129,6 @@ impl<S: Scalar> PlanarShadow<S> {
             return None;
         }
         let centre = [h[0] / h[3], h[1] / h[3], h[2] / h[3]];
-        // The mesh's largest distance from its origin (squared in the number type: a few
-        // products a vertex, no f64 per vertex, which is soft float on a Cortex-M0; a square
-        // that does not fit the type counts as three times its largest coordinate's square),
-        // times the transform's largest column length (its largest scale).
-        let mut r2 = 0.0f64;
-        for &q in caster.mesh.positions() {
-            let d = crate::num::math::dot(q, q);
-            let v = if d.is_valid() {
-                d.to_f64()
-            } else {
-                let m = q.iter().fold(0.0f64, |m, c| m.max(c.to_f64().abs()));
-                3.0 * m * m
-            };
-            r2 = r2.max(v);
-        }
-        let scale = (0..3).fold(0.0f64, |m, j| {
-            m.max(libm::sqrt(
-                t[0][j] * t[0][j] + t[1][j] * t[1][j] + t[2][j] * t[2][j],
-            ))
-        });
-        let radius = libm::sqrt(r2) * scale;
         let (u, n, w) = plane_basis(self.plane.map(|v| v.to_f64()));
         Some(core::array::from_fn(|k| {
             let r = radius * (BLOB_RINGS - k) as f64 / BLOB_RINGS as f64;

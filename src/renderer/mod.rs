@@ -6,6 +6,7 @@
 //! is the one place that holds both.
 
 pub(crate) mod layered;
+pub(crate) mod mapped;
 pub(crate) mod no_depth;
 pub(crate) mod pass;
 

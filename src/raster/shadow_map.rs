@@ -1,0 +1,363 @@
+//! Shadow mapping (the seeds' fourth shadow method, for parts with the RAM for a map): the
+//! casters drawn depth-only from the light into a caller-owned [`ShadowMap`] by
+//! [`crate::Renderer::shadow_map_pass`], through the renderer's own geometry stage and strip
+//! pass (each map row is a row of a strip, with the same clipping and fill rule as a frame),
+//! with the light's view fitted to the receivers ([`ShadowMapping::light_camera`]).
+//!
+//! A scene without a map pays nothing for it: the map, its size and the light's view are the
+//! caller's, outside the renderer (as [`crate::Layers`] are).
+
+use crate::error::{Error, LayerError};
+use crate::num::math::Mat4;
+use crate::num::scalar::Scalar;
+use crate::raster::shadow::{object_sphere, ShadowLight};
+use crate::scene::camera::{Camera, Projection, MAX_DEPTH_RATIO};
+use crate::scene::Scene;
+
+/// The widest full angle (radians) a point light's map is fitted to: 2.6 rad, 149°. Receivers
+/// spread wider around the light fail with [`LayerError::LightInside`] (one perspective view
+/// cannot hold them; the texels at the map's rim would be stretched `1/cos²` of 75°, 15 times).
+pub const MAX_MAP_FOV: f64 = 2.6;
+
+/// Texels of margin on each side of the receivers in a fitted map (so that a filter reading
+/// the texels around a receiver's edge pixel stays inside the map).
+pub const MAP_MARGIN: usize = 2;
+
+/// What a shadow map is drawn from: the light, the objects that cast into the map, and the
+/// objects the light's view is fitted to (the receivers), or a light camera given outright.
+///
+/// ```
+/// # use scanline3d::shadow::{ShadowLight, ShadowMapping};
+/// let mapping = ShadowMapping::new(ShadowLight::Directional([1.0f32, 2.0, 1.0]), &[1], &[0]);
+/// assert!(mapping.camera.is_none());
+/// ```
+#[derive(Copy, Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct ShadowMapping<'a, S> {
+    /// The light: a direction (an orthographic view along it) or a point (a perspective view
+    /// from it, toward the receivers).
+    pub light: ShadowLight<S>,
+    /// The objects drawn into the map (indices into the scene's objects).
+    pub casters: &'a [usize],
+    /// The objects the light's view is fitted to; empty: every opaque object of the scene.
+    pub receivers: &'a [usize],
+    /// The light's camera as given (any view and projection; the map's aspect is 1), or `None`
+    /// to fit it ([`ShadowMapping::light_camera`]).
+    pub camera: Option<Camera<S>>,
+}
+
+impl<'a, S: Scalar> ShadowMapping<'a, S> {
+    /// A map from `light` of `casters`, fitted to `receivers` (empty: every opaque object).
+    #[must_use]
+    pub const fn new(light: ShadowLight<S>, casters: &'a [usize], receivers: &'a [usize]) -> Self {
+        ShadowMapping {
+            light,
+            casters,
+            receivers,
+            camera: None,
+        }
+    }
+
+    /// This mapping drawn from `camera` instead of a fitted one (a spot light's cone, or a
+    /// fixed view that does not move with the receivers).
+    #[must_use]
+    pub const fn with_camera(self, camera: Camera<S>) -> Self {
+        ShadowMapping {
+            camera: Some(camera),
+            ..self
+        }
+    }
+
+    /// The light's camera for a map of `size` texels a side: the given one, or one fitted to
+    /// the receivers' bounding spheres ([`MAP_MARGIN`] texels inside the map's border).
+    ///
+    /// - A directional light: an orthographic view along the light, square, around the
+    ///   receivers' spheres as seen along it, and deep enough for the receivers and every caster
+    ///   whose sphere overlaps them in that view (a caster outside it cannot shadow them).
+    /// - A point light: a perspective view from the light toward the centre of the receivers'
+    ///   bounding box, wide enough for every receiver's sphere, from the nearest receiver's or
+    ///   caster's sphere (casters around the light are clipped at the near plane) to the
+    ///   farthest receiver's.
+    ///
+    /// Computed in f64 once per map (the same on every core), then built in the number type
+    /// with [`Camera::look_at`].
+    ///
+    /// # Errors
+    ///
+    /// [`LayerError::NoSuchObject`], [`LayerError::Shadow`] (a light direction or position
+    /// that is not a finite non-zero number), [`LayerError::EmptyBounds`],
+    /// [`LayerError::LightInside`] (inside [`Error::Layers`]), and [`Error::Camera`] when the
+    /// fitted camera does not fit the number type.
+    pub fn light_camera<const L: usize>(
+        &self,
+        scene: &Scene<'_, S, L>,
+        size: usize,
+    ) -> Result<Camera<S>, Error<core::convert::Infallible>> {
+        let n = scene.objects.len();
+        for &i in self.casters.iter().chain(self.receivers) {
+            if i >= n {
+                return Err(Error::Layers(LayerError::NoSuchObject { index: i }));
+            }
+        }
+        if let Some(c) = self.camera {
+            c.validate().map_err(Error::Camera)?;
+            return Ok(c);
+        }
+        let sphere = |i: usize| object_sphere(&scene.objects[i]);
+        let receives = |i: usize| {
+            if self.receivers.is_empty() {
+                scene.objects[i].material.alpha == 255
+            } else {
+                self.receivers.contains(&i)
+            }
+        };
+        // The receivers' spheres (recomputed by each loop over them: no store, whatever
+        // their number).
+        let rec = || {
+            (0..n)
+                .filter(move |&i| receives(i))
+                .map(move |i| {
+                    let (c, r) = sphere(i);
+                    (i, c, r)
+                })
+                .filter(|&(_, c, r)| c.iter().all(|v| v.is_finite()) && r.is_finite() && r > 0.0)
+        };
+        let Some(first) = rec().next() else {
+            return Err(Error::Layers(LayerError::EmptyBounds));
+        };
+        let shrink = size as f64 / (size as f64 - 2.0 * MAP_MARGIN as f64).max(1.0);
+        let (eye, target, up, projection) = match self.light {
+            ShadowLight::Directional(d) => {
+                let l = unit(d.map(|v| v.to_f64())).ok_or(Error::Layers(LayerError::Shadow))?;
+                let up = up_for(l);
+                let u = unit(cross(up, l)).ok_or(Error::Layers(LayerError::Shadow))?;
+                let v = cross(l, u);
+                let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+                for (_, c, r) in rec() {
+                    for (k, axis) in [u, v].iter().enumerate() {
+                        lo[k] = lo[k].min(dot(c, *axis) - r);
+                        hi[k] = hi[k].max(dot(c, *axis) + r);
+                    }
+                }
+                let side = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+                let height = side * shrink;
+                let mid = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
+                // Depth along the light: the receivers, and the casters that overlap them as
+                // seen along it.
+                let (mut t0, mut t1) = (f64::MAX, f64::MIN);
+                let overlaps = |c: [f64; 3], r: f64| {
+                    (dot(c, u) - mid[0]).abs() <= height / 2.0 + r
+                        && (dot(c, v) - mid[1]).abs() <= height / 2.0 + r
+                };
+                let casters = self.casters.iter().map(|&i| {
+                    let (c, r) = sphere(i);
+                    (i, c, r)
+                });
+                for (_, c, r) in rec().chain(casters) {
+                    if c.iter().all(|v| v.is_finite()) && r.is_finite() && overlaps(c, r) {
+                        t0 = t0.min(dot(c, l) - r);
+                        t1 = t1.max(dot(c, l) + r);
+                    }
+                }
+                let pad = (t1 - t0) / 64.0;
+                let eye = add(add(scale(u, mid[0]), scale(v, mid[1])), scale(l, t1 + pad));
+                let far = t1 - t0 + 2.0 * pad;
+                (
+                    eye,
+                    sub(eye, l),
+                    up,
+                    Projection::Orthographic {
+                        height,
+                        near: 0.0,
+                        far,
+                    },
+                )
+            }
+            ShadowLight::Point(p) => {
+                let p = p.map(|v| v.to_f64());
+                if !p.iter().all(|v| v.is_finite()) {
+                    return Err(Error::Layers(LayerError::Shadow));
+                }
+                let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+                for (i, c, r) in rec() {
+                    if length(sub(c, p)) <= r {
+                        return Err(Error::Layers(LayerError::LightInside { object: i }));
+                    }
+                    for k in 0..3 {
+                        lo[k] = lo[k].min(c[k] - r);
+                        hi[k] = hi[k].max(c[k] + r);
+                    }
+                }
+                let centre = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
+                let axis = unit(sub(centre, p))
+                    .or_else(|| unit(sub(first.1, p)))
+                    .ok_or(Error::Layers(LayerError::Shadow))?;
+                let (mut half, mut widest, mut far) = (0.0f64, first.0, 0.0f64);
+                for (i, c, r) in rec() {
+                    let d = sub(c, p);
+                    let dist = length(d);
+                    let a = libm::acos((dot(d, axis) / dist).clamp(-1.0, 1.0))
+                        + libm::asin((r / dist).min(1.0));
+                    if a > half {
+                        (half, widest) = (a, i);
+                    }
+                    far = far.max(dist + r);
+                }
+                let half = libm::atan(libm::tan(half.min(1.5)) * shrink);
+                if half.is_nan() || 2.0 * half >= MAX_MAP_FOV {
+                    return Err(Error::Layers(LayerError::LightInside { object: widest }));
+                }
+                let far = far * (1.0 + 1.0 / 64.0);
+                let mut near = f64::MAX;
+                let casters = self.casters.iter().map(|&i| {
+                    let (c, r) = sphere(i);
+                    (i, c, r)
+                });
+                for (_, c, r) in rec().chain(casters) {
+                    let gap = length(sub(c, p)) - r;
+                    if gap > 0.0 {
+                        near = near.min(gap);
+                    }
+                }
+                let near = (near * (1.0 - 1.0 / 64.0)).max(2.0 * far / MAX_DEPTH_RATIO);
+                let projection = Projection::Perspective {
+                    fov_y: 2.0 * half,
+                    near,
+                    far,
+                };
+                (p, add(p, axis), up_for(axis), projection)
+            }
+        };
+        let s = |v: [f64; 3]| v.map(S::from_f64);
+        let projection = match projection {
+            Projection::Perspective { fov_y, near, far } => Projection::Perspective {
+                fov_y: S::from_f64(fov_y),
+                near: S::from_f64(near),
+                far: S::from_f64(far),
+            },
+            Projection::Orthographic { height, near, far } => Projection::Orthographic {
+                height: S::from_f64(height),
+                near: S::from_f64(near),
+                far: S::from_f64(far),
+            },
+        };
+        Camera::look_at(s(eye), s(target), s(up), projection).map_err(Error::Camera)
+    }
+}
+
+/// A shadow map of `N × N` texels, owned by the caller (a `static` on a device, as
+/// [`crate::Layers`] are): the depth of the nearest caster at each texel as the light sees it,
+/// drawn by [`crate::Renderer::shadow_map_pass`]. `N` is a power of two from 8 to 256
+/// (`2·N²` bytes: 2 KB at 32, 8 KB at 64, 32 KB at 128), and at most the renderer's `W` and
+/// `H` (the map's rows are drawn as rows of the renderer's strips).
+#[derive(Clone, Debug)]
+pub struct ShadowMap<const N: usize> {
+    /// Row `r`, column `c`: the depth at texel centre `(c + ½, r + ½)` of the map (row 0 at the
+    /// top of the light's view), u16, 0 = the light's near plane, 65535 = its far plane or no
+    /// caster (step 1/65535 of the depth range: linear in distance for a directional light,
+    /// `z/w` for a point light, as a frame's depth lines).
+    pub(crate) depth: [[u16; N]; N],
+    /// World → map, homogeneous: `(x, y, d, w)` with texel coordinates `x/w`, `y/w` (0..N,
+    /// texel `c` from `c` to `c + 1`) and depth `d/w` (0..=65535), in f64 from the camera the
+    /// map was drawn with (its number type's values). Zero before the first pass.
+    pub(crate) to_map: [[f64; 4]; 4],
+    /// A pass drew the map.
+    pub(crate) drawn: bool,
+}
+
+impl<const N: usize> ShadowMap<N> {
+    /// The map's bytes (`size_of::<Self>()`: the texels and the light's matrix).
+    pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
+    const CHECK: () = assert!(
+        N.is_power_of_two() && N >= 8 && N <= 256,
+        "a shadow map's side N must be a power of two from 8 to 256"
+    );
+
+    /// An empty map (every texel 65535, no caster), as a `const fn` for a `static`.
+    #[must_use]
+    pub const fn new() -> Self {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::CHECK;
+        ShadowMap {
+            depth: [[u16::MAX; N]; N],
+            to_map: [[0.0; 4]; 4],
+            drawn: false,
+        }
+    }
+
+    /// The texels, row by row (see the type's docs).
+    #[must_use]
+    pub fn depth(&self) -> &[[u16; N]; N] {
+        &self.depth
+    }
+
+    /// The world → map matrix of the last pass (homogeneous `(x, y, d, w)`: texel `x/w`,
+    /// `y/w` in 0..N, depth `d/w` in 0..=65535, as the map stores it), or `None` before the
+    /// first pass.
+    #[must_use]
+    pub fn world_to_map(&self) -> Option<[[f64; 4]; 4]> {
+        self.drawn.then_some(self.to_map)
+    }
+
+    /// Records the camera the map was drawn with (see [`ShadowMap::world_to_map`]): its view
+    /// and projection (aspect 1) in the number type, then the viewport's map to texels and
+    /// depth steps.
+    pub(crate) fn set_camera<S: Scalar>(&mut self, camera: &Camera<S>) {
+        let f = |m: Mat4<S>| m.m.map(|r| r.map(|v| v.to_f64()));
+        let (v, p) = (f(camera.view), f(camera.projection.matrix(S::ONE)));
+        let clip: [[f64; 4]; 4] = core::array::from_fn(|i| {
+            core::array::from_fn(|j| (0..4).map(|k| p[i][k] * v[k][j]).sum())
+        });
+        let h = N as f64 / 2.0;
+        self.to_map = [
+            core::array::from_fn(|j| h * (clip[0][j] + clip[3][j])),
+            core::array::from_fn(|j| h * (clip[3][j] - clip[1][j])),
+            core::array::from_fn(|j| 65535.0 * clip[2][j]),
+            clip[3],
+        ];
+        self.drawn = true;
+    }
+}
+
+impl<const N: usize> Default for ShadowMap<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
+    a.map(|v| v * s)
+}
+fn length(a: [f64; 3]) -> f64 {
+    libm::sqrt(dot(a, a))
+}
+/// `a` normalized, or `None` when it is zero or not finite.
+fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
+    let l = length(a);
+    (l.is_finite() && l > 0.0).then(|| scale(a, 1.0 / l))
+}
+/// An up vector not parallel to the view direction `d` (a unit vector): +Y, or +X when `d` is
+/// within 8° of vertical.
+fn up_for(d: [f64; 3]) -> [f64; 3] {
+    if d[1].abs() > 0.99 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    }
+}
