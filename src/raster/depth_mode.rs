@@ -15,6 +15,7 @@
 use crate::kernel::records::{ActiveList, ScreenVertex, TriRecord};
 use crate::raster::kind::draw_row;
 use crate::raster::span::NONE;
+use crate::raster::span_map::NoMap;
 use crate::raster::DepthTest;
 use crate::scene::color::TargetColor;
 
@@ -75,7 +76,7 @@ pub(crate) fn draw_row_no_depth<C: TargetColor, const N: usize>(
         Some(ord) if painter => {
             while i < active.len() {
                 let slot = ord[i] as usize;
-                let (f, w, done) = draw_row::<C, NONE, false>(
+                let (f, w, done) = draw_row::<C, NONE, false, NoMap>(
                     active.get_mut(slot),
                     &mut [],
                     row as i32,
@@ -83,6 +84,7 @@ pub(crate) fn draw_row_no_depth<C: TargetColor, const N: usize>(
                     &mut [],
                     DepthTest::Always,
                     dither,
+                    NoMap,
                 );
                 sum = (sum.0 + f, sum.1 + w);
                 if !done {
@@ -103,7 +105,7 @@ pub(crate) fn draw_row_no_depth<C: TargetColor, const N: usize>(
         }
         _ => {
             while i < active.len() {
-                let (f, w, done) = draw_row::<C, NONE, false>(
+                let (f, w, done) = draw_row::<C, NONE, false, NoMap>(
                     active.get_mut(i),
                     &mut [],
                     row as i32,
@@ -111,6 +113,7 @@ pub(crate) fn draw_row_no_depth<C: TargetColor, const N: usize>(
                     &mut [],
                     DepthTest::Always,
                     dither,
+                    NoMap,
                 );
                 sum = (sum.0 + f, sum.1 + w);
                 match (done, painter) {

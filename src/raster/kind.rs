@@ -21,6 +21,7 @@ use crate::geometry::pool::{ActiveExtra, FREE, MODE_FAST_PHONG, MODE_PHONG, MODE
 use crate::geometry::project::ScreenVertex;
 use crate::geometry::vertex_extra::VertexExtra;
 use crate::raster::span::{LESS, NONE};
+use crate::raster::span_map::{NoMap, SpanMap};
 use crate::raster::textured::attach_textured;
 use crate::raster::*;
 use crate::scene::color::TargetColor;
@@ -116,12 +117,13 @@ pub(crate) fn needs_pool(t: &TriRecord, xverts: &[VertexExtra]) -> bool {
 /// decided), and, when it needs one (`pooled`: the renderer has attribute stores, a constant
 /// where it is called, else never),
 /// given its planes in a free entry of `pool` and its pool kind. `then` runs on the record
-/// once it is kept (a seek moves it to its row there). Returns false when it was left out (the
+/// once it is kept (a seek moves it to its row there). `_map`: the frame's shadow map context
+/// ([`SpanMap`]). Returns false when it was left out (the
 /// list or the pool full: the caller counts it); true also when it covers no row and was not
 /// added (the list's length tells).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn enter<C: TargetColor, const N: usize>(
+pub(crate) fn enter<C: TargetColor, const N: usize, M: SpanMap>(
     pooled: bool,
     active: &mut ActiveList<N>,
     pool: &mut [ActiveExtra],
@@ -131,6 +133,7 @@ pub(crate) fn enter<C: TargetColor, const N: usize>(
     row: i32,
     height: i32,
     mode: SpanMode,
+    _map: M,
     then: impl FnOnce(&mut ActiveTri),
 ) -> bool {
     let pooled = pooled && needs_pool(t, xverts);
@@ -164,14 +167,15 @@ pub(crate) fn enter<C: TargetColor, const N: usize>(
 /// Draws row `row` of triangle `a` by its kind into one line of the strip (`colors`, and
 /// `depth` unless `Z` is [`NONE`]: a renderer without depth lines) and moves it to the next
 /// row; frees its pool entry when this was its last row. `POOLED`: the renderer has attribute
-/// stores (without them, the pool kinds' arms are compiled out). Returns `(fragments tested,
+/// stores (without them, the pool kinds' arms are compiled out); `map`: the frame's shadow
+/// map context ([`SpanMap`]). Returns `(fragments tested,
 /// pixels written, finished)`. The one dispatch on the kind: the pool kinds in
 /// [`pool_row`], the others in [`plain_row`], each out of line (in one function, the pool
 /// kinds' code made the plain kinds' rows of a renderer with a pool 50 instructions dearer on
 /// RISC-V: the icosphere's Gouraud frame +7 %).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn draw_row<C: TargetColor, const Z: u8, const POOLED: bool>(
+pub(crate) fn draw_row<C: TargetColor, const Z: u8, const POOLED: bool, M: SpanMap>(
     a: &mut ActiveTri,
     pool: &mut [ActiveExtra],
     row: i32,
@@ -179,11 +183,12 @@ pub(crate) fn draw_row<C: TargetColor, const Z: u8, const POOLED: bool>(
     depth: &mut [u16],
     test: DepthTest,
     dither: bool,
+    map: M,
 ) -> (u32, u32, bool) {
     if Z == NONE {
         plain_row_no_depth::<C>(a, row, colors, dither)
     } else if POOLED && a.has_pool_entry() {
-        pool_row::<C>(a, pool, row, colors, depth, test, dither)
+        pool_row::<C, M>(a, pool, row, colors, depth, test, dither, map)
     } else {
         plain_row::<C>(a, row, colors, depth, test, dither)
     }
@@ -258,8 +263,9 @@ fn plain_row_in<C: TargetColor, const Z: u8>(
 
 /// [`draw_row`] for the kinds with a pool entry: [`TEXTURED`], [`TEXTURED_FLAT`], [`PHONG`],
 /// [`FAST_PHONG`] and [`TOON`] (drawn with depth lines only).
+#[allow(clippy::too_many_arguments)]
 #[inline(never)]
-fn pool_row<C: TargetColor>(
+fn pool_row<C: TargetColor, M: SpanMap>(
     a: &mut ActiveTri,
     pool: &mut [ActiveExtra],
     row: i32,
@@ -267,6 +273,7 @@ fn pool_row<C: TargetColor>(
     depth: &mut [u16],
     test: DepthTest,
     dither: bool,
+    _map: M,
 ) -> (u32, u32, bool) {
     let (lc, xs, xe) = columns(a, colors.len().min(depth.len()));
     let mut counts = (0, 0);
@@ -326,6 +333,6 @@ impl ActiveTri {
         test: DepthTest,
         dither: bool,
     ) -> (u32, u32, bool) {
-        draw_row::<C, LESS, false>(self, &mut [], row, colors, depth, test, dither)
+        draw_row::<C, LESS, false, NoMap>(self, &mut [], row, colors, depth, test, dither, NoMap)
     }
 }

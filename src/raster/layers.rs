@@ -18,6 +18,7 @@ use crate::raster::layer_rows::{
     blend, darken_span, div255, outline_row, shadow_row, translucent_row, volume_row, Darken, Post,
 };
 use crate::raster::shadow::{Edges, ShadowLight};
+use crate::raster::span_map::NoMap;
 use crate::raster::state::Raster;
 use crate::raster::strip::draw_list_row;
 use crate::raster::volume::volume_sign;
@@ -188,7 +189,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
                 ..
             } = self;
             let (colors, depth) = (&mut color[l][..vw], &mut depth[l][..vw]);
-            draw_list_row::<C, RA, XA>(
+            draw_list_row::<C, RA, XA, NoMap>(
                 &mut layers.receivers,
                 &mut geo.xactive,
                 row,
@@ -197,6 +198,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
                 *depth_test,
                 *dither,
                 stats,
+                NoMap,
             );
             let Layers {
                 stencil,
@@ -224,7 +226,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
                 let (frag, written) = shadow_row(t, colors, depth, stencil, d, blob);
                 stats.add_row(frag, written);
             });
-            draw_list_row::<C, ACTIVE, XA>(
+            draw_list_row::<C, ACTIVE, XA, NoMap>(
                 active,
                 &mut geo.xactive,
                 row as usize,
@@ -233,6 +235,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
                 *depth_test,
                 *dither,
                 stats,
+                NoMap,
             );
             if *volume {
                 // Count the volume faces behind the surface, then darken where the count is
@@ -317,7 +320,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
             // A shadow polygon or a translucent triangle: unpacked rows (no fast path).
             let before = layers.post.len();
             let m = SpanMode::default();
-            if !enter::<C, PA>(
+            if !enter::<C, PA, NoMap>(
                 false,
                 &mut layers.post,
                 &mut [],
@@ -327,6 +330,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
                 row as i32,
                 h,
                 m,
+                NoMap,
                 |_| {},
             ) {
                 return false;
@@ -358,7 +362,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
         let pooled = XV > 0 && XA > 0;
         macro_rules! push {
             ($list:expr, $n:ident) => {
-                enter::<C, $n>(
+                enter::<C, $n, NoMap>(
                     pooled,
                     &mut $list,
                     &mut geo.xactive,
@@ -368,6 +372,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
                     row as i32,
                     h,
                     mode,
+                    NoMap,
                     |_| {},
                 )
             };

@@ -33,6 +33,7 @@ pub(crate) mod setup;
 pub(crate) mod shadow;
 pub(crate) mod shadow_map;
 pub(crate) mod span;
+pub(crate) mod span_map;
 pub(crate) mod state;
 pub(crate) mod strip;
 pub(crate) mod textured;

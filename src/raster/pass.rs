@@ -12,6 +12,7 @@ use crate::error::Error;
 use crate::geometry::pool::{ActiveExtra, TRI};
 use crate::kernel::records::ActiveList;
 use crate::raster::seek::seek;
+use crate::raster::span_map::NoMap;
 use crate::raster::strip::{strip_rows, FrameView, PassMut};
 use crate::scene::color::TargetColor;
 use crate::stats::{NoProbe, Stats};
@@ -207,7 +208,7 @@ impl<
         self.stats = Stats::ZERO;
         self.skipped = 0;
         if start < self.end_row {
-            self.skipped = seek::<C, ACTIVE, XA>(
+            self.skipped = seek::<C, ACTIVE, XA, NoMap>(
                 &mut self.active,
                 &mut self.pool,
                 None,
@@ -216,6 +217,7 @@ impl<
                 frame.mode,
                 frame.painter,
                 frame.dither,
+                frame.map,
             );
         }
         Ok(())
@@ -254,14 +256,17 @@ impl<
             Some(lines) => lines,
             None => self.color.as_mut_slice(),
         };
-        Ok(
-            strip_rows::<C, NoProbe, W, ACTIVE, LINES, XV, XA, ZL, true>(
-                frame,
-                pass,
-                lines,
-                limit,
-                &mut NoProbe,
-            ),
-        )
+        Ok(strip_rows::<
+            C,
+            NoProbe,
+            W,
+            ACTIVE,
+            LINES,
+            XV,
+            XA,
+            ZL,
+            true,
+            NoMap,
+        >(frame, pass, lines, limit, &mut NoProbe))
     }
 }

@@ -19,6 +19,7 @@ use crate::geometry::vertex_extra::VertexExtra;
 use crate::kernel::records::{first_pixel, ActiveList, ScreenVertex, TriRecord};
 use crate::raster::depth_mode::{painter_insert, painter_key};
 use crate::raster::kind::{enter, needs_pool};
+use crate::raster::span_map::SpanMap;
 use crate::raster::SpanMode;
 use crate::scene::color::TargetColor;
 
@@ -72,7 +73,7 @@ fn row_end(t: &TriRecord, verts: &[ScreenVertex], row: i32, height: i32) -> Opti
 /// line it kept 2.1 KB in the Pico firmware's RAM code.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn seek<C: TargetColor, const N: usize, const XA: usize>(
+pub(crate) fn seek<C: TargetColor, const N: usize, const XA: usize, M: SpanMap>(
     active: &mut ActiveList<N>,
     pool: &mut [ActiveExtra],
     ord: Option<&mut [i16]>,
@@ -81,6 +82,7 @@ pub(crate) fn seek<C: TargetColor, const N: usize, const XA: usize>(
     mode: SpanMode,
     painter: bool,
     dither: bool,
+    map: M,
 ) -> u32 {
     let h = rows.vh as i32;
     let target = row as i32;
@@ -98,7 +100,7 @@ pub(crate) fn seek<C: TargetColor, const N: usize, const XA: usize>(
             let pooled = XA > 0 && !pool.is_empty() && needs_pool(rec, rows.xverts);
             let before = active.len();
             let kept = if crosses || pooled {
-                enter::<C, N>(
+                enter::<C, N, M>(
                     pooled,
                     active,
                     pool,
@@ -108,6 +110,7 @@ pub(crate) fn seek<C: TargetColor, const N: usize, const XA: usize>(
                     b as i32,
                     h,
                     mode,
+                    map,
                     |a| {
                         if crosses {
                             a.advance_to(b as i32, target);

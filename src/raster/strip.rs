@@ -13,6 +13,7 @@ use crate::raster::depth_mode::{draw_row_no_depth, painter_insert, painter_key};
 use crate::raster::kind::{draw_row, enter};
 use crate::raster::seek::Rows;
 use crate::raster::span::LESS;
+use crate::raster::span_map::{NoMap, SpanMap};
 use crate::raster::{ActiveList, SpanMode};
 use crate::scene::color::{rgb565_word, rgb565_words_mut, TargetColor};
 
@@ -204,6 +205,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
             dither: *dither,
             mode,
             painter,
+            map: NoMap,
         };
         let pass = PassMut {
             active,
@@ -219,7 +221,9 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
             Some(lines) => lines,
             None => color.as_mut_slice(),
         };
-        strip_rows::<C, P, W, ACTIVE, LINES, XV, XA, ZL, CLEAR>(frame, pass, lines, limit, probe)
+        strip_rows::<C, P, W, ACTIVE, LINES, XV, XA, ZL, CLEAR, NoMap>(
+            frame, pass, lines, limit, probe,
+        )
     }
 
     /// What a strip pass reads of the frame prepared in `geo`.
@@ -250,15 +254,17 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
             dither: self.dither,
             mode,
             painter,
+            map: NoMap,
         }
     }
 }
 
 /// What a strip pass reads of a prepared frame (shared by every pass of it): its rows (the
 /// vertex and attribute stores, triangles and buckets), the viewport's width, the background,
-/// and how triangles are set up and drawn.
+/// how triangles are set up and drawn, and its shadow map context ([`SpanMap`]; [`NoMap`]
+/// for a frame without one).
 #[derive(Clone, Copy)]
-pub(crate) struct FrameView<'a, C> {
+pub(crate) struct FrameView<'a, C, M: SpanMap = NoMap> {
     pub(crate) rows: Rows<'a>,
     pub(crate) vw: usize,
     pub(crate) background: C,
@@ -266,6 +272,7 @@ pub(crate) struct FrameView<'a, C> {
     pub(crate) dither: bool,
     pub(crate) mode: SpanMode,
     pub(crate) painter: bool,
+    pub(crate) map: M,
 }
 
 /// A strip pass's own state, borrowed from a renderer or a [`crate::StripPass`]: the active
@@ -303,8 +310,9 @@ pub(crate) fn strip_rows<
     const XA: usize,
     const ZL: usize,
     const CLEAR: bool,
+    M: SpanMap,
 >(
-    frame: FrameView<'_, C>,
+    frame: FrameView<'_, C, M>,
     pass: PassMut<'_, W, ACTIVE, ZL>,
     color: &mut [[C; W]],
     limit: usize,
@@ -335,6 +343,7 @@ pub(crate) fn strip_rows<
         dither,
         mode,
         painter,
+        map,
     } = frame;
     let y0 = *next_row;
     let stop = vh.min(end_row);
@@ -375,7 +384,7 @@ pub(crate) fn strip_rows<
             // constant tests, so that a renderer without attribute stores compiles the
             // setup without the pool.)
             let h = vh as i32;
-            if !enter::<C, ACTIVE>(
+            if !enter::<C, ACTIVE, M>(
                 XV > 0 && XA > 0,
                 active,
                 xactive,
@@ -385,6 +394,7 @@ pub(crate) fn strip_rows<
                 row as i32,
                 h,
                 mode,
+                map,
                 |_| {},
             ) {
                 *skipped = skipped.saturating_add(1);
@@ -406,7 +416,7 @@ pub(crate) fn strip_rows<
             stats.add_row(frag, written);
             continue;
         }
-        draw_list_row::<C, ACTIVE, XA>(
+        draw_list_row::<C, ACTIVE, XA, M>(
             active,
             xactive,
             row,
@@ -415,6 +425,7 @@ pub(crate) fn strip_rows<
             depth_test,
             dither,
             stats,
+            map,
         );
     }
     *next_row = y0 + lines;
@@ -428,7 +439,7 @@ pub(crate) fn strip_rows<
 /// layered).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn draw_list_row<C: TargetColor, const N: usize, const XA: usize>(
+pub(crate) fn draw_list_row<C: TargetColor, const N: usize, const XA: usize, M: SpanMap>(
     active: &mut crate::raster::ActiveList<N>,
     pool: &mut [crate::geometry::pool::ActiveExtra],
     row: usize,
@@ -437,18 +448,19 @@ pub(crate) fn draw_list_row<C: TargetColor, const N: usize, const XA: usize>(
     test: crate::raster::DepthTest,
     dither: bool,
     stats: &mut Stats,
+    map: M,
 ) {
     if XA > 0 {
-        draw_row_pooled(active, pool, row, colors, depth, test, dither, stats);
+        draw_row_pooled(active, pool, row, colors, depth, test, dither, stats, map);
     } else {
-        row_loop::<C, N, false>(active, pool, row, colors, depth, test, dither, stats);
+        row_loop::<C, N, false, M>(active, pool, row, colors, depth, test, dither, stats, map);
     }
 }
 
 /// [`draw_list_row`] for a renderer with the attribute pool.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
-fn draw_row_pooled<C: TargetColor, const N: usize>(
+fn draw_row_pooled<C: TargetColor, const N: usize, M: SpanMap>(
     active: &mut crate::raster::ActiveList<N>,
     pool: &mut [crate::geometry::pool::ActiveExtra],
     row: usize,
@@ -457,15 +469,16 @@ fn draw_row_pooled<C: TargetColor, const N: usize>(
     test: crate::raster::DepthTest,
     dither: bool,
     stats: &mut Stats,
+    map: M,
 ) {
-    row_loop::<C, N, true>(active, pool, row, colors, depth, test, dither, stats);
+    row_loop::<C, N, true, M>(active, pool, row, colors, depth, test, dither, stats, map);
 }
 
 /// The row loop: the row kernel, then each active triangle's row by its kind
 /// ([`draw_row`]; `POOLED`: with the pool kinds' arms).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn row_loop<C: TargetColor, const N: usize, const POOLED: bool>(
+fn row_loop<C: TargetColor, const N: usize, const POOLED: bool, M: SpanMap>(
     active: &mut crate::raster::ActiveList<N>,
     pool: &mut [crate::geometry::pool::ActiveExtra],
     row: usize,
@@ -474,6 +487,7 @@ fn row_loop<C: TargetColor, const N: usize, const POOLED: bool>(
     test: crate::raster::DepthTest,
     dither: bool,
     stats: &mut Stats,
+    map: M,
 ) {
     let mut i = 0;
     loop {
@@ -488,7 +502,7 @@ fn row_loop<C: TargetColor, const N: usize, const POOLED: bool>(
         if i >= active.len() {
             break;
         }
-        let (frag, written, done) = draw_row::<C, LESS, POOLED>(
+        let (frag, written, done) = draw_row::<C, LESS, POOLED, M>(
             active.get_mut(i),
             pool,
             row as i32,
@@ -496,6 +510,7 @@ fn row_loop<C: TargetColor, const N: usize, const POOLED: bool>(
             depth,
             test,
             dither,
+            map,
         );
         stats.add_row(frag, written);
         if done {

@@ -489,7 +489,7 @@ impl<
             vh,
         };
         let ord = (ACTIVE <= H).then_some(&mut self.geo.starts[..]);
-        let skipped = crate::raster::seek::seek::<C, ACTIVE, XA>(
+        let skipped = crate::raster::seek::seek::<C, ACTIVE, XA, _>(
             &mut self.ras.active,
             &mut self.geo.xactive,
             ord,
@@ -498,6 +498,7 @@ impl<
             mode,
             painter,
             self.ras.dither,
+            crate::raster::span_map::NoMap,
         );
         self.ras.active_skipped = self.ras.active_skipped.saturating_add(skipped);
     }
