@@ -33,6 +33,7 @@ mod properties;
 mod reference_raster;
 mod scenes;
 mod seek;
+mod shadow_map;
 mod shadows;
 mod strip_output;
 mod targets;

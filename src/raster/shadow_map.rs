@@ -24,7 +24,8 @@ pub const MAX_MAP_FOV: f64 = 2.6;
 pub const MAP_MARGIN: usize = 2;
 
 /// What a shadow map is drawn from: the light, the objects that cast into the map, and the
-/// objects the light's view is fitted to (the receivers), or a light camera given outright.
+/// objects that receive their shadows (the light's view is fitted to both), or a light camera
+/// given outright.
 ///
 /// ```
 /// # use scanline3d::shadow::{ShadowLight, ShadowMapping};
@@ -39,7 +40,7 @@ pub struct ShadowMapping<'a, S> {
     pub light: ShadowLight<S>,
     /// The objects drawn into the map (indices into the scene's objects).
     pub casters: &'a [usize],
-    /// The objects the light's view is fitted to; empty: every opaque object of the scene.
+    /// The objects shadowed by the map; empty: every opaque object of the scene.
     pub receivers: &'a [usize],
     /// The light's camera as given (any view and projection; the map's aspect is 1), or `None`
     /// to fit it ([`ShadowMapping::light_camera`]).
@@ -69,13 +70,16 @@ impl<'a, S: Scalar> ShadowMapping<'a, S> {
     }
 
     /// The light's camera for a map of `size` texels a side: the given one, or one fitted to
-    /// the receivers' bounding spheres ([`MAP_MARGIN`] texels inside the map's border).
+    /// where the casters' shadows can fall on the receivers, from the objects' bounding spheres
+    /// ([`MAP_MARGIN`] texels inside the map's border). The map's texels are spent there only: a
+    /// receiver's pixel outside the map is lit.
     ///
-    /// - A directional light: an orthographic view along the light, square, around the
-    ///   receivers' spheres as seen along it, and deep enough for the receivers and every caster
-    ///   whose sphere overlaps them in that view (a caster outside it cannot shadow them).
-    /// - A point light: a perspective view from the light toward the centre of the receivers'
-    ///   bounding box, wide enough for every receiver's sphere, from the nearest receiver's or
+    /// - A directional light: an orthographic view along the light, square, around the overlap
+    ///   of the receivers' and the casters' spheres as seen along it (the casters' alone when
+    ///   they do not overlap), and deep enough for the receivers and every caster whose sphere
+    ///   reaches that square.
+    /// - A point light: a perspective view from the light, around the casters' spheres (the
+    ///   receivers' when every caster's sphere holds the light), from the nearest receiver's or
     ///   caster's sphere (casters around the light are clipped at the near plane) to the
     ///   farthest receiver's.
     ///
@@ -122,6 +126,15 @@ impl<'a, S: Scalar> ShadowMapping<'a, S> {
                 })
                 .filter(|&(_, c, r)| c.iter().all(|v| v.is_finite()) && r.is_finite() && r > 0.0)
         };
+        let casters = || {
+            self.casters
+                .iter()
+                .map(move |&i| {
+                    let (c, r) = sphere(i);
+                    (i, c, r)
+                })
+                .filter(|&(_, c, r)| c.iter().all(|v| v.is_finite()) && r.is_finite() && r > 0.0)
+        };
         let Some(first) = rec().next() else {
             return Err(Error::Layers(LayerError::EmptyBounds));
         };
@@ -132,11 +145,27 @@ impl<'a, S: Scalar> ShadowMapping<'a, S> {
                 let up = up_for(l);
                 let u = unit(cross(up, l)).ok_or(Error::Layers(LayerError::Shadow))?;
                 let v = cross(l, u);
-                let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-                for (_, c, r) in rec() {
-                    for (k, axis) in [u, v].iter().enumerate() {
-                        lo[k] = lo[k].min(dot(c, *axis) - r);
-                        hi[k] = hi[k].max(dot(c, *axis) + r);
+                // The receivers' and the casters' boxes as seen along the light: a shadow falls
+                // only where they overlap (the casters' box alone when they do not, or the
+                // receivers' without a caster).
+                let bounds = |spheres: &mut dyn Iterator<Item = (usize, [f64; 3], f64)>| {
+                    let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+                    for (_, c, r) in spheres {
+                        for (k, axis) in [u, v].iter().enumerate() {
+                            lo[k] = lo[k].min(dot(c, *axis) - r);
+                            hi[k] = hi[k].max(dot(c, *axis) + r);
+                        }
+                    }
+                    (lo, hi)
+                };
+                let (mut lo, mut hi) = bounds(&mut rec());
+                let (clo, chi) = bounds(&mut casters());
+                if clo[0] <= chi[0] {
+                    let both = [0, 1].map(|k| (lo[k].max(clo[k]), hi[k].min(chi[k])));
+                    if both.iter().all(|(a, b)| a < b) {
+                        (lo, hi) = (both.map(|b| b.0), both.map(|b| b.1));
+                    } else {
+                        (lo, hi) = (clo, chi);
                     }
                 }
                 let side = (hi[0] - lo[0]).max(hi[1] - lo[1]);
@@ -149,12 +178,8 @@ impl<'a, S: Scalar> ShadowMapping<'a, S> {
                     (dot(c, u) - mid[0]).abs() <= height / 2.0 + r
                         && (dot(c, v) - mid[1]).abs() <= height / 2.0 + r
                 };
-                let casters = self.casters.iter().map(|&i| {
-                    let (c, r) = sphere(i);
-                    (i, c, r)
-                });
-                for (_, c, r) in rec().chain(casters) {
-                    if c.iter().all(|v| v.is_finite()) && r.is_finite() && overlaps(c, r) {
+                for (_, c, r) in rec().chain(casters()) {
+                    if overlaps(c, r) {
                         t0 = t0.min(dot(c, l) - r);
                         t1 = t1.max(dot(c, l) + r);
                     }
@@ -178,22 +203,37 @@ impl<'a, S: Scalar> ShadowMapping<'a, S> {
                 if !p.iter().all(|v| v.is_finite()) {
                     return Err(Error::Layers(LayerError::Shadow));
                 }
-                let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+                let mut far = 0.0f64;
                 for (i, c, r) in rec() {
-                    if length(sub(c, p)) <= r {
+                    let dist = length(sub(c, p));
+                    if dist <= r {
                         return Err(Error::Layers(LayerError::LightInside { object: i }));
                     }
+                    far = far.max(dist + r);
+                }
+                // The view frames the casters the light is outside of (their shadows are
+                // inside that cone), or the receivers without one.
+                let outside = || casters().filter(|&(_, c, r)| length(sub(c, p)) > r);
+                let framed = |f: &mut dyn FnMut((usize, [f64; 3], f64))| {
+                    if outside().next().is_some() {
+                        outside().for_each(f);
+                    } else {
+                        rec().for_each(f);
+                    }
+                };
+                let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+                framed(&mut |(_, c, r)| {
                     for k in 0..3 {
                         lo[k] = lo[k].min(c[k] - r);
                         hi[k] = hi[k].max(c[k] + r);
                     }
-                }
+                });
                 let centre = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
                 let axis = unit(sub(centre, p))
                     .or_else(|| unit(sub(first.1, p)))
                     .ok_or(Error::Layers(LayerError::Shadow))?;
-                let (mut half, mut widest, mut far) = (0.0f64, first.0, 0.0f64);
-                for (i, c, r) in rec() {
+                let (mut half, mut widest) = (0.0f64, first.0);
+                framed(&mut |(i, c, r)| {
                     let d = sub(c, p);
                     let dist = length(d);
                     let a = libm::acos((dot(d, axis) / dist).clamp(-1.0, 1.0))
@@ -201,19 +241,14 @@ impl<'a, S: Scalar> ShadowMapping<'a, S> {
                     if a > half {
                         (half, widest) = (a, i);
                     }
-                    far = far.max(dist + r);
-                }
+                });
                 let half = libm::atan(libm::tan(half.min(1.5)) * shrink);
                 if half.is_nan() || 2.0 * half >= MAX_MAP_FOV {
                     return Err(Error::Layers(LayerError::LightInside { object: widest }));
                 }
                 let far = far * (1.0 + 1.0 / 64.0);
                 let mut near = f64::MAX;
-                let casters = self.casters.iter().map(|&i| {
-                    let (c, r) = sphere(i);
-                    (i, c, r)
-                });
-                for (_, c, r) in rec().chain(casters) {
+                for (_, c, r) in rec().chain(casters()) {
                     let gap = length(sub(c, p)) - r;
                     if gap > 0.0 {
                         near = near.min(gap);

@@ -233,10 +233,10 @@ mod tests {
         }
     }
 
-    /// The fitted view holds the receivers' bounds at least [`MAP_MARGIN`] texels inside the
-    /// map, and every caster near them in depth range.
+    /// The fitted view holds the caster (its bounding sphere, so its corners) at least
+    /// [`MAP_MARGIN`] texels inside the map, and the receiver in depth range.
     #[test]
-    fn fitted_view_holds_the_receivers() {
+    fn fitted_view_frames_the_casters() {
         for light in [
             ShadowLight::Directional([1.0, 3.0, 0.5]),
             ShadowLight::Directional([0.0, 1.0, 0.0]),
@@ -257,17 +257,22 @@ mod tests {
                 };
                 let lo = MAP_MARGIN as f64 - 1e-6;
                 let hi = 32.0 - MAP_MARGIN as f64 + 1e-6;
+                for k in 0..8 {
+                    let bit = |b: usize| if k >> b & 1 == 1 { 0.5 } else { -0.5 };
+                    let p = [bit(0), 1.5 + bit(1), bit(2)];
+                    let [x, y, _] = to_map(p);
+                    assert!(
+                        x > lo && x < hi && y > lo && y < hi,
+                        "{light:?}: {p:?} at {x}, {y}"
+                    );
+                }
                 for p in [
                     [-2.0, 0.0, -2.0],
                     [2.0, 0.0, -2.0],
                     [2.0, 0.0, 2.0],
                     [-2.0, 0.0, 2.0],
                 ] {
-                    let [x, y, d] = to_map(p);
-                    assert!(
-                        x > lo && x < hi && y > lo && y < hi,
-                        "{light:?}: {p:?} at {x}, {y}"
-                    );
+                    let [_, _, d] = to_map(p);
                     assert!((0.0..=65535.0).contains(&d), "{light:?}: {p:?} depth {d}");
                 }
                 // The cube's corners are in depth range, nearer the light than the ground under it.

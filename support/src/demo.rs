@@ -12,7 +12,7 @@ pub(crate) use crate::demo_assets::{look, persp};
 use crate::demo_assets::{render_on, render_with};
 pub use crate::demo_csg::{CSG_ACTIVE, CSG_TRIS};
 pub use crate::demo_shadow::{
-    render_shadow_scene, EdgeStyle, ShadowScene, CREASE_ANGLE, WIRE_COLOR,
+    render_shadow_scene, EdgeStyle, ShadowScene, CREASE_ANGLE, SHADOW_LIGHT, WIRE_COLOR,
 };
 use scanline3d::Mat4;
 use scanline3d::Object;

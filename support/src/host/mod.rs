@@ -6,6 +6,7 @@
 #![allow(missing_docs)]
 
 pub mod compare;
+pub mod raycast;
 pub mod textures;
 
 use std::path::PathBuf;
