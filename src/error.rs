@@ -707,6 +707,12 @@ pub enum LayerError {
     /// A shadow map's receivers (or, with none given, the scene's opaque objects) have no
     /// extent to fit the light's view to: no object, or only empty or degenerate meshes.
     EmptyBounds,
+    /// Receiver `object` of a shadow map is textured or lit per pixel: a mapped frame
+    /// darkens flat and Gouraud receivers (such an object can still cast into the map).
+    MapReceiver {
+        /// Index of the object in the scene.
+        object: usize,
+    },
 }
 
 impl core::fmt::Display for LayerError {
@@ -762,6 +768,10 @@ impl core::fmt::Display for LayerError {
             LayerError::LightInside { object } => write!(
                 f,
                 "the shadow map's point light is inside receiver {object}, or its receivers are too widely spread around it for one map"
+            ),
+            LayerError::MapReceiver { object } => write!(
+                f,
+                "shadow map receiver {object} is textured or lit per pixel: receivers are flat or Gouraud"
             ),
             LayerError::EmptyBounds => write!(
                 f,

@@ -26,6 +26,9 @@ use crate::scene::color::TargetColor;
 use crate::scene::Scene;
 use crate::stats::{NoProbe, Probe, Stage, Stats};
 
+mod mapped;
+pub use mapped::{Mapped, MappedStrips};
+
 /// What a frame is prepared with besides its scene: a probe ([`FrameOptions::probe`]), layers
 /// ([`FrameOptions::layered`]: shadows, outlines, translucency) and an overlay composed into
 /// every strip ([`FrameOptions::overlay`]). [`FrameOptions::new`] has none of them.

@@ -282,7 +282,10 @@ pub mod shadow {
     pub use crate::raster::shadow::{
         Edges, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow,
     };
-    pub use crate::raster::shadow_map::{ShadowMap, ShadowMapping, MAP_MARGIN, MAX_MAP_FOV};
+    pub use crate::raster::shadow_map::{
+        ShadowMap, ShadowMapping, DEFAULT_BIAS, MAP_MARGIN, MAX_MAP_FOV,
+    };
+    pub use crate::raster::span_map::MAX_BIAS;
 }
 
 /// HDR tone mapping: the curves and the automatic exposure ([`ToneMap`] is

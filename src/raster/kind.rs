@@ -20,6 +20,7 @@
 use crate::geometry::pool::{ActiveExtra, FREE, MODE_FAST_PHONG, MODE_PHONG, MODE_TOON};
 use crate::geometry::project::ScreenVertex;
 use crate::geometry::vertex_extra::VertexExtra;
+use crate::raster::shadow_span::{attach_shadow, Attach};
 use crate::raster::span::{LESS, NONE};
 use crate::raster::span_map::{NoMap, SpanMap};
 use crate::raster::textured::attach_textured;
@@ -75,6 +76,11 @@ pub(crate) const PHONG: u8 = code(1);
 pub(crate) const FAST_PHONG: u8 = code(2);
 /// Toon: lit per pixel from the interpolated normal, the diffuse term in bands.
 pub(crate) const TOON: u8 = code(3);
+/// A shadow map's receiver (Gouraud): darkened where the map holds a caster nearer the light
+/// (`shadow_span`; chosen at [`enter`] in a mapped frame, not from the vertices' mode).
+pub(crate) const SHADOW: u8 = code(4);
+/// A shadow map's receiver, flat.
+pub(crate) const SHADOW_FLAT: u8 = SHADOW | FLAT;
 
 impl ActiveTri {
     /// The span kind: the flag bits without the row state.
@@ -117,8 +123,9 @@ pub(crate) fn needs_pool(t: &TriRecord, xverts: &[VertexExtra]) -> bool {
 /// decided), and, when it needs one (`pooled`: the renderer has attribute stores, a constant
 /// where it is called, else never),
 /// given its planes in a free entry of `pool` and its pool kind. `then` runs on the record
-/// once it is kept (a seek moves it to its row there). `_map`: the frame's shadow map context
-/// ([`SpanMap`]). Returns false when it was left out (the
+/// once it is kept (a seek moves it to its row there). `map`: the frame's shadow map context
+/// ([`SpanMap`]): in a mapped frame a receiver's triangle without a pool kind of its own gets
+/// a shadow kind. Returns false when it was left out (the
 /// list or the pool full: the caller counts it); true also when it covers no row and was not
 /// added (the list's length tells).
 #[allow(clippy::too_many_arguments)]
@@ -133,12 +140,17 @@ pub(crate) fn enter<C: TargetColor, const N: usize, M: SpanMap>(
     row: i32,
     height: i32,
     mode: SpanMode,
-    _map: M,
+    map: M,
     then: impl FnOnce(&mut ActiveTri),
 ) -> bool {
     let pooled = pooled && needs_pool(t, xverts);
+    let shadow = M::ON && !pooled && map.view().is_some_and(|v| v.receives(t));
     // A pool kind is set up as an ordinary triangle (no fast path).
-    let m = if pooled { SpanMode::default() } else { mode };
+    let m = if pooled || shadow {
+        SpanMode::default()
+    } else {
+        mode
+    };
     let before = active.len();
     if !active.push_with(|a| a.setup::<C>(t, verts, row, height, m)) {
         return false;
@@ -155,6 +167,20 @@ pub(crate) fn enter<C: TargetColor, const N: usize, M: SpanMap>(
                 a.spare = slot as i16;
             }
             None => {
+                active.swap_remove(before);
+                return false;
+            }
+        }
+    }
+    if let (true, Some(view)) = (shadow, map.view()) {
+        match attach_shadow(pool, t, verts, view.look) {
+            Attach::Slot(slot) => {
+                let a = active.get_mut(before);
+                a.flags |= SHADOW;
+                a.spare = slot as i16;
+            }
+            Attach::Plain => {}
+            Attach::Full => {
                 active.swap_remove(before);
                 return false;
             }
@@ -273,7 +299,7 @@ fn pool_row<C: TargetColor, M: SpanMap>(
     depth: &mut [u16],
     test: DepthTest,
     dither: bool,
-    _map: M,
+    map: M,
 ) -> (u32, u32, bool) {
     let (lc, xs, xe) = columns(a, colors.len().min(depth.len()));
     let mut counts = (0, 0);
@@ -294,6 +320,12 @@ fn pool_row<C: TargetColor, M: SpanMap>(
                 let span = crate::raster::phong::span::<C, FAST_PHONG, TOON>;
                 span(a, k, pool, lc, xs, row, zs, cs, test, dither)
             }
+            SHADOW | SHADOW_FLAT if M::ON => match map.view() {
+                Some(view) => {
+                    crate::raster::shadow_span::span::<C>(a, pool, lc, xs, row, zs, cs, test, view)
+                }
+                None => 0,
+            },
             _ => 0,
         };
         counts = ((xe - xs) as u32, written);

@@ -37,6 +37,26 @@ pub(crate) fn blend(c: u32, s: u32, a: u32) -> u32 {
     div255(c * (255 - a) + s * a)
 }
 
+/// The shadow colour `color` (8 bits per channel) in `C`'s channel units with opacity `alpha`,
+/// and, for channels of at most 6 bits (`darken_span`: wider ones blend directly), `lut`
+/// filled with each channel value blended toward it.
+pub(crate) fn blend_tables<C: TargetColor>(
+    lut: &mut [[u8; 64]; 3],
+    color: [u8; 3],
+    alpha: u8,
+) -> ([u8; 3], u8) {
+    let max = C::CHANNEL_MAX;
+    let sc: [u8; 3] = core::array::from_fn(|k| div255(color[k] as u32 * max[k] as u32) as u8);
+    if max.iter().all(|&m| m <= 63) {
+        for k in 0..3 {
+            for (c, e) in lut[k].iter_mut().enumerate() {
+                *e = blend(c as u32, sc[k] as u32, alpha as u32) as u8;
+            }
+        }
+    }
+    (sc, alpha)
+}
+
 /// The shadow's blend: per channel value of a target of at most 6 bits per channel (RGB565)
 /// the table `lut`, else the shadow colour and opacity `shadow`.
 #[derive(Copy, Clone)]

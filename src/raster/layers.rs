@@ -15,7 +15,7 @@ use crate::kernel::records::{ActiveList, ScreenVertex, TriRecord};
 use crate::num::scalar::Scalar;
 use crate::raster::kind::enter;
 use crate::raster::layer_rows::{
-    blend, darken_span, div255, outline_row, shadow_row, translucent_row, volume_row, Darken, Post,
+    darken_span, outline_row, shadow_row, translucent_row, volume_row, Darken, Post,
 };
 use crate::raster::shadow::{Edges, ShadowLight};
 use crate::raster::span_map::NoMap;
@@ -409,18 +409,7 @@ pub(crate) fn set_blend<
     color: [u8; 3],
     alpha: u8,
 ) {
-    let max = C::CHANNEL_MAX;
-    let sc: [u8; 3] = core::array::from_fn(|k| div255(color[k] as u32 * max[k] as u32) as u8);
-    layers.shadow = (sc, alpha);
-    // The table serves channels of at most 6 bits (`darken_span`): wider ones blend directly.
-    if max.iter().any(|&m| m > 63) {
-        return;
-    }
-    for k in 0..3 {
-        for (c, e) in layers.lut[k].iter_mut().enumerate() {
-            *e = blend(c as u32, sc[k] as u32, alpha as u32) as u8;
-        }
-    }
+    layers.shadow = crate::raster::layer_rows::blend_tables::<C>(&mut layers.lut, color, alpha);
 }
 
 /// Checks each object of `objects` has an adjacency table (`adjacency`, in the same order)

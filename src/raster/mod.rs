@@ -32,6 +32,7 @@ pub(crate) mod seek;
 pub(crate) mod setup;
 pub(crate) mod shadow;
 pub(crate) mod shadow_map;
+pub(crate) mod shadow_span;
 pub(crate) mod span;
 pub(crate) mod span_map;
 pub(crate) mod state;

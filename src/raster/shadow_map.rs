@@ -11,6 +11,7 @@ use crate::error::{Error, LayerError};
 use crate::num::math::Mat4;
 use crate::num::scalar::Scalar;
 use crate::raster::shadow::{object_sphere, ShadowLight};
+use crate::raster::span_map::MapLookup;
 use crate::scene::camera::{Camera, Projection, MAX_DEPTH_RATIO};
 use crate::scene::Scene;
 
@@ -45,7 +46,22 @@ pub struct ShadowMapping<'a, S> {
     /// The light's camera as given (any view and projection; the map's aspect is 1), or `None`
     /// to fit it ([`ShadowMapping::light_camera`]).
     pub camera: Option<Camera<S>>,
+    /// The shadow's colour, 8 bits per channel (black by default).
+    pub color: [u8; 3],
+    /// The shadow's opacity, 0..=255: a shadowed pixel is `color·α + C·(1 − α)`,
+    /// `α = alpha/255`, as the other shadow methods blend.
+    pub alpha: u8,
+    /// The depth bias, `[constant, slope]`: a receiver's pixel is in shadow when its depth from
+    /// the light exceeds the map's by more than `constant` depth steps plus `slope/256` times
+    /// its triangle's depth change across one texel (so that a surface does not shadow itself
+    /// where the map's texels are coarser than its pixels: "shadow acne"). Default
+    /// [`DEFAULT_BIAS`].
+    pub bias: [u16; 2],
 }
+
+/// [`ShadowMapping::bias`]'s default: 64 depth steps, plus 1.5 times a receiver's depth change
+/// across a texel.
+pub const DEFAULT_BIAS: [u16; 2] = [64, 384];
 
 impl<'a, S: Scalar> ShadowMapping<'a, S> {
     /// A map from `light` of `casters`, fitted to `receivers` (empty: every opaque object).
@@ -56,7 +72,26 @@ impl<'a, S: Scalar> ShadowMapping<'a, S> {
             casters,
             receivers,
             camera: None,
+            color: [0; 3],
+            alpha: 140,
+            bias: DEFAULT_BIAS,
         }
+    }
+
+    /// This mapping with a shadow of `color` and opacity `alpha` (default black, 140).
+    #[must_use]
+    pub const fn with_shadow(self, color: [u8; 3], alpha: u8) -> Self {
+        ShadowMapping {
+            color,
+            alpha,
+            ..self
+        }
+    }
+
+    /// This mapping with the depth bias `[constant, slope]` ([`ShadowMapping::bias`]).
+    #[must_use]
+    pub const fn with_bias(self, bias: [u16; 2]) -> Self {
+        ShadowMapping { bias, ..self }
     }
 
     /// This mapping drawn from `camera` instead of a fitted one (a spot light's cone, or a
@@ -298,6 +333,8 @@ pub struct ShadowMap<const N: usize> {
     pub(crate) to_map: [[f64; 4]; 4],
     /// A pass drew the map.
     pub(crate) drawn: bool,
+    /// What a mapped frame's spans read besides the texels (set when the frame is prepared).
+    pub(crate) look: MapLookup,
 }
 
 impl<const N: usize> ShadowMap<N> {
@@ -317,6 +354,7 @@ impl<const N: usize> ShadowMap<N> {
             depth: [[u16::MAX; N]; N],
             to_map: [[0.0; 4]; 4],
             drawn: false,
+            look: MapLookup::EMPTY,
         }
     }
 
@@ -340,9 +378,7 @@ impl<const N: usize> ShadowMap<N> {
     pub(crate) fn set_camera<S: Scalar>(&mut self, camera: &Camera<S>) {
         let f = |m: Mat4<S>| m.m.map(|r| r.map(|v| v.to_f64()));
         let (v, p) = (f(camera.view), f(camera.projection.matrix(S::ONE)));
-        let clip: [[f64; 4]; 4] = core::array::from_fn(|i| {
-            core::array::from_fn(|j| (0..4).map(|k| p[i][k] * v[k][j]).sum())
-        });
+        let clip = mul4(p, v);
         let h = N as f64 / 2.0;
         self.to_map = [
             core::array::from_fn(|j| h * (clip[0][j] + clip[3][j])),
@@ -352,6 +388,107 @@ impl<const N: usize> ShadowMap<N> {
         ];
         self.drawn = true;
     }
+
+    /// Sets the lookup of a frame drawn with `camera` at a `vw × vh` viewport, whose receivers'
+    /// vertices end at `receivers_end`, with `mapping`'s shadow, for target colour `C`: the
+    /// screen → map matrix (f64, once per frame, then integers), the darkening tables. False
+    /// when the map was not drawn or the screen → map matrix does not exist (a singular
+    /// camera).
+    pub(crate) fn prepare_lookup<S: Scalar, C: crate::scene::color::TargetColor>(
+        &mut self,
+        camera: &Camera<S>,
+        (vw, vh): (usize, usize),
+        mapping: &ShadowMapping<'_, S>,
+        receivers_end: u16,
+    ) -> bool {
+        if !self.drawn {
+            return false;
+        }
+        let f = |m: Mat4<S>| m.m.map(|r| r.map(|v| v.to_f64()));
+        let aspect = S::from_f64(vw as f64 / vh.max(1) as f64);
+        let clip = mul4(f(camera.projection.matrix(aspect)), f(camera.view));
+        // World → screen (homogeneous): x = (x_c/w + 1)·8·vw subpixels, y = (1 − y_c/w)·8·vh,
+        // d = z_c/w·65535·256.
+        let (sx, sy) = (8.0 * vw as f64, 8.0 * vh as f64);
+        let screen = [
+            core::array::from_fn(|j| sx * (clip[0][j] + clip[3][j])),
+            core::array::from_fn(|j| sy * (clip[3][j] - clip[1][j])),
+            core::array::from_fn(|j| 65535.0 * 256.0 * clip[2][j]),
+            clip[3],
+        ];
+        let Some(inv) = invert4(screen) else {
+            return false;
+        };
+        let mut m = mul4(self.to_map, inv);
+        // W > 0 in front of the light: checked at the screen's centre, halfway in depth.
+        let mid = [sx, sy, 65535.0 * 128.0, 1.0];
+        if (0..4).map(|j| m[3][j] * mid[j]).sum::<f64>() < 0.0 {
+            m = m.map(|r| r.map(|v| -v));
+        }
+        const RANGE: [f64; 4] = [32768.0, 32768.0, 16777216.0, 1.0];
+        let largest = m
+            .iter()
+            .map(|r| (0..4).map(|j| r[j].abs() * RANGE[j]).sum::<f64>())
+            .fold(0.0f64, f64::max);
+        if !(largest.is_finite() && largest > 0.0) {
+            return false;
+        }
+        let sigma = libm::floor(libm::log2((1u64 << 60) as f64 / largest));
+        let scale = libm::pow(2.0, sigma);
+        self.look.m = m.map(|r| r.map(|v| libm::round(v * scale) as i64));
+        self.look.log2n = N.trailing_zeros() as u8;
+        self.look.receivers_end = receivers_end;
+        self.look.bias = mapping.bias;
+        self.look.shadow = crate::raster::layer_rows::blend_tables::<C>(
+            &mut self.look.lut,
+            mapping.color,
+            mapping.alpha,
+        );
+        true
+    }
+}
+
+/// The product `a·b` of two 4 × 4 matrices.
+fn mul4(a: [[f64; 4]; 4], b: [[f64; 4]; 4]) -> [[f64; 4]; 4] {
+    core::array::from_fn(|i| core::array::from_fn(|j| (0..4).map(|k| a[i][k] * b[k][j]).sum()))
+}
+
+/// The inverse of a 4 × 4 matrix (Gauss–Jordan with partial pivoting), or `None` when it is
+/// singular or not finite.
+fn invert4(m: [[f64; 4]; 4]) -> Option<[[f64; 4]; 4]> {
+    let mut a = m;
+    let mut inv = [[0.0; 4]; 4];
+    for (i, row) in inv.iter_mut().enumerate() {
+        row[i] = 1.0;
+    }
+    for col in 0..4 {
+        let mut pivot = col;
+        for r in col + 1..4 {
+            if a[r][col].abs() > a[pivot][col].abs() {
+                pivot = r;
+            }
+        }
+        let p = a[pivot][col];
+        if !(p.abs() > 1e-300 && p.is_finite()) {
+            return None;
+        }
+        a.swap(col, pivot);
+        inv.swap(col, pivot);
+        for j in 0..4 {
+            a[col][j] /= p;
+            inv[col][j] /= p;
+        }
+        for r in 0..4 {
+            if r != col {
+                let k = a[r][col];
+                for j in 0..4 {
+                    a[r][j] -= k * a[col][j];
+                    inv[r][j] -= k * inv[col][j];
+                }
+            }
+        }
+    }
+    Some(inv)
 }
 
 impl<const N: usize> Default for ShadowMap<N> {

@@ -7,14 +7,15 @@
 //! [`enter`]: crate::raster::kind::enter
 //! [`draw_row`]: crate::raster::kind::draw_row
 
-/// What a strip pass knows of a shadow map (issue #42's lookup): nothing ([`NoMap`]) or the
-/// map of a mapped frame.
+use crate::kernel::records::TriRecord;
+
+/// What a strip pass knows of a shadow map: nothing ([`NoMap`]) or the map of a mapped frame
+/// ([`MapView`]).
 pub(crate) trait SpanMap: Copy {
     /// Whether there is a map: the shadow kinds' code is compiled only where it is true.
-    // (Read by the shadow kinds' arms, issue #42's lookup slice; this slice only threads the
-    // context through, so that the ratchet shows the seam alone.)
-    #[allow(dead_code)]
     const ON: bool;
+    /// The map, if there is one.
+    fn view(&self) -> Option<MapView<'_>>;
 }
 
 /// No shadow map: the context of every frame without one.
@@ -23,4 +24,71 @@ pub(crate) struct NoMap;
 
 impl SpanMap for NoMap {
     const ON: bool = false;
+    #[inline(always)]
+    fn view(&self) -> Option<MapView<'_>> {
+        None
+    }
+}
+
+/// A mapped frame's shadow map, read by its shadow spans: the texels (row by row, `N × N`)
+/// and the lookup.
+#[derive(Copy, Clone, Debug)]
+pub(crate) struct MapView<'m> {
+    pub(crate) look: &'m MapLookup,
+    pub(crate) depth: &'m [u16],
+}
+
+impl SpanMap for MapView<'_> {
+    const ON: bool = true;
+    #[inline(always)]
+    fn view(&self) -> Option<MapView<'_>> {
+        Some(*self)
+    }
+}
+
+impl MapView<'_> {
+    /// Whether triangle `t` is a receiver's (its vertices among the receivers', which come
+    /// first in the vertex store).
+    #[inline(always)]
+    pub(crate) fn receives(&self, t: &TriRecord) -> bool {
+        t.v[1] < self.look.receivers_end
+    }
+}
+
+/// The largest bias a receiver's triangle gets (depth steps): a triangle nearly edge-on to the
+/// light would otherwise lift its whole depth range out of the map.
+pub const MAX_BIAS: i32 = 4096;
+
+/// What a mapped frame's shadow spans read of the map besides its texels
+/// (`ShadowMap::prepare_lookup`, once per frame).
+#[derive(Clone, Debug)]
+pub(crate) struct MapLookup {
+    /// Screen → map, homogeneous: `(X, Y, Z, W)`, row `r` = `Σ_j m[r][j]·s_j` for a screen
+    /// point `s = (x, y, d, 1)` (x and y in subpixels, the depth `d` in 2⁻⁸ steps, unsigned
+    /// 16.8); texel `X/W`, `Y/W`, map depth `Z/W`. Every row is scaled by the same `2^σ`, the
+    /// largest with each row's sum at most 2⁶⁰ over the screen's range (|x|, |y| < 2¹⁵,
+    /// d < 2²⁴), and signed so that `W > 0` in front of the light.
+    pub(crate) m: [[i64; 4]; 4],
+    /// log2 of the map's side.
+    pub(crate) log2n: u8,
+    /// The end of the receivers' vertices in the vertex store (they come first).
+    pub(crate) receivers_end: u16,
+    /// `ShadowMapping::bias`.
+    pub(crate) bias: [u16; 2],
+    /// Per channel value of a target of at most 6 bits per channel, the value blended toward
+    /// the shadow (`layers::blend_tables`).
+    pub(crate) lut: [[u8; 64]; 3],
+    /// The shadow colour in the target's channel units and its opacity.
+    pub(crate) shadow: ([u8; 3], u8),
+}
+
+impl MapLookup {
+    pub(crate) const EMPTY: MapLookup = MapLookup {
+        m: [[0; 4]; 4],
+        log2n: 0,
+        receivers_end: 0,
+        bias: [0; 2],
+        lut: [[0; 64]; 3],
+        shadow: ([0; 3], 0),
+    };
 }

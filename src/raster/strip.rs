@@ -164,6 +164,32 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
         limit: usize,
         probe: &mut P,
     ) -> Option<(usize, usize)> {
+        self.draw_strip_with::<S, H, VERTS, TRIS, XV, XA, P, CLEAR, NoMap>(
+            geo, ext, limit, probe, NoMap,
+        )
+    }
+
+    /// [`Raster::draw_strip`] with the frame's shadow map context `map` ([`SpanMap`]).
+    #[allow(clippy::type_complexity)]
+    #[inline(always)]
+    pub(crate) fn draw_strip_with<
+        S,
+        const H: usize,
+        const VERTS: usize,
+        const TRIS: usize,
+        const XV: usize,
+        const XA: usize,
+        P: Probe,
+        const CLEAR: bool,
+        M: SpanMap,
+    >(
+        &mut self,
+        geo: &mut Stores<S, C, H, VERTS, TRIS, XV, XA>,
+        ext: Option<&mut [[C; W]]>,
+        limit: usize,
+        probe: &mut P,
+        map: M,
+    ) -> Option<(usize, usize)> {
         if self.next_row >= geo.vh {
             return None;
         }
@@ -205,7 +231,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
             dither: *dither,
             mode,
             painter,
-            map: NoMap,
+            map,
         };
         let pass = PassMut {
             active,
@@ -221,9 +247,7 @@ impl<C: TargetColor, const W: usize, const LINES: usize, const ZL: usize, const 
             Some(lines) => lines,
             None => color.as_mut_slice(),
         };
-        strip_rows::<C, P, W, ACTIVE, LINES, XV, XA, ZL, CLEAR, NoMap>(
-            frame, pass, lines, limit, probe,
-        )
+        strip_rows::<C, P, W, ACTIVE, LINES, XV, XA, ZL, CLEAR, M>(frame, pass, lines, limit, probe)
     }
 
     /// What a strip pass reads of the frame prepared in `geo`.

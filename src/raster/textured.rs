@@ -123,7 +123,11 @@ pub(crate) fn attach_textured<C: TargetColor>(
 
 /// Sets `e`'s planes through the values `planes[k]` at the vertices `p` (|values| < 2³¹),
 /// and marks it a triangle's entry; false for a triangle of no area.
-fn set_planes(e: &mut ActiveExtra, p: [&ScreenVertex; 3], planes: [[i64; 3]; 3]) -> bool {
+pub(crate) fn set_planes(
+    e: &mut ActiveExtra,
+    p: [&ScreenVertex; 3],
+    planes: [[i64; 3]; 3],
+) -> bool {
     // Plane gradients per subpixel are N/det; per pixel, with 16 fraction bits,
     // 2⁴·2¹⁶·N/det, from N/det's quotient and remainder (N < 2⁴⁷, det < 2³¹: no overflow).
     let (ax, ay) = (p[0].x as i64, p[0].y as i64);

@@ -78,6 +78,81 @@ impl<
         Ok(stats)
     }
 
+    /// A mapped frame's geometry ([`crate::FrameOptions::shadow_map`]): the map pass, then the
+    /// frame's geometry stage with the receivers' objects first (their vertices' end is how
+    /// the strip pass tells their triangles), then the map's lookup for this frame's camera
+    /// and viewport.
+    pub(crate) fn geometry_mapped<P: Probe, const L: usize, const N: usize>(
+        &mut self,
+        scene: &Scene<'_, S, L>,
+        mapping: &ShadowMapping<'_, S>,
+        map: &mut ShadowMap<N>,
+        probe: &mut P,
+    ) -> Result<Stats, Error<core::convert::Infallible>> {
+        if ZL == 0 {
+            return Err(Error::NoDepthLines);
+        }
+        if C::triangle_id(0).is_some() || C::from_channels([0; 3]).channels().is_none() {
+            return Err(Error::Layers(LayerError::Blending));
+        }
+        let n = scene.objects.len();
+        if let Some(&i) = mapping
+            .receivers
+            .iter()
+            .chain(mapping.casters)
+            .find(|&&i| i >= n)
+        {
+            return Err(Error::Layers(LayerError::NoSuchObject { index: i }));
+        }
+        let receives = |i: usize| {
+            if mapping.receivers.is_empty() {
+                scene.objects[i].material.alpha == 255
+            } else {
+                mapping.receivers.contains(&i)
+            }
+        };
+        if let Some(i) =
+            (0..n).find(|&i| receives(i) && scene.objects[i].material.needs_attribute_stores())
+        {
+            return Err(Error::Layers(LayerError::MapReceiver { object: i }));
+        }
+        if XA == 0 {
+            let object = (0..n).find(|&i| receives(i)).unwrap_or(0);
+            return Err(Error::AttributeStore {
+                object,
+                vertices_needed: 0,
+                vertex_capacity: XV,
+                active_needed: 1,
+                active_capacity: XA,
+            });
+        }
+        self.shadow_map_pass(scene, mapping, map)?;
+        self.frame_start();
+        let c = self.geo.frame_begin(scene, false)?;
+        let mut f = crate::geometry::Frame::default();
+        for (i, o) in scene.objects.iter().enumerate() {
+            if receives(i) {
+                self.geo.frame_object(&c, &mut f, scene, o, i, probe)?;
+            }
+        }
+        let end = self.geo.verts.len().min(u16::MAX as usize) as u16;
+        for (i, o) in scene.objects.iter().enumerate() {
+            if !receives(i) {
+                self.geo.frame_object(&c, &mut f, scene, o, i, probe)?;
+            }
+        }
+        let stats =
+            self.geo
+                .frame_end(scene, &c, &mut f, ACTIVE, self.ras.overflow, Self::CAPACITY)?;
+        self.frame_ready(scene, stats);
+        let viewport = (self.geo.vw, self.geo.vh);
+        if !map.prepare_lookup::<S, C>(&scene.camera, viewport, mapping, end) {
+            self.ras.next_row = self.geo.vh;
+            return Err(Error::Layers(LayerError::Shadow));
+        }
+        Ok(stats)
+    }
+
     /// The map pass's geometry stage: the casters, flat and unlit, from `camera`.
     fn map_geometry<const L: usize>(
         &mut self,
