@@ -3,6 +3,7 @@
 //! torus and a cube above a ground square).
 
 use embedded_graphics::pixelcolor::Rgb565;
+use scanline3d::errors::LayerError;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
 use scanline3d::shadow::{ShadowLight, ShadowMap, ShadowMapping};
@@ -362,4 +363,243 @@ fn lookup_against_raycast_f32() {
 #[test]
 fn lookup_against_raycast_i16f16() {
     check_lookup::<Q>();
+}
+
+/// The models drawn plainly and with a 64-texel map into a `C` target; the two frames.
+fn frames_in<C: scanline3d::TargetColor>(
+    fill: C,
+) -> (
+    scanline3d_support::host::Frame<C>,
+    scanline3d_support::host::Frame<C>,
+) {
+    use scanline3d_support::host::Frame;
+    with_models::<Q, _>(|objects| {
+        let scene = Scene::new(
+            objects,
+            camera(),
+            [Light::white(SHADOW_LIGHT.map(Q::from_f64))],
+        );
+        let light = ShadowLight::Directional(SHADOW_LIGHT.map(Q::from_f64));
+        let mapping = ShadowMapping::new(light, &[1, 2], &[]);
+        let mut renderer = Box::new(Renderer::<Q, C, 240, 240, 1024, 1024, 64, 8, 0, 64>::new());
+        let mut map = Box::new(ShadowMap::<64>::new());
+        let mut lit = Frame::new(240, 240, fill);
+        renderer.render(&scene, &mut lit).unwrap();
+        let mut shadowed = Frame::new(240, 240, fill);
+        renderer
+            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+            .unwrap()
+            .draw_to(&mut shadowed)
+            .unwrap();
+        shadowed.assert_each_written_once();
+        (lit, shadowed)
+    })
+}
+
+/// Every colour type that can blend is shadowed, each pixel darkened or left as the plain
+/// frame has it; a triangle-id target is refused.
+#[test]
+fn every_colour_type() {
+    use embedded_graphics::pixelcolor::{BinaryColor, Gray8, Rgb888};
+    fn differing<C: scanline3d::TargetColor + PartialEq>(fill: C) -> usize {
+        let (lit, shadowed) = frames_in(fill);
+        lit.px
+            .iter()
+            .zip(&shadowed.px)
+            .filter(|(a, b)| a != b)
+            .count()
+    }
+    let n565 = differing(Rgb565::new(0, 0, 0));
+    let n888 = differing(Rgb888::new(0, 0, 0));
+    let ngray = differing(Gray8::new(0));
+    println!("shadowed pixels: Rgb565 {n565}, Rgb888 {n888}, Gray8 {ngray}");
+    for n in [n565, n888, ngray] {
+        assert!(n > 2000, "{n} pixels shadowed");
+    }
+    // A pixel's shadow does not depend on the colour type: within the blend's rounding.
+    assert!(n565.abs_diff(n888) * 50 < n888 && ngray.abs_diff(n888) * 20 < n888);
+    // BinaryColor: the blend toward black turns lit pixels off where the map shadows them.
+    let (lit, shadowed) = frames_in(BinaryColor::Off);
+    let on = |f: &scanline3d_support::host::Frame<BinaryColor>| {
+        f.px.iter().filter(|&&c| c == BinaryColor::On).count()
+    };
+    assert!(
+        on(&shadowed) < on(&lit),
+        "{} of {} on",
+        on(&shadowed),
+        on(&lit)
+    );
+    // Triangle ids do not blend.
+    with_models::<Q, _>(|objects| {
+        let scene = Scene::new(
+            objects,
+            camera(),
+            [Light::white(SHADOW_LIGHT.map(Q::from_f64))],
+        );
+        let light = ShadowLight::Directional(SHADOW_LIGHT.map(Q::from_f64));
+        let mapping = ShadowMapping::new(light, &[1, 2], &[]);
+        let mut renderer = Box::new(Renderer::<
+            Q,
+            scanline3d::color::TriangleId,
+            240,
+            240,
+            2048,
+            1024,
+            64,
+            8,
+            0,
+            64,
+        >::new());
+        let mut map = Box::new(ShadowMap::<64>::new());
+        let e = renderer
+            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+            .err();
+        assert_eq!(e, Some(scanline3d::Error::Layers(LayerError::Blending)));
+    });
+}
+
+/// A cube over an icosphere: the map shadows the curved receiver, which the planar method
+/// refuses (the sphere is not in a plane).
+#[test]
+fn cube_shadows_a_sphere() {
+    use scanline3d::shadow::{Layering, PlanarShadow};
+    use scanline3d::Layers;
+    use scanline3d_support::host::Frame;
+    let s = Q::from_f64;
+    let sphere = Shape::<Q, 642, 1280>::icosphere(1.0, 3).unwrap();
+    let cube = Shape::<Q, 24, 12>::cube(0.3).unwrap();
+    let m = Material::matte([200, 200, 200], s(0.25), s(0.75));
+    let objects = [
+        Object {
+            mesh: sphere.mesh(),
+            transform: Mat4::identity(),
+            material: m,
+        },
+        Object {
+            mesh: cube.mesh(),
+            transform: Mat4::translate([s(0.2), s(1.8), s(0.3)]),
+            material: m.flat(),
+        },
+    ];
+    let up = [0.3, 1.0, 0.2].map(s);
+    let scene = Scene::new(&objects, camera(), [Light::white(up)]);
+    let mut renderer = Box::new(Renderer::<Q, Rgb565, 240, 240, 2048, 2048, 96, 8, 0, 96>::new());
+    let mut lit = Frame::new(240, 240, Rgb565::new(0, 0, 0));
+    renderer.render(&scene, &mut lit).unwrap();
+    let mapping = ShadowMapping::new(ShadowLight::Directional(up), &[1], &[0]);
+    let mut map = Box::new(ShadowMap::<64>::new());
+    let mut shadowed = Frame::new(240, 240, Rgb565::new(0, 0, 0));
+    renderer
+        .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+        .unwrap()
+        .draw_to(&mut shadowed)
+        .unwrap();
+    let darkened = lit
+        .px
+        .iter()
+        .zip(&shadowed.px)
+        .filter(|(a, b)| a != b)
+        .count();
+    println!("cube over icosphere: {darkened} pixels of the sphere shadowed");
+    assert!(darkened > 500, "{darkened}");
+    let planar = Layering::projected(
+        &[0],
+        &[1],
+        PlanarShadow::new(
+            [s(0.0), s(1.0), s(0.0), s(0.0)],
+            ShadowLight::Directional(up),
+            140,
+        ),
+    );
+    let mut layers = Box::new(Layers::<240, 8, 96, 96>::new());
+    let e = renderer
+        .prepare(&scene, FrameOptions::new().layered(&planar, &mut layers))
+        .err();
+    assert_eq!(
+        e,
+        Some(scanline3d::Error::Layers(LayerError::OffPlane {
+            object: 0
+        }))
+    );
+}
+
+/// What a mapped frame refuses, before drawing anything.
+#[test]
+fn mapped_frame_errors() {
+    use scanline3d::Error;
+    with_models::<f32, _>(|objects| {
+        let scene = Scene::new(
+            objects,
+            camera(),
+            [Light::white(SHADOW_LIGHT.map(|v| v as f32))],
+        );
+        let light = ShadowLight::Directional(SHADOW_LIGHT.map(|v| v as f32));
+        let mapping = ShadowMapping::new(light, &[1, 2], &[]);
+        let mut map = Box::new(ShadowMap::<64>::new());
+        // No pool.
+        let mut r = Box::new(Renderer::<f32, Rgb565, 240, 240, 1024, 1024, 64, 8>::new());
+        let e = r
+            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+            .err();
+        assert!(
+            matches!(
+                e,
+                Some(Error::AttributeStore {
+                    object: 0,
+                    active_capacity: 0,
+                    ..
+                })
+            ),
+            "{e:?}"
+        );
+        // No depth lines.
+        let mut r = Box::new(Renderer::<f32, Rgb565, 240, 240, 1024, 1024, 64, 8, 0, 0, 0>::new());
+        let e = r
+            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+            .err();
+        assert_eq!(e, Some(Error::NoDepthLines));
+        let mut r = Box::new(Renderer::<f32, Rgb565, 240, 240, 1024, 1024, 64, 8, 0, 64>::new());
+        // A map larger than the renderer.
+        let mut big = Box::new(ShadowMap::<256>::new());
+        let e = r
+            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut big))
+            .err();
+        assert_eq!(
+            e,
+            Some(Error::Layers(LayerError::MapLargerThanViewport {
+                size: 256,
+                width: 240,
+                height: 240
+            }))
+        );
+        // A receiver lit per pixel.
+        let mut phong = objects.to_vec();
+        phong[0].material.shading = Shading::Phong;
+        let scene2 = Scene {
+            objects: &phong,
+            ..scene
+        };
+        let e = r
+            .prepare(&scene2, FrameOptions::new().shadow_map(&mapping, &mut map))
+            .err();
+        assert_eq!(
+            e,
+            Some(Error::Layers(LayerError::MapReceiver { object: 0 }))
+        );
+        // An index that is not an object.
+        let bad = ShadowMapping::new(light, &[1, 7], &[]);
+        let e = r
+            .prepare(&scene, FrameOptions::new().shadow_map(&bad, &mut map))
+            .err();
+        assert_eq!(
+            e,
+            Some(Error::Layers(LayerError::NoSuchObject { index: 7 }))
+        );
+        // After the errors, the frame is drawn.
+        let mut f = scanline3d_support::host::Frame::new(240, 240, Rgb565::new(0, 0, 0));
+        r.prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+            .unwrap()
+            .draw_to(&mut f)
+            .unwrap();
+    });
 }
