@@ -381,7 +381,7 @@ fn frames_in<C: scanline3d::TargetColor>(
         );
         let light = ShadowLight::Directional(SHADOW_LIGHT.map(Q::from_f64));
         let mapping = ShadowMapping::new(light, &[1, 2], &[]);
-        let mut renderer = Box::new(Renderer::<Q, C, 240, 240, 1024, 1024, 64, 8, 0, 64>::new());
+        let mut renderer = Box::new(Renderer::<Q, C, 240, 240, 2048, 1024, 64, 8, 0, 64>::new());
         let mut map = Box::new(ShadowMap::<64>::new());
         let mut lit = Frame::new(240, 240, fill);
         renderer.render(&scene, &mut lit).unwrap();
@@ -397,7 +397,7 @@ fn frames_in<C: scanline3d::TargetColor>(
 }
 
 /// Every colour type that can blend is shadowed, each pixel darkened or left as the plain
-/// frame has it; a triangle-id target is refused.
+/// frame has it; a triangle-id target records the plain frame's triangles.
 #[test]
 fn every_colour_type() {
     use embedded_graphics::pixelcolor::{BinaryColor, Gray8, Rgb888};
@@ -429,33 +429,9 @@ fn every_colour_type() {
         on(&shadowed),
         on(&lit)
     );
-    // Triangle ids do not blend.
-    with_models::<Q, _>(|objects| {
-        let scene = Scene::new(
-            objects,
-            camera(),
-            [Light::white(SHADOW_LIGHT.map(Q::from_f64))],
-        );
-        let light = ShadowLight::Directional(SHADOW_LIGHT.map(Q::from_f64));
-        let mapping = ShadowMapping::new(light, &[1, 2], &[]);
-        let mut renderer = Box::new(Renderer::<
-            Q,
-            scanline3d::color::TriangleId,
-            240,
-            240,
-            2048,
-            1024,
-            64,
-            8,
-            0,
-            64,
-        >::new());
-        let mut map = Box::new(ShadowMap::<64>::new());
-        let e = renderer
-            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
-            .err();
-        assert_eq!(e, Some(scanline3d::Error::Layers(LayerError::Blending)));
-    });
+    // A triangle-id target records the triangles, none darkened: the plain frame's ids.
+    let (lit, shadowed) = frames_in(scanline3d::color::TriangleId(0));
+    assert!(lit.px == shadowed.px);
 }
 
 /// A cube over an icosphere: the map shadows the curved receiver, which the planar method

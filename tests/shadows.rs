@@ -307,6 +307,7 @@ fn shadow_benchmark_scenes_match_their_golden_images() {
             Bench::Outline,
             Bench::Edges,
             Bench::Wireframe,
+            Bench::ShadowMap,
         ] {
             common::compare::check_bench_golden::<S>(b, ty);
         }

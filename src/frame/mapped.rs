@@ -22,7 +22,8 @@ impl<P, O> FrameOptions<P, Plain, O> {
     /// [`Renderer::prepare`] fails with [`Error::NoDepthLines`] on a renderer without depth
     /// lines, [`Error::AttributeStore`] on one without a pool (`XA = 0`),
     /// [`crate::errors::LayerError::MapReceiver`] for a textured or per-pixel lit receiver,
-    /// [`crate::errors::LayerError::Blending`] for a target colour that cannot blend, and the
+    /// [`crate::errors::LayerError::Blending`] for a target colour that cannot blend (a
+    /// [`crate::color::TriangleId`] target records the triangles, none darkened), and the
     /// errors of [`Renderer::shadow_map_pass`].
     pub fn shadow_map<'l, 's, S, const N: usize>(
         self,

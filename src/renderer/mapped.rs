@@ -92,7 +92,10 @@ impl<
         if ZL == 0 {
             return Err(Error::NoDepthLines);
         }
-        if C::triangle_id(0).is_some() || C::from_channels([0; 3]).channels().is_none() {
+        // (A [`crate::color::TriangleId`] target records the triangles only: nothing is
+        // darkened, as in a layered frame.)
+        let ids = C::triangle_id(0).is_some();
+        if !ids && C::from_channels([0; 3]).channels().is_none() {
             return Err(Error::Layers(LayerError::Blending));
         }
         let n = scene.objects.len();
@@ -135,7 +138,11 @@ impl<
                 self.geo.frame_object(&c, &mut f, scene, o, i, probe)?;
             }
         }
-        let end = self.geo.verts.len().min(u16::MAX as usize) as u16;
+        let end = if ids {
+            0
+        } else {
+            self.geo.verts.len().min(u16::MAX as usize) as u16
+        };
         for (i, o) in scene.objects.iter().enumerate() {
             if !receives(i) {
                 self.geo.frame_object(&c, &mut f, scene, o, i, probe)?;

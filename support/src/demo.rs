@@ -323,7 +323,8 @@ where
         | Bench::ShadowVolume
         | Bench::Outline
         | Bench::Edges
-        | Bench::Wireframe => render_shadow_scene::<S, C, D, P>(
+        | Bench::Wireframe
+        | Bench::ShadowMap => render_shadow_scene::<S, C, D, P>(
             &ShadowScene::bench(bench, spin_deg, dither),
             target,
             probe,

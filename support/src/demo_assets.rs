@@ -417,6 +417,10 @@ pub enum Bench {
     /// [`Bench::Phong`] with [`scanline3d::Shading::Toon`] in [`crate::demo::TOON_BANDS`]
     /// bands: lit per pixel, hard edges between the tones and at the highlight.
     Toon,
+    /// [`Bench::ShadowNone`] with a 64 × 64 shadow map of both models
+    /// ([`scanline3d::FrameOptions::shadow_map`]): on the ground, on each other and on
+    /// themselves.
+    ShadowMap,
 }
 
 impl Bench {
@@ -431,7 +435,7 @@ impl Bench {
     }
 
     /// Every benchmark scene.
-    pub const ALL: [Bench; 33] = [
+    pub const ALL: [Bench; 34] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -465,6 +469,7 @@ impl Bench {
         Bench::HdrPhong,
         Bench::Csg,
         Bench::Toon,
+        Bench::ShadowMap,
     ];
 
     /// Its name in reports.
@@ -504,6 +509,7 @@ impl Bench {
             Bench::IcosphereNoDepth => "icosphere_nodepth",
             Bench::HdrPhong => "hdr_phong",
             Bench::Csg => "csg",
+            Bench::ShadowMap => "shadow_map",
         }
     }
 }

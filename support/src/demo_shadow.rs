@@ -6,6 +6,7 @@
 //! hidden lines removed (`Wireframe`).
 
 use crate::demo_assets::{deg, look, persp, Bench, BenchError, BenchFrame};
+use scanline3d::shadow::{ShadowMap, ShadowMapping};
 use scanline3d::Mat4;
 use scanline3d::Scalar;
 use scanline3d::Shape;
@@ -86,6 +87,9 @@ pub struct ShadowScene {
     pub spin_deg: f64,
     /// 4 × 4 ordered dithering.
     pub dither: bool,
+    /// A shadow map of the torus and the cube instead of a planar shadow or volumes, this many
+    /// texels a side (32, 64 or 128; the firmware compiles 64 only): every model receives.
+    pub map: Option<usize>,
 }
 
 /// Which edges [`ShadowScene::outline`] draws ([`Edges`]).
@@ -133,6 +137,7 @@ impl ShadowScene {
             },
             spin_deg,
             dither,
+            map: (bench == Bench::ShadowMap).then_some(64),
         }
     }
 }
@@ -276,6 +281,22 @@ where
                 .see_through(o.see_through),
         );
     }
+    if let Some(size) = o.map {
+        let mapping = ShadowMapping::new(ShadowLight::Directional(l), &[1, 2], &[])
+            .with_shadow([0; 3], SHADOW_ALPHA);
+        const V: usize = SHADOW_CAPACITY.0;
+        const T: usize = SHADOW_CAPACITY.1;
+        const A: usize = SHADOW_CAPACITY.2;
+        let (s, d) = (&scene, o.dither);
+        return match size {
+            #[cfg(feature = "host")]
+            32 => draw_mapped::<S, C, D, P, V, T, A, 32>(s, &mapping, d, target, probe),
+            64 => draw_mapped::<S, C, D, P, V, T, A, 64>(s, &mapping, d, target, probe),
+            #[cfg(feature = "host")]
+            128 => draw_mapped::<S, C, D, P, V, T, A, 128>(s, &mapping, d, target, probe),
+            _ => Err(BenchError::Scene),
+        };
+    }
     let plain = o.shadow.is_none() && !o.volume && o.outline.is_none() && o.alpha == 255;
     // Rendering triangle ids makes every triangle flat (one more vertex record per drawn
     // triangle): those renders get a larger vertex store.
@@ -385,6 +406,50 @@ where
             renderer_ram_bytes: core::mem::size_of_val(&r) + core::mem::size_of_val(&layers),
         })
     }
+}
+
+/// Draws `scene` with a shadow map of `N` texels a side from `mapping`, on a renderer with a
+/// vertex store of `V`, a triangle store of `T`, an active list of `A` and as many pool entries
+/// (each receiver's triangle takes one while active). [`BenchFrame::renderer_ram_bytes`]
+/// counts the map too.
+fn draw_mapped<S, C, D, P, const V: usize, const T: usize, const A: usize, const N: usize>(
+    scene: &Scene<'_, S, 1>,
+    mapping: &ShadowMapping<'_, S>,
+    dither: bool,
+    target: &mut D,
+    probe: &mut P,
+) -> Result<BenchFrame, BenchError<D::Error>>
+where
+    S: Scalar,
+    C: scanline3d::TargetColor,
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
+    P: scanline3d::probe::Probe,
+{
+    #[cfg(feature = "host")]
+    let (mut r, mut map) = (
+        std::boxed::Box::new(Renderer::<S, C, 240, 240, V, T, A, 1, 0, A>::new()),
+        std::boxed::Box::new(ShadowMap::<N>::new()),
+    );
+    #[cfg(not(feature = "host"))]
+    let (mut r, mut map) = (
+        Renderer::<S, C, 240, 240, V, T, A, 1, 0, A>::new(),
+        ShadowMap::<N>::new(),
+    );
+    r.set_dither(dither);
+    let stats = r
+        .render_with(
+            scene,
+            FrameOptions::new()
+                .probe(&mut *probe)
+                .shadow_map(mapping, &mut map),
+            target,
+        )
+        .map_err(BenchError::Render)?;
+    Ok(BenchFrame {
+        stats,
+        renderer_ram_bytes: core::mem::size_of::<Renderer<S, C, 240, 240, V, T, A, 1, 0, A>>()
+            + ShadowMap::<N>::RAM_BYTES,
+    })
 }
 
 /// The transform that places the level ground square (y = 0, facing +y) in plane

@@ -398,7 +398,12 @@ fn run() -> Result<(), String> {
         let baseline = ratchet::parse(&text).map_err(|e| format!("{baseline_path}: {e}"))?;
         let c = ratchet::compare(&baseline, &measured);
         print!("{}", c.summary(&baseline_path));
-        if let Some(f) = c.failure(&baseline_path) {
+        // `--lower-baseline` also adds a new scene's rows (never measured before).
+        let only_new = c.regressed.is_empty() && c.missing.is_empty();
+        if let Some(f) = c
+            .failure(&baseline_path)
+            .filter(|_| !(lower_baseline && only_new))
+        {
             failures.push(f);
         } else if lower_baseline && failures.is_empty() {
             let rows = ratchet::lowered(&baseline, &measured)?;
@@ -407,8 +412,9 @@ fn run() -> Result<(), String> {
                 &ratchet::format(&rows),
             )?;
             println!(
-                "ratchet: lowered {} rows of {baseline_path} to this measurement (the others kept): commit it with the change",
-                c.improved.len()
+                "ratchet: lowered {} rows of {baseline_path} to this measurement and added {} new rows (the others kept): commit it with the change",
+                c.improved.len(),
+                c.new.len()
             );
         } else if lower_baseline {
             failures.push(format!(

@@ -35,8 +35,8 @@ pub(crate) enum SceneArg {
     Shadow,
 }
 
-/// How `--scene shadow` draws its shadow.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+/// How `--scene shadow` draws its shadow (`--shadow`, parsed by [`shadow_arg`]).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(crate) enum ShadowArg {
     /// No shadow
     None,
@@ -48,6 +48,31 @@ pub(crate) enum ShadowArg {
     /// Shadow volumes of the models (stencil counting, z-fail): on the ground, on each other
     /// and on themselves
     Volume,
+    /// A shadow map of the models, this many texels a side: on the ground, on each other and
+    /// on themselves
+    Map(usize),
+}
+
+/// `--shadow`: none, projected, blob, volume, or map[,SIZE] (SIZE 32, 64 or 128; default 64).
+fn shadow_arg(s: &str) -> Result<ShadowArg, String> {
+    let bad = || {
+        format!(
+            "{s:?}: expected none, projected, blob, volume, or map[,SIZE] with SIZE 32, 64 or 128"
+        )
+    };
+    Ok(match s {
+        "none" => ShadowArg::None,
+        "projected" => ShadowArg::Projected,
+        "blob" => ShadowArg::Blob,
+        "volume" => ShadowArg::Volume,
+        "map" => ShadowArg::Map(64),
+        _ => match s.strip_prefix("map,") {
+            Some("32") => ShadowArg::Map(32),
+            Some("64") => ShadowArg::Map(64),
+            Some("128") => ShadowArg::Map(128),
+            _ => return Err(bad()),
+        },
+    })
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -465,8 +490,12 @@ pub(crate) struct Args {
     /// is the same for every strip height)
     #[arg(long, value_name = "LINES", allow_hyphen_values = true, value_parser = strip, default_value = "1")]
     pub(crate) strip: usize,
-    /// The shadow of `--scene shadow` [default: projected; none with --shading wireframe]
-    #[arg(long, value_enum)]
+    /// The shadow of `--scene shadow`: none, projected (the models' triangles projected onto
+    /// the plane, stencilled), blob (a soft disc under each model), volume (shadow volumes: on
+    /// the ground, on each other and on themselves) or map[,SIZE] (a shadow map of SIZE 32, 64
+    /// or 128 texels a side, default 64: the same receivers as volumes) [default: projected;
+    /// none with --shading wireframe]
+    #[arg(long, value_name = "METHOD", value_parser = shadow_arg)]
     pub(crate) shadow: Option<ShadowArg>,
     /// The plane `--scene shadow`'s shadow falls on, a·x + b·y + c·z + d = 0 (world units;
     /// the ground square is placed in it) [default: 0,1,0,0, the level ground]

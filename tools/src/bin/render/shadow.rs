@@ -42,7 +42,7 @@ pub fn run(args: &Args) -> Result<(), (String, i32)> {
         });
     let o = ShadowScene {
         shadow: match shadow {
-            ShadowArg::None | ShadowArg::Volume => None,
+            ShadowArg::None | ShadowArg::Volume | ShadowArg::Map(_) => None,
             ShadowArg::Projected => Some(ShadowMethod::Projected),
             ShadowArg::Blob => Some(ShadowMethod::Blob),
         },
@@ -64,7 +64,19 @@ pub fn run(args: &Args) -> Result<(), (String, i32)> {
         alpha: args.alpha.unwrap_or(255),
         spin_deg: 0.0,
         dither: args.dither == OnOff::On,
+        map: match shadow {
+            ShadowArg::Map(size) => Some(size),
+            _ => None,
+        },
     };
+    if o.map.is_some() && (o.outline.is_some() || o.alpha < 255 || o.wireframe) {
+        return Err((
+            "--shadow map draws a plain frame: it takes no --outline, --edges, --alpha below 255 \
+             or --shading wireframe"
+                .into(),
+            2,
+        ));
+    }
     match args.format {
         FormatArg::Rgb565 => go::<Rgb565>(args, &o),
         FormatArg::Rgb888 => go::<Rgb888>(args, &o),
@@ -110,6 +122,7 @@ fn frames<S: Scalar, C: TargetColor + Into<Rgb888>>(
                 "shadow scene ({}, {}): {} triangles drawn of {}, {} fragments, {} pixels written, renderer and layers RAM {} bytes",
                 S::NAME,
                 match o.shadow {
+                    None if o.map.is_some() => "shadow map",
                     None if o.volume => "shadow volumes",
                     None => "no shadow",
                     Some(ShadowMethod::Projected) => "projected shadow",
