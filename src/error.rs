@@ -707,9 +707,10 @@ pub enum LayerError {
     /// A shadow map's receivers (or, with none given, the scene's opaque objects) have no
     /// extent to fit the light's view to: no object, or only empty or degenerate meshes.
     EmptyBounds,
-    /// Receiver `object` of a shadow map is textured or lit per pixel: a mapped frame
-    /// darkens flat and Gouraud receivers (such an object can still cast into the map).
-    MapReceiver {
+    /// Object `object` of a mapped frame ([`crate::FrameOptions::shadow_map`]) is textured or
+    /// lit per pixel: a mapped frame draws flat and Gouraud objects (such an object can be
+    /// drawn with the map in a frame of its own, or cast into the map).
+    MapShading {
         /// Index of the object in the scene.
         object: usize,
     },
@@ -769,9 +770,9 @@ impl core::fmt::Display for LayerError {
                 f,
                 "the shadow map's point light is inside receiver {object}, or its receivers are too widely spread around it for one map"
             ),
-            LayerError::MapReceiver { object } => write!(
+            LayerError::MapShading { object } => write!(
                 f,
-                "shadow map receiver {object} is textured or lit per pixel: receivers are flat or Gouraud"
+                "object {object} of a shadow-mapped frame is textured or lit per pixel: a mapped frame draws flat and Gouraud objects"
             ),
             LayerError::EmptyBounds => write!(
                 f,

@@ -548,7 +548,7 @@ fn mapped_frame_errors() {
                 height: 240
             }))
         );
-        // A receiver lit per pixel.
+        // An object lit per pixel.
         let mut phong = objects.to_vec();
         phong[0].material.shading = Shading::Phong;
         let scene2 = Scene {
@@ -558,10 +558,7 @@ fn mapped_frame_errors() {
         let e = r
             .prepare(&scene2, FrameOptions::new().shadow_map(&mapping, &mut map))
             .err();
-        assert_eq!(
-            e,
-            Some(Error::Layers(LayerError::MapReceiver { object: 0 }))
-        );
+        assert_eq!(e, Some(Error::Layers(LayerError::MapShading { object: 0 })));
         // An index that is not an object.
         let bad = ShadowMapping::new(light, &[1, 7], &[]);
         let e = r

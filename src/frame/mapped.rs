@@ -16,12 +16,13 @@ impl<P, O> FrameOptions<P, Plain, O> {
     ///
     /// A receiver's triangle takes a pool entry while it is active (the renderer's `XA`: a
     /// triangle that finds none is left out and counted, [`crate::Shortfall::skipped`]); a face
-    /// turned away from the light is drawn as it is (lit by the ambient term only). Receivers
-    /// are flat or Gouraud-shaded and not dithered.
+    /// turned away from the light is drawn as it is (lit by the ambient term only). The
+    /// frame's objects are flat or Gouraud-shaded (textured and per-pixel lit objects are
+    /// refused), and receivers are not dithered.
     ///
     /// [`Renderer::prepare`] fails with [`Error::NoDepthLines`] on a renderer without depth
     /// lines, [`Error::AttributeStore`] on one without a pool (`XA = 0`),
-    /// [`crate::errors::LayerError::MapReceiver`] for a textured or per-pixel lit receiver,
+    /// [`crate::errors::LayerError::MapShading`] for a textured or per-pixel lit object,
     /// [`crate::errors::LayerError::Blending`] for a target colour that cannot blend (a
     /// [`crate::color::TriangleId`] target records the triangles, none darkened), and the
     /// errors of [`Renderer::shadow_map_pass`].

@@ -288,7 +288,8 @@ fn plain_row_in<C: TargetColor, const Z: u8>(
 }
 
 /// [`draw_row`] for the kinds with a pool entry: [`TEXTURED`], [`TEXTURED_FLAT`], [`PHONG`],
-/// [`FAST_PHONG`] and [`TOON`] (drawn with depth lines only).
+/// [`FAST_PHONG`] and [`TOON`], or in a mapped frame [`SHADOW`] and [`SHADOW_FLAT`] (drawn
+/// with depth lines only).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn pool_row<C: TargetColor, M: SpanMap>(
@@ -309,26 +310,33 @@ fn pool_row<C: TargetColor, M: SpanMap>(
             &mut depth[xs as usize..xe as usize],
             &mut colors[xs as usize..xe as usize],
         );
-        let written = match k {
-            // (A mapped frame calls the out-of-line twin: a second caller of `span` made the
-            // compiler stop inlining it into the plain frames' row, rv32imac textured +4 %.)
-            TEXTURED | TEXTURED_FLAT if crate::kernel::TEXTURED_SPAN_OUT_OF_LINE || M::ON => {
-                crate::raster::textured::span_out_of_line::<C>(a, pool, lc, xs, row, zs, cs, test)
-            }
-            TEXTURED | TEXTURED_FLAT => {
-                crate::raster::textured::span::<C>(a, pool, lc, xs, row, zs, cs, test)
-            }
-            PHONG | FAST_PHONG | TOON => {
-                let span = crate::raster::phong::span::<C, FAST_PHONG, TOON>;
-                span(a, k, pool, lc, xs, row, zs, cs, test, dither)
-            }
-            SHADOW | SHADOW_FLAT if M::ON => match map.view() {
-                Some(view) => {
+        // A mapped frame's pool kinds are the shadow kinds only (it refuses textured and per-pixel
+        // lit objects): with the other spans called from its row too, the compiler stopped
+        // inlining the textured span's loop into the plain frames' row (rv32imac textured
+        // +3-4 %).
+        let written = if M::ON {
+            match (k, map.view()) {
+                (SHADOW | SHADOW_FLAT, Some(view)) => {
                     crate::raster::shadow_span::span::<C>(a, pool, lc, xs, row, zs, cs, test, view)
                 }
-                None => 0,
-            },
-            _ => 0,
+                _ => 0,
+            }
+        } else {
+            match k {
+                TEXTURED | TEXTURED_FLAT if crate::kernel::TEXTURED_SPAN_OUT_OF_LINE => {
+                    crate::raster::textured::span_out_of_line::<C>(
+                        a, pool, lc, xs, row, zs, cs, test,
+                    )
+                }
+                TEXTURED | TEXTURED_FLAT => {
+                    crate::raster::textured::span::<C>(a, pool, lc, xs, row, zs, cs, test)
+                }
+                PHONG | FAST_PHONG | TOON => {
+                    let span = crate::raster::phong::span::<C, FAST_PHONG, TOON>;
+                    span(a, k, pool, lc, xs, row, zs, cs, test, dither)
+                }
+                _ => 0,
+            }
         };
         counts = ((xe - xs) as u32, written);
     }

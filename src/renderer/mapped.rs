@@ -114,10 +114,8 @@ impl<
                 mapping.receivers.contains(&i)
             }
         };
-        if let Some(i) =
-            (0..n).find(|&i| receives(i) && scene.objects[i].material.needs_attribute_stores())
-        {
-            return Err(Error::Layers(LayerError::MapReceiver { object: i }));
+        if let Some(i) = (0..n).find(|&i| scene.objects[i].material.needs_attribute_stores()) {
+            return Err(Error::Layers(LayerError::MapShading { object: i }));
         }
         if XA == 0 {
             let object = (0..n).find(|&i| receives(i)).unwrap_or(0);
