@@ -103,11 +103,21 @@ fn shadow_scene_refuses_the_model_flags_it_ignored() {
         &["--scene", "shadow", "--size", "120x120"],
         &["--size", "240x240"],
     );
+    refused(
+        &["--scene", "shadow", "--shadow", "map,48"],
+        &["map[,SIZE]", "32, 64 or 128"],
+    );
+    refused(
+        &["--scene", "shadow", "--shadow", "map", "--alpha", "100"],
+        &["--shadow map draws a plain frame"],
+    );
     // What the scene takes is applied: a different image from the default.
     let (code, stderr, base) = image(&["--scene", "shadow"], "shadow_base.png");
     assert_eq!(code, 0, "{stderr}");
     for args in [
         &["--shadow", "blob"][..],
+        &["--shadow", "map"],
+        &["--shadow", "map,32"],
         &["--shadow-plane", "0.3,1,0,0.3"],
         &["--alpha", "150"],
         &["--shadow", "none", "--outline", "255,0,0"],
