@@ -8,7 +8,7 @@
 //! caller's, outside the renderer (as [`crate::Layers`] are).
 
 use crate::error::{Error, LayerError};
-use crate::num::math::Mat4;
+use crate::num::math::{add, cross, dot, length, scale, sub, Mat4};
 use crate::num::scalar::Scalar;
 use crate::raster::shadow::{object_sphere, ShadowLight};
 use crate::raster::span_map::MapLookup;
@@ -104,6 +104,16 @@ impl<'a, S: Scalar> ShadowMapping<'a, S> {
         }
     }
 
+    /// Whether object `i` of `scene` is one of the receivers (with none given, every opaque
+    /// object is).
+    pub(crate) fn receives<const L: usize>(&self, scene: &Scene<'_, S, L>, i: usize) -> bool {
+        if self.receivers.is_empty() {
+            scene.objects[i].material.alpha == 255
+        } else {
+            self.receivers.contains(&i)
+        }
+    }
+
     /// The light's camera for a map of `size` texels a side: the given one, or one fitted to
     /// where the casters' shadows can fall on the receivers, from the objects' bounding spheres
     /// ([`MAP_MARGIN`] texels inside the map's border). The map's texels are spent there only: a
@@ -142,34 +152,19 @@ impl<'a, S: Scalar> ShadowMapping<'a, S> {
             c.validate().map_err(Error::Camera)?;
             return Ok(c);
         }
-        let sphere = |i: usize| object_sphere(&scene.objects[i]);
-        let receives = |i: usize| {
-            if self.receivers.is_empty() {
-                scene.objects[i].material.alpha == 255
-            } else {
-                self.receivers.contains(&i)
-            }
+        // Object `i`'s bounding sphere, when it has one (finite, not empty).
+        let sphere = |i: usize| {
+            let (c, r) = object_sphere(&scene.objects[i]);
+            (c.iter().all(|v| v.is_finite()) && r.is_finite() && r > 0.0).then_some((i, c, r))
         };
-        // The receivers' spheres (recomputed by each loop over them: no store, whatever
-        // their number).
+        // The receivers' and the casters' spheres (recomputed by each loop over them: no
+        // store, whatever their number).
         let rec = || {
             (0..n)
-                .filter(move |&i| receives(i))
-                .map(move |i| {
-                    let (c, r) = sphere(i);
-                    (i, c, r)
-                })
-                .filter(|&(_, c, r)| c.iter().all(|v| v.is_finite()) && r.is_finite() && r > 0.0)
+                .filter(|&i| self.receives(scene, i))
+                .filter_map(sphere)
         };
-        let casters = || {
-            self.casters
-                .iter()
-                .map(move |&i| {
-                    let (c, r) = sphere(i);
-                    (i, c, r)
-                })
-                .filter(|&(_, c, r)| c.iter().all(|v| v.is_finite()) && r.is_finite() && r > 0.0)
-        };
+        let casters = || self.casters.iter().filter_map(move |&i| sphere(i));
         let Some(first) = rec().next() else {
             return Err(Error::Layers(LayerError::EmptyBounds));
         };
@@ -376,16 +371,8 @@ impl<const N: usize> ShadowMap<N> {
     /// and projection (aspect 1) in the number type, then the viewport's map to texels and
     /// depth steps.
     pub(crate) fn set_camera<S: Scalar>(&mut self, camera: &Camera<S>) {
-        let f = |m: Mat4<S>| m.m.map(|r| r.map(|v| v.to_f64()));
-        let (v, p) = (f(camera.view), f(camera.projection.matrix(S::ONE)));
-        let clip = mul4(p, v);
         let h = N as f64 / 2.0;
-        self.to_map = [
-            core::array::from_fn(|j| h * (clip[0][j] + clip[3][j])),
-            core::array::from_fn(|j| h * (clip[3][j] - clip[1][j])),
-            core::array::from_fn(|j| 65535.0 * clip[2][j]),
-            clip[3],
-        ];
+        self.to_map = viewport_rows(clip_f64(camera, S::ONE), [h, h, 65535.0]);
         self.drawn = true;
     }
 
@@ -404,22 +391,15 @@ impl<const N: usize> ShadowMap<N> {
         if !self.drawn {
             return false;
         }
-        let f = |m: Mat4<S>| m.m.map(|r| r.map(|v| v.to_f64()));
         let aspect = S::from_f64(vw as f64 / vh.max(1) as f64);
-        let clip = mul4(f(camera.projection.matrix(aspect)), f(camera.view));
         // World → screen (homogeneous): x = (x_c/w + 1)·8·vw subpixels, y = (1 − y_c/w)·8·vh,
         // d = z_c/w·65535·256.
         let (sx, sy) = (8.0 * vw as f64, 8.0 * vh as f64);
-        let screen = [
-            core::array::from_fn(|j| sx * (clip[0][j] + clip[3][j])),
-            core::array::from_fn(|j| sy * (clip[3][j] - clip[1][j])),
-            core::array::from_fn(|j| 65535.0 * 256.0 * clip[2][j]),
-            clip[3],
-        ];
+        let screen = viewport_rows(clip_f64(camera, aspect), [sx, sy, 65535.0 * 256.0]);
         let Some(inv) = invert4(screen) else {
             return false;
         };
-        let mut m = mul4(self.to_map, inv);
+        let mut m = Mat4 { m: self.to_map }.mul(&Mat4 { m: inv }).m;
         // W > 0 in front of the light: checked at the screen's centre, halfway in depth.
         let mid = [sx, sy, 65535.0 * 128.0, 1.0];
         if (0..4).map(|j| m[3][j] * mid[j]).sum::<f64>() < 0.0 {
@@ -448,9 +428,22 @@ impl<const N: usize> ShadowMap<N> {
     }
 }
 
-/// The product `a·b` of two 4 × 4 matrices.
-fn mul4(a: [[f64; 4]; 4], b: [[f64; 4]; 4]) -> [[f64; 4]; 4] {
-    core::array::from_fn(|i| core::array::from_fn(|j| (0..4).map(|k| a[i][k] * b[k][j]).sum()))
+/// `camera`'s world → clip matrix for a viewport of `aspect`, in f64 from the number type's
+/// values.
+fn clip_f64<S: Scalar>(camera: &Camera<S>, aspect: S) -> [[f64; 4]; 4] {
+    let p = camera.projection.matrix(aspect).cast::<f64>();
+    p.mul(&camera.view.cast::<f64>()).m
+}
+
+/// World → viewport (homogeneous) from world → `clip`: `x = (x_c/w + 1)·sx`,
+/// `y = (1 − y_c/w)·sy` and `d = z_c/w·sd` for `[sx, sy, sd]`, then `w`.
+fn viewport_rows(clip: [[f64; 4]; 4], [sx, sy, sd]: [f64; 3]) -> [[f64; 4]; 4] {
+    [
+        core::array::from_fn(|j| sx * (clip[0][j] + clip[3][j])),
+        core::array::from_fn(|j| sy * (clip[3][j] - clip[1][j])),
+        core::array::from_fn(|j| sd * clip[2][j]),
+        clip[3],
+    ]
 }
 
 /// The inverse of a 4 × 4 matrix (Gauss–Jordan with partial pivoting), or `None` when it is
@@ -497,28 +490,6 @@ impl<const N: usize> Default for ShadowMap<N> {
     }
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
-    a.map(|v| v * s)
-}
-fn length(a: [f64; 3]) -> f64 {
-    libm::sqrt(dot(a, a))
-}
 /// `a` normalized, or `None` when it is zero or not finite.
 fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
     let l = length(a);

@@ -44,12 +44,18 @@ pub(crate) enum Attach {
     Full,
 }
 
-/// `num·2^frac/w` (`w > 0`), from one normalized reciprocal of `w` and one 32 × 32-bit
-/// product: `num` is cut to its 31 leading bits (a relative error below 2⁻³⁰), the result
-/// saturated to the `i32` range.
+/// `1/w` (`w > 0`) as `recip_norm` gives it, for [`ratio`]: one per denominator, shared by
+/// the coordinates divided by it.
 #[inline]
-fn ratio(num: i64, w: i64, frac: i32) -> i32 {
-    let (m, e) = recip_norm(w as u64);
+fn recip(w: i64) -> (i32, u32) {
+    recip_norm(w as u64)
+}
+
+/// `num·2^frac/w` from `w`'s reciprocal `(m, e)` ([`recip`]) and one 32 × 32-bit product:
+/// `num` is cut to its 31 leading bits (a relative error below 2⁻³⁰), the result saturated to
+/// the `i32` range.
+#[inline]
+fn ratio(num: i64, (m, e): (i32, u32), frac: i32) -> i32 {
     let k = bitlen64(num.unsigned_abs()).saturating_sub(31);
     let n = (num >> k) as i32;
     let p = mul_wide(n, m);
@@ -66,11 +72,17 @@ fn ratio(num: i64, w: i64, frac: i32) -> i32 {
     q.clamp(i32::MIN as i64, i32::MAX as i64) as i32
 }
 
-/// `(X, Y, Z, W)` of screen point `s` (see [`MapLookup::m`]): exact (each product is below
-/// 2⁶⁰ by the matrix's scale, the sum below 2⁶²).
+/// Row `row` of [`MapLookup::m`] at screen point `s`: exact (each product is below 2⁶⁰ by the
+/// matrix's scale, the sum below 2⁶²).
+#[inline]
+fn light_row(row: &[i64; 4], s: [i64; 4]) -> i64 {
+    row[0] * s[0] + row[1] * s[1] + row[2] * s[2] + row[3] * s[3]
+}
+
+/// `(X, Y, Z, W)` of screen point `s` (see [`MapLookup::m`]).
 #[inline]
 fn light_point(m: &[[i64; 4]; 4], s: [i64; 4]) -> [i64; 4] {
-    core::array::from_fn(|r| m[r][0] * s[0] + m[r][1] * s[1] + m[r][2] * s[2] + m[r][3] * s[3])
+    m.map(|row| light_row(&row, s))
 }
 
 /// Gives receiver triangle `t` (set up as an ordinary triangle, with the default
@@ -101,10 +113,11 @@ pub(crate) fn attach_shadow(
     }
     // Texel coordinates (Q16.16) and light depth (Q16.14) of the vertices.
     let uvz = l.map(|l| {
+        let r = recip(l[3]);
         [
-            ratio(l[0], l[3], 16) as i128,
-            ratio(l[1], l[3], 16) as i128,
-            ratio(l[2], l[3], Z_FRAC) as i128,
+            ratio(l[0], r, 16) as i128,
+            ratio(l[1], r, 16) as i128,
+            ratio(l[2], r, Z_FRAC) as i128,
         ]
     });
     let d = |k: usize, c: usize| uvz[k][c] - uvz[0][c];
@@ -213,8 +226,7 @@ impl ShadowSpan<'_> {
             (z >> (DEPTH_FRAC_BITS - 8)) as i64,
             1,
         ];
-        let m = &self.map.look.m[3];
-        let w = m[0] * s[0] + m[1] * s[1] + m[2] * s[2] + m[3];
+        let w = light_row(&self.map.look.m[3], s);
         if w <= 0 {
             return [-1 << 16, -1 << 16, 0];
         }
@@ -225,12 +237,13 @@ impl ShadowSpan<'_> {
                 .wrapping_add(gx[k].wrapping_mul(dx))
                 .wrapping_add(gy[k].wrapping_mul(dy))
         };
+        let r = recip(w);
         // A plane is X·2^(16 − f) (its 16 fraction bits over the values cut by f bits).
         let f = e.f as i32;
         [
-            ratio(plane(0), w, f),
-            ratio(plane(1), w, f),
-            ratio(plane(2), w, f - 2).saturating_sub(e.flat[0]),
+            ratio(plane(0), r, f),
+            ratio(plane(1), r, f),
+            ratio(plane(2), r, f - 2).saturating_sub(e.flat[0]),
         ]
     }
 

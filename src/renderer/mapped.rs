@@ -107,13 +107,7 @@ impl<
         {
             return Err(Error::Layers(LayerError::NoSuchObject { index: i }));
         }
-        let receives = |i: usize| {
-            if mapping.receivers.is_empty() {
-                scene.objects[i].material.alpha == 255
-            } else {
-                mapping.receivers.contains(&i)
-            }
-        };
+        let receives = |i: usize| mapping.receives(scene, i);
         if let Some(i) = (0..n).find(|&i| scene.objects[i].material.needs_attribute_stores()) {
             return Err(Error::Layers(LayerError::MapShading { object: i }));
         }
