@@ -283,7 +283,7 @@ pub mod shadow {
         Edges, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow,
     };
     pub use crate::raster::shadow_map::{
-        ShadowMap, ShadowMapping, DEFAULT_BIAS, MAP_MARGIN, MAX_MAP_FOV,
+        ShadowFilter, ShadowMap, ShadowMapping, DEFAULT_BIAS, MAP_MARGIN, MAX_MAP_FOV,
     };
     pub use crate::raster::span_map::MAX_BIAS;
 }

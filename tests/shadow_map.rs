@@ -6,7 +6,7 @@ use embedded_graphics::pixelcolor::Rgb565;
 use scanline3d::errors::LayerError;
 use scanline3d::fixed::types::I16F16;
 use scanline3d::prelude::*;
-use scanline3d::shadow::{ShadowLight, ShadowMap, ShadowMapping};
+use scanline3d::shadow::{ShadowFilter, ShadowLight, ShadowMap, ShadowMapping};
 use scanline3d_support::demo::SHADOW_LIGHT;
 use scanline3d_support::host::raycast::{map_against_raycast, world_triangles, MapAccuracy};
 
@@ -372,6 +372,18 @@ fn frames_in<C: scanline3d::TargetColor>(
     scanline3d_support::host::Frame<C>,
     scanline3d_support::host::Frame<C>,
 ) {
+    frames_filtered(fill, ShadowFilter::Nearest)
+}
+
+/// The models drawn plainly and with a 64-texel map read through `filter` into a `C` target;
+/// the two frames.
+fn frames_filtered<C: scanline3d::TargetColor>(
+    fill: C,
+    filter: ShadowFilter,
+) -> (
+    scanline3d_support::host::Frame<C>,
+    scanline3d_support::host::Frame<C>,
+) {
     use scanline3d_support::host::Frame;
     with_models::<Q, _>(|objects| {
         let scene = Scene::new(
@@ -380,7 +392,7 @@ fn frames_in<C: scanline3d::TargetColor>(
             [Light::white(SHADOW_LIGHT.map(Q::from_f64))],
         );
         let light = ShadowLight::Directional(SHADOW_LIGHT.map(Q::from_f64));
-        let mapping = ShadowMapping::new(light, &[1, 2], &[]);
+        let mapping = ShadowMapping::new(light, &[1, 2], &[]).with_filter(filter);
         let mut renderer = Box::new(Renderer::<Q, C, 240, 240, 2048, 1024, 64, 8, 0, 64>::new());
         let mut map = Box::new(ShadowMap::<64>::new());
         let mut lit = Frame::new(240, 240, fill);
@@ -432,6 +444,92 @@ fn every_colour_type() {
     // A triangle-id target records the triangles, none darkened: the plain frame's ids.
     let (lit, shadowed) = frames_in(scanline3d::color::TriangleId(0));
     assert!(lit.px == shadowed.px);
+}
+
+/// Percentage-closer filtering (2 × 2 and 3 × 3) against the nearest read: a filtered pixel
+/// differs from the nearest one only near the nearest shadow's edges (the interiors are
+/// equal), every filtered pixel lies between the lit and the fully shadowed colour, and the
+/// edges take intermediate levels (more of them with 3 × 3 taps than with 2 × 2).
+#[test]
+fn pcf_softens_the_edges_only() {
+    use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+    let (lit, nearest) = frames_filtered(Rgb888::BLACK, ShadowFilter::Nearest);
+    let ch = |c: Rgb888| [c.r(), c.g(), c.b()];
+    let shadowed: Vec<bool> = lit.px.iter().zip(&nearest.px).map(|(a, b)| a != b).collect();
+    // Chebyshev distance of each pixel to the nearest read's shadow edge (a shadowed pixel
+    // next to a lit one, on the same surface or not).
+    let (w, h) = (240usize, 240usize);
+    let mut dist = vec![usize::MAX; w * h];
+    let mut queue = std::collections::VecDeque::new();
+    for y in 0..h {
+        for x in 0..w {
+            let i = y * w + x;
+            let edge = shadowed[i]
+                && [(0i32, 1i32), (1, 0), (0, -1), (-1, 0)].iter().any(|&(dx, dy)| {
+                    let (nx, ny) = (x as i32 + dx, y as i32 + dy);
+                    (0..w as i32).contains(&nx)
+                        && (0..h as i32).contains(&ny)
+                        && !shadowed[ny as usize * w + nx as usize]
+                });
+            if edge {
+                dist[i] = 0;
+                queue.push_back(i);
+            }
+        }
+    }
+    while let Some(i) = queue.pop_front() {
+        let (x, y) = ((i % w) as i32, (i / w) as i32);
+        for dy in -1..=1 {
+            for dx in -1..=1 {
+                let (nx, ny) = (x + dx, y + dy);
+                if (0..w as i32).contains(&nx) && (0..h as i32).contains(&ny) {
+                    let j = ny as usize * w + nx as usize;
+                    if dist[j] == usize::MAX {
+                        dist[j] = dist[i] + 1;
+                        queue.push_back(j);
+                    }
+                }
+            }
+        }
+    }
+    let mut soft = [0usize; 2];
+    for (k, filter) in [ShadowFilter::Pcf2, ShadowFilter::Pcf3].into_iter().enumerate() {
+        let (lit2, filtered) = frames_filtered(Rgb888::BLACK, filter);
+        assert!(lit2.px == lit.px);
+        let (mut differs, mut far, mut intermediate, mut out_of_range) = (0, 0, 0, 0);
+        let mut farthest = 0;
+        for i in 0..w * h {
+            let (l, n, f) = (ch(lit.px[i]), ch(nearest.px[i]), ch(filtered.px[i]));
+            // The shadow is black: a filtered pixel is no brighter than the lit one, and no
+            // darker than the fully shadowed one (the nearest read's, where it shadows).
+            if (0..3).any(|c| f[c] > l[c] || (shadowed[i] && f[c] < n[c])) {
+                out_of_range += 1;
+            }
+            if f != n {
+                differs += 1;
+                farthest = farthest.max(dist[i]);
+                // A 64-texel map's texel covers up to about 4 pixels of this frame; the taps
+                // reach 1.5 texels.
+                if dist[i] > 6 {
+                    far += 1;
+                }
+                if f != l && !(shadowed[i] && f == n) {
+                    intermediate += 1;
+                }
+            }
+        }
+        println!(
+            "{filter:?}: {differs} pixels differ from the nearest read, at most {farthest} \
+             pixels from its edges ({far} beyond 6); {intermediate} at an intermediate level; \
+             {out_of_range} outside the lit..shadowed range"
+        );
+        assert_eq!(out_of_range, 0, "{filter:?}");
+        assert!(differs > 300, "{filter:?}: {differs} pixels soft");
+        assert_eq!(far, 0, "{filter:?}: {far} of {differs} beyond 6 pixels");
+        assert!(intermediate * 2 > differs, "{filter:?}: {intermediate} of {differs}");
+        soft[k] = intermediate;
+    }
+    assert!(soft[1] > soft[0], "3 × 3 {} <= 2 × 2 {}", soft[1], soft[0]);
 }
 
 /// A cube over an icosphere: the map shadows the curved receiver, which the planar method

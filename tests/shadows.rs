@@ -308,6 +308,7 @@ fn shadow_benchmark_scenes_match_their_golden_images() {
             Bench::Edges,
             Bench::Wireframe,
             Bench::ShadowMap,
+            Bench::ShadowMapPcf,
         ] {
             common::compare::check_bench_golden::<S>(b, ty);
         }

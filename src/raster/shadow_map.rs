@@ -57,6 +57,40 @@ pub struct ShadowMapping<'a, S> {
     /// where the map's texels are coarser than its pixels: "shadow acne"). Default
     /// [`DEFAULT_BIAS`].
     pub bias: [u16; 2],
+    /// How a pixel reads the map: one texel, or the share of 2 × 2 or 3 × 3 texels that hide
+    /// it from the light (soft edges). Default [`ShadowFilter::Nearest`].
+    pub filter: ShadowFilter,
+}
+
+/// How a receiver's pixel reads a [`ShadowMap`] ([`ShadowMapping::filter`]).
+///
+/// The filtered kinds are percentage-closer filtering: each of the texels around the pixel's
+/// point in the map is compared with the pixel's light depth, and the pixel is darkened by the
+/// share that hide it, in five levels (none, ¼, ½, ¾, all of the shadow's opacity). Their
+/// bias's slope term grows with the taps' reach (×2 for 2 × 2, ×3 for 3 × 3), since a tap
+/// one texel away reads the surface one texel's depth change away.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum ShadowFilter {
+    /// The texel under the pixel: in shadow or not (hard edges; 1 load and compare a pixel).
+    #[default]
+    Nearest,
+    /// The 2 × 2 texels around the pixel's point (their centres within one texel of it):
+    /// 4 loads and compares, levels 0..=4 by the count.
+    Pcf2,
+    /// The 3 × 3 texels around the pixel's texel: 9 loads and compares, the count 0..=9
+    /// rounded to the nearest of the five levels.
+    Pcf3,
+}
+
+impl ShadowFilter {
+    /// The bias's slope factor: the taps' reach in half texels (1, 2, 3).
+    pub(crate) const fn reach(self) -> i64 {
+        match self {
+            ShadowFilter::Nearest => 1,
+            ShadowFilter::Pcf2 => 2,
+            ShadowFilter::Pcf3 => 3,
+        }
+    }
 }
 
 /// [`ShadowMapping::bias`]'s default: 64 depth steps, plus 1.5 times a receiver's depth change
@@ -75,7 +109,14 @@ impl<'a, S: Scalar> ShadowMapping<'a, S> {
             color: [0; 3],
             alpha: 140,
             bias: DEFAULT_BIAS,
+            filter: ShadowFilter::Nearest,
         }
+    }
+
+    /// This mapping read through `filter` ([`ShadowMapping::filter`]).
+    #[must_use]
+    pub const fn with_filter(self, filter: ShadowFilter) -> Self {
+        ShadowMapping { filter, ..self }
     }
 
     /// This mapping with a shadow of `color` and opacity `alpha` (default black, 140).
@@ -419,11 +460,15 @@ impl<const N: usize> ShadowMap<N> {
         self.look.log2n = N.trailing_zeros() as u8;
         self.look.receivers_end = receivers_end;
         self.look.bias = mapping.bias;
-        self.look.shadow = crate::raster::layer_rows::blend_tables::<C>(
-            &mut self.look.lut,
-            mapping.color,
-            mapping.alpha,
-        );
+        self.look.filter = mapping.filter;
+        // Level k of 4 blends with α·k/4 (rounded).
+        let a = mapping.alpha as u32;
+        for (k, lut) in self.look.lut.iter_mut().enumerate() {
+            let alpha = ((a * (k as u32 + 1) + 2) / 4) as u8;
+            self.look.alphas[k + 1] = alpha;
+            self.look.shadow =
+                crate::raster::layer_rows::blend_tables::<C>(lut, mapping.color, alpha);
+        }
         true
     }
 }

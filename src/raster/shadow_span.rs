@@ -21,6 +21,7 @@ use crate::kernel::records::SUBPIXELS;
 use crate::kernel::wide::{bitlen64, mul_wide, recip_norm};
 use crate::raster::layer_rows::blend;
 use crate::raster::span::{by_depth_test, passes};
+use crate::raster::shadow_map::ShadowFilter;
 use crate::raster::span_map::{MapLookup, MapView, MAX_BIAS};
 use crate::raster::textured::set_planes;
 use crate::raster::*;
@@ -135,7 +136,8 @@ pub(crate) fn attach_shadow(
     let gv = ((d(1, 0) * d(2, 2) - d(2, 0) * d(1, 2)) << 16) / det;
     let slope = (gu.unsigned_abs() + gv.unsigned_abs()).min(1 << 40) as i128;
     let [b0, b1] = look.bias.map(|b| b as i128);
-    let bias = ((b0 << Z_FRAC) + ((slope * b1) >> 8)).min((MAX_BIAS as i128) << Z_FRAC);
+    let reach = look.filter.reach() as i128;
+    let bias = ((b0 << Z_FRAC) + ((slope * b1 * reach) >> 8)).min((MAX_BIAS as i128) << Z_FRAC);
     // The planes of X, Y, Z, cut to 30 bits by a shift common to the three.
     let big = l
         .iter()
@@ -196,8 +198,20 @@ pub(crate) fn span<C: TargetColor>(
         light,
         flat: flat.then(|| rec.flat_channels()),
     };
-    by_depth_test!(test, T => s.fill::<C, T>(zs, cs))
+    match map.look.filter {
+        ShadowFilter::Nearest => by_depth_test!(test, T => s.fill::<C, T, NEAREST>(zs, cs)),
+        ShadowFilter::Pcf2 => by_depth_test!(test, T => s.fill::<C, T, PCF2>(zs, cs)),
+        ShadowFilter::Pcf3 => by_depth_test!(test, T => s.fill::<C, T, PCF3>(zs, cs)),
+    }
 }
+
+/// [`ShadowSpan::fill`]'s reads of the map: [`ShadowFilter`]'s kinds as constants.
+const NEAREST: u8 = 0;
+const PCF2: u8 = 1;
+const PCF3: u8 = 2;
+
+/// A 3 × 3 read's count of hiding texels (0..=9) to its level (0..=4): `round(4·count/9)`.
+const LEVEL9: [u8; 10] = [0, 0, 1, 1, 2, 2, 3, 3, 4, 4];
 
 struct ShadowSpan<'a> {
     e: &'a ActiveExtra,
@@ -247,25 +261,32 @@ impl ShadowSpan<'_> {
         ]
     }
 
-    /// Tests and writes the span's pixels; returns how many it wrote.
-    fn fill<C: TargetColor, const T: u8>(&self, zs: &mut [u16], cs: &mut [C]) -> u32 {
+    /// Tests and writes the span's pixels, reading the map as `F` says ([`NEAREST`], [`PCF2`]
+    /// or [`PCF3`]); returns how many it wrote.
+    fn fill<C: TargetColor, const T: u8, const F: u8>(&self, zs: &mut [u16], cs: &mut [C]) -> u32 {
         let look = self.map.look;
         let texels = self.map.depth;
         let log2n = look.log2n as u32;
         let small = C::CHANNEL_MAX.iter().all(|&m| m <= 63);
-        let (sc, alpha) = look.shadow;
-        let dark = |ch: [u8; 3]| -> [u8; 3] {
+        let (sc, _) = look.shadow;
+        // Channels `ch` darkened to level 1..=4.
+        let dark = |ch: [u8; 3], level: usize| -> [u8; 3] {
             core::array::from_fn(|c| {
                 if small {
-                    look.lut[c][ch[c] as usize & 63]
+                    look.lut[level - 1][c][ch[c] as usize & 63]
                 } else {
-                    blend(ch[c] as u32, sc[c] as u32, alpha as u32) as u8
+                    blend(ch[c] as u32, sc[c] as u32, look.alphas[level] as u32) as u8
                 }
             })
         };
-        let flat = self
-            .flat
-            .map(|ch| (C::from_channels(ch), C::from_channels(dark(ch))));
+        // A flat triangle's colour at each level.
+        let flat = self.flat.map(|ch| {
+            let mut at = [C::from_channels(ch); 5];
+            for (level, c) in at.iter_mut().enumerate().skip(1) {
+                *c = C::from_channels(dark(ch, level));
+            }
+            at
+        });
         let n = zs.len().min(cs.len()) as i32;
         let [mut z, gz] = self.z;
         let mut l = self.light.map(|c| c[0]);
@@ -290,21 +311,39 @@ impl ShadowSpan<'_> {
             for k in i as usize..(i + len) as usize {
                 let z16 = (z >> DEPTH_FRAC_BITS) as u16;
                 if passes::<T>(z16, zs[k]) {
-                    let (iu, iv) = (u >> 16, v >> 16);
-                    let shadowed = ((iu | iv) as u32) >> log2n == 0
-                        && (lz >> Z_FRAC)
-                            > texels[((iv as u32) << log2n | iu as u32) as usize] as i32;
-                    cs[k] = match flat {
-                        Some((lit, dim)) => {
-                            if shadowed {
-                                dim
-                            } else {
-                                lit
-                            }
+                    let d = lz >> Z_FRAC;
+                    // Whether texel (iu, iv) hides the pixel: inside the map and nearer the
+                    // light (a texel outside the map is lit).
+                    let hides = |iu: i32, iv: i32| -> usize {
+                        (((iu | iv) as u32) >> log2n == 0
+                            && d > texels[((iv as u32) << log2n | iu as u32) as usize] as i32)
+                            as usize
+                    };
+                    let level = match F {
+                        NEAREST => hides(u >> 16, v >> 16) * 4,
+                        PCF2 => {
+                            let (iu, iv) = ((u - (1 << 15)) >> 16, (v - (1 << 15)) >> 16);
+                            hides(iu, iv)
+                                + hides(iu + 1, iv)
+                                + hides(iu, iv + 1)
+                                + hides(iu + 1, iv + 1)
                         }
+                        _ => {
+                            let (iu, iv) = (u >> 16, v >> 16);
+                            let mut count = 0;
+                            for dv in -1..=1 {
+                                for du in -1..=1 {
+                                    count += hides(iu + du, iv + dv);
+                                }
+                            }
+                            LEVEL9[count] as usize
+                        }
+                    };
+                    cs[k] = match &flat {
+                        Some(at) => at[level],
                         None => {
                             let ch = l.map(|c| (c >> COLOR_FRAC_BITS) as u8);
-                            C::from_channels(if shadowed { dark(ch) } else { ch })
+                            C::from_channels(if level == 0 { ch } else { dark(ch, level) })
                         }
                     };
                     zs[k] = z16;

@@ -8,6 +8,7 @@
 //! [`draw_row`]: crate::raster::kind::draw_row
 
 use crate::kernel::records::TriRecord;
+use crate::raster::shadow_map::ShadowFilter;
 
 /// What a strip pass knows of a shadow map: nothing ([`NoMap`]) or the map of a mapped frame
 /// ([`MapView`]).
@@ -75,11 +76,16 @@ pub(crate) struct MapLookup {
     pub(crate) receivers_end: u16,
     /// `ShadowMapping::bias`.
     pub(crate) bias: [u16; 2],
-    /// Per channel value of a target of at most 6 bits per channel, the value blended toward
-    /// the shadow (`layers::blend_tables`).
-    pub(crate) lut: [[u8; 64]; 3],
-    /// The shadow colour in the target's channel units and its opacity.
+    /// Per level `k` = 1..=4 of the shadow (entry `k − 1`: `k` quarters of its opacity) and
+    /// per channel value of a target of at most 6 bits per channel, the value blended toward
+    /// the shadow (`layers::blend_tables`). A nearest read uses level 4 only.
+    pub(crate) lut: [[[u8; 64]; 3]; 4],
+    /// The shadow colour in the target's channel units and its full opacity (0..=255).
     pub(crate) shadow: ([u8; 3], u8),
+    /// The opacity of each level 0..=4 (`round(α·k/4)`), for targets wider than 6 bits.
+    pub(crate) alphas: [u8; 5],
+    /// How the spans read the map.
+    pub(crate) filter: ShadowFilter,
 }
 
 impl MapLookup {
@@ -88,7 +94,9 @@ impl MapLookup {
         log2n: 0,
         receivers_end: 0,
         bias: [0; 2],
-        lut: [[0; 64]; 3],
+        lut: [[[0; 64]; 3]; 4],
         shadow: ([0; 3], 0),
+        alphas: [0; 5],
+        filter: ShadowFilter::Nearest,
     };
 }

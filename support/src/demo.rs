@@ -324,7 +324,11 @@ where
         | Bench::Outline
         | Bench::Edges
         | Bench::Wireframe
-        | Bench::ShadowMap => render_shadow_scene::<S, C, D, P>(
+        | Bench::ShadowMap
+        | Bench::ShadowMap32
+        | Bench::ShadowMap128
+        | Bench::ShadowMapPcf
+        | Bench::ShadowMapPcf3 => render_shadow_scene::<S, C, D, P>(
             &ShadowScene::bench(bench, spin_deg, dither),
             target,
             probe,

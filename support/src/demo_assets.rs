@@ -421,6 +421,14 @@ pub enum Bench {
     /// ([`scanline3d::FrameOptions::shadow_map`]): on the ground, on each other and on
     /// themselves.
     ShadowMap,
+    /// [`Bench::ShadowMap`] with a map of 32 texels a side.
+    ShadowMap32,
+    /// [`Bench::ShadowMap`] with a map of 128 texels a side.
+    ShadowMap128,
+    /// [`Bench::ShadowMap`] read through 2 × 2 percentage-closer filtering (soft edges).
+    ShadowMapPcf,
+    /// [`Bench::ShadowMap`] read through 3 × 3 percentage-closer filtering.
+    ShadowMapPcf3,
 }
 
 impl Bench {
@@ -435,7 +443,7 @@ impl Bench {
     }
 
     /// Every benchmark scene.
-    pub const ALL: [Bench; 34] = [
+    pub const ALL: [Bench; 38] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -470,6 +478,10 @@ impl Bench {
         Bench::Csg,
         Bench::Toon,
         Bench::ShadowMap,
+        Bench::ShadowMap32,
+        Bench::ShadowMap128,
+        Bench::ShadowMapPcf,
+        Bench::ShadowMapPcf3,
     ];
 
     /// Its name in reports.
@@ -510,6 +522,10 @@ impl Bench {
             Bench::HdrPhong => "hdr_phong",
             Bench::Csg => "csg",
             Bench::ShadowMap => "shadow_map",
+            Bench::ShadowMap32 => "shadow_map_32",
+            Bench::ShadowMap128 => "shadow_map_128",
+            Bench::ShadowMapPcf => "shadow_map_pcf",
+            Bench::ShadowMapPcf3 => "shadow_map_pcf3",
         }
     }
 }

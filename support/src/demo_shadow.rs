@@ -6,7 +6,7 @@
 //! hidden lines removed (`Wireframe`).
 
 use crate::demo_assets::{deg, look, persp, Bench, BenchError, BenchFrame};
-use scanline3d::shadow::{ShadowMap, ShadowMapping};
+use scanline3d::shadow::{ShadowFilter, ShadowMap, ShadowMapping};
 use scanline3d::Mat4;
 use scanline3d::Scalar;
 use scanline3d::Shape;
@@ -88,8 +88,10 @@ pub struct ShadowScene {
     /// 4 × 4 ordered dithering.
     pub dither: bool,
     /// A shadow map of the torus and the cube instead of a planar shadow or volumes, this many
-    /// texels a side (32, 64 or 128; the firmware compiles 64 only): every model receives.
+    /// texels a side (32, 64 or 128): every model receives.
     pub map: Option<usize>,
+    /// How the map is read (nearest or percentage-closer filtering).
+    pub map_filter: ShadowFilter,
 }
 
 /// Which edges [`ShadowScene::outline`] draws ([`Edges`]).
@@ -137,7 +139,17 @@ impl ShadowScene {
             },
             spin_deg,
             dither,
-            map: (bench == Bench::ShadowMap).then_some(64),
+            map: match bench {
+                Bench::ShadowMap | Bench::ShadowMapPcf | Bench::ShadowMapPcf3 => Some(64),
+                Bench::ShadowMap32 => Some(32),
+                Bench::ShadowMap128 => Some(128),
+                _ => None,
+            },
+            map_filter: match bench {
+                Bench::ShadowMapPcf => ShadowFilter::Pcf2,
+                Bench::ShadowMapPcf3 => ShadowFilter::Pcf3,
+                _ => ShadowFilter::Nearest,
+            },
         }
     }
 }
@@ -283,16 +295,15 @@ where
     }
     if let Some(size) = o.map {
         let mapping = ShadowMapping::new(ShadowLight::Directional(l), &[1, 2], &[])
-            .with_shadow([0; 3], SHADOW_ALPHA);
+            .with_shadow([0; 3], SHADOW_ALPHA)
+            .with_filter(o.map_filter);
         const V: usize = SHADOW_CAPACITY.0;
         const T: usize = SHADOW_CAPACITY.1;
         const A: usize = SHADOW_CAPACITY.2;
         let (s, d) = (&scene, o.dither);
         return match size {
-            #[cfg(feature = "host")]
             32 => draw_mapped::<S, C, D, P, V, T, A, 32>(s, &mapping, d, target, probe),
             64 => draw_mapped::<S, C, D, P, V, T, A, 64>(s, &mapping, d, target, probe),
-            #[cfg(feature = "host")]
             128 => draw_mapped::<S, C, D, P, V, T, A, 128>(s, &mapping, d, target, probe),
             _ => Err(BenchError::Scene),
         };

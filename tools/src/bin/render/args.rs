@@ -6,6 +6,7 @@ use std::collections::BTreeSet;
 use std::path::PathBuf;
 
 use clap::{ArgMatches, CommandFactory, FromArgMatches, Parser, ValueEnum};
+use scanline3d::shadow::ShadowFilter;
 
 use super::{depth, edges, shadow, tone, LIGHTS, MAX_H, MAX_W};
 
@@ -48,31 +49,47 @@ pub(crate) enum ShadowArg {
     /// Shadow volumes of the models (stencil counting, z-fail): on the ground, on each other
     /// and on themselves
     Volume,
-    /// A shadow map of the models, this many texels a side: on the ground, on each other and
-    /// on themselves
-    Map(usize),
+    /// A shadow map of the models, this many texels a side, read as the filter says: on the
+    /// ground, on each other and on themselves
+    Map(usize, ShadowFilter),
 }
 
-/// `--shadow`: none, projected, blob, volume, or map[,SIZE] (SIZE 32, 64 or 128; default 64).
+/// `--shadow`: none, projected, blob, volume, or map[,SIZE[,FILTER]] (SIZE 32, 64 or 128, default
+/// 64; FILTER nearest, pcf or pcf3, default nearest).
 fn shadow_arg(s: &str) -> Result<ShadowArg, String> {
     let bad = || {
         format!(
-            "{s:?}: expected none, projected, blob, volume, or map[,SIZE] with SIZE 32, 64 or 128"
+            "{s:?}: expected none, projected, blob, volume, or map[,SIZE[,FILTER]] with SIZE \
+             32, 64 or 128 and FILTER nearest, pcf (2 × 2) or pcf3 (3 × 3)"
         )
     };
-    Ok(match s {
-        "none" => ShadowArg::None,
-        "projected" => ShadowArg::Projected,
-        "blob" => ShadowArg::Blob,
-        "volume" => ShadowArg::Volume,
-        "map" => ShadowArg::Map(64),
-        _ => match s.strip_prefix("map,") {
-            Some("32") => ShadowArg::Map(32),
-            Some("64") => ShadowArg::Map(64),
-            Some("128") => ShadowArg::Map(128),
-            _ => return Err(bad()),
-        },
-    })
+    let mut parts = s.split(',');
+    let arg = match parts.next() {
+        Some("none") => ShadowArg::None,
+        Some("projected") => ShadowArg::Projected,
+        Some("blob") => ShadowArg::Blob,
+        Some("volume") => ShadowArg::Volume,
+        Some("map") => {
+            let size = match parts.next() {
+                None | Some("64") => 64,
+                Some("32") => 32,
+                Some("128") => 128,
+                Some(_) => return Err(bad()),
+            };
+            let filter = match parts.next() {
+                None | Some("nearest") => ShadowFilter::Nearest,
+                Some("pcf") => ShadowFilter::Pcf2,
+                Some("pcf3") => ShadowFilter::Pcf3,
+                Some(_) => return Err(bad()),
+            };
+            ShadowArg::Map(size, filter)
+        }
+        _ => return Err(bad()),
+    };
+    match parts.next() {
+        None => Ok(arg),
+        Some(_) => Err(bad()),
+    }
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -492,9 +509,10 @@ pub(crate) struct Args {
     pub(crate) strip: usize,
     /// The shadow of `--scene shadow`: none, projected (the models' triangles projected onto
     /// the plane, stencilled), blob (a soft disc under each model), volume (shadow volumes: on
-    /// the ground, on each other and on themselves) or map[,SIZE] (a shadow map of SIZE 32, 64
-    /// or 128 texels a side, default 64: the same receivers as volumes) [default: projected;
-    /// none with --shading wireframe]
+    /// the ground, on each other and on themselves) or map[,SIZE[,FILTER]] (a shadow map of
+    /// SIZE 32, 64 or 128 texels a side, default 64: the same receivers as volumes; FILTER
+    /// nearest, pcf for 2×2 or pcf3 for 3×3 percentage-closer soft edges, default nearest)
+    /// [default: projected; none with --shading wireframe]
     #[arg(long, value_name = "METHOD", value_parser = shadow_arg)]
     pub(crate) shadow: Option<ShadowArg>,
     /// The plane `--scene shadow`'s shadow falls on, a·x + b·y + c·z + d = 0 (world units;

@@ -6,7 +6,8 @@ use std::path::Path;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use scanline3d::fixed::types::I16F16;
-use scanline3d::{probe::NoProbe, shadow::ShadowMethod, Fx, Scalar, TargetColor};
+use scanline3d::shadow::{ShadowFilter, ShadowMethod};
+use scanline3d::{probe::NoProbe, Fx, Scalar, TargetColor};
 use scanline3d_support::demo::{render_shadow_scene, EdgeStyle, ShadowScene};
 
 use super::common::Frame;
@@ -42,7 +43,7 @@ pub fn run(args: &Args) -> Result<(), (String, i32)> {
         });
     let o = ShadowScene {
         shadow: match shadow {
-            ShadowArg::None | ShadowArg::Volume | ShadowArg::Map(_) => None,
+            ShadowArg::None | ShadowArg::Volume | ShadowArg::Map(..) => None,
             ShadowArg::Projected => Some(ShadowMethod::Projected),
             ShadowArg::Blob => Some(ShadowMethod::Blob),
         },
@@ -65,8 +66,12 @@ pub fn run(args: &Args) -> Result<(), (String, i32)> {
         spin_deg: 0.0,
         dither: args.dither == OnOff::On,
         map: match shadow {
-            ShadowArg::Map(size) => Some(size),
+            ShadowArg::Map(size, _) => Some(size),
             _ => None,
+        },
+        map_filter: match shadow {
+            ShadowArg::Map(_, filter) => filter,
+            _ => ShadowFilter::Nearest,
         },
     };
     if o.map.is_some() && (o.outline.is_some() || o.alpha < 255 || o.wireframe) {
