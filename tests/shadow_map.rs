@@ -532,6 +532,96 @@ fn pcf_softens_the_edges_only() {
     assert!(soft[1] > soft[0], "3 × 3 {} <= 2 × 2 {}", soft[1], soft[0]);
 }
 
+/// The models drawn with the light-view image of `N` texels (`image`) or the depth map, read
+/// through `filter`, into an Rgb888 target, receivers `receivers` (empty: every opaque object;
+/// an image leaves the casters out).
+fn image_or_map<const N: usize>(
+    image: bool,
+    filter: ShadowFilter,
+    receivers: &[usize],
+) -> scanline3d_support::host::Frame<embedded_graphics::pixelcolor::Rgb888> {
+    use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+    use scanline3d::shadow::ShadowImage;
+    use scanline3d_support::host::Frame;
+    with_models::<Q, _>(|objects| {
+        let scene = Scene::new(
+            objects,
+            camera(),
+            [Light::white(SHADOW_LIGHT.map(Q::from_f64))],
+        );
+        let light = ShadowLight::Directional(SHADOW_LIGHT.map(Q::from_f64));
+        let mapping = ShadowMapping::new(light, &[1, 2], receivers).with_filter(filter);
+        let mut renderer =
+            Box::new(Renderer::<Q, Rgb888, 240, 240, 2048, 1024, 64, 8, 0, 64>::new());
+        let mut f = Frame::new(240, 240, Rgb888::BLACK);
+        let frame = if image {
+            let mut m = Box::new(ShadowImage::<N>::new());
+            renderer
+                .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *m))
+                .unwrap()
+                .draw_to(&mut f)
+        } else {
+            let mut m = Box::new(ShadowMap::<N>::new());
+            renderer
+                .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *m))
+                .unwrap()
+                .draw_to(&mut f)
+        };
+        frame.unwrap();
+        f.assert_each_written_once();
+        f
+    })
+}
+
+/// The light-view image without depth (the seeds' first kind): it shadows the receivers that
+/// are not casters only (no self-shadowing: the casters are left out of the receivers), and on
+/// the ground, below both casters, it darkens the pixels the depth map darkens; pre-blurred
+/// (`Pcf3`), it softens the same edges.
+#[test]
+fn image_shadows_the_ground_as_the_depth_map() {
+    use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+    let plain = frames_filtered(Rgb888::BLACK, ShadowFilter::Nearest).0;
+    let dark = |f: &scanline3d_support::host::Frame<Rgb888>| -> Vec<bool> {
+        plain.px.iter().zip(&f.px).map(|(a, b)| a != b).collect()
+    };
+    let map_ground = dark(&image_or_map::<64>(false, ShadowFilter::Nearest, &[0]));
+    let map_all = dark(&image_or_map::<64>(false, ShadowFilter::Nearest, &[]));
+    let image_ground = dark(&image_or_map::<64>(true, ShadowFilter::Nearest, &[0]));
+    let image_all = dark(&image_or_map::<64>(true, ShadowFilter::Nearest, &[]));
+    let count = |v: &[bool]| v.iter().filter(|&&b| b).count();
+    let differ = |a: &[bool], b: &[bool]| a.iter().zip(b).filter(|(x, y)| x != y).count();
+    println!(
+        "image 64: {} ground pixels shadowed, the depth map {} ({} differ); every receiver: \
+         image {}, depth map {} (the models on themselves and each other)",
+        count(&image_ground),
+        count(&map_ground),
+        differ(&image_ground, &map_ground),
+        count(&image_all),
+        count(&map_all)
+    );
+    assert!(count(&map_ground) > 2000);
+    // The same texels, the same coverage: at most a few pixels apart where the depth map's
+    // bias lets a texel's edge through.
+    assert!(differ(&image_ground, &map_ground) * 100 <= count(&map_ground));
+    // Every receiver but the casters: the ground alone, exactly.
+    assert!(image_all == image_ground, "{}", differ(&image_all, &image_ground));
+    // The depth map shadows the models too (the torus its inner ring, the torus the cube).
+    assert!(count(&map_all) > count(&map_ground) + 200);
+    // Pre-blurred: only pixels near the hard image's edges change, to levels between.
+    let blurred = image_or_map::<64>(true, ShadowFilter::Pcf3, &[]);
+    let hard = image_or_map::<64>(true, ShadowFilter::Nearest, &[]);
+    let changed = blurred.px.iter().zip(&hard.px).filter(|(a, b)| a != b).count();
+    let between = (0..240 * 240)
+        .filter(|&i| {
+            let c = |p: Rgb888| [p.r(), p.g(), p.b()];
+            let (l, h, b) = (c(plain.px[i]), c(hard.px[i]), c(blurred.px[i]));
+            b != l && b != h && (0..3).all(|k| b[k] <= l[k])
+        })
+        .count();
+    println!("image 64 pre-blurred 3 × 3: {changed} pixels changed, {between} between lit and shadowed");
+    assert!(changed > 200 && between * 2 > changed, "{changed} {between}");
+}
+
 /// A cube over an icosphere: the map shadows the curved receiver, which the planar method
 /// refuses (the sphere is not in a plane).
 #[test]

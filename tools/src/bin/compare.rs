@@ -36,6 +36,11 @@ fn rows_for(b: Bench, runs: usize) -> Vec<Row> {
 
 /// Instructions per frame from the MCU benchmark report, by (scene, number, core).
 fn mcu_instructions() -> BTreeMap<(String, String, String), u64> {
+    mcu_field("instructions")
+}
+
+/// Field `field` (an integer) of the MCU benchmark report's rows, by (scene, number, core).
+fn mcu_field(field: &str) -> BTreeMap<(String, String, String), u64> {
     let mut m = BTreeMap::new();
     let Ok(text) = std::fs::read_to_string("target/mcu-bench/report.json") else {
         return m;
@@ -52,7 +57,7 @@ fn mcu_instructions() -> BTreeMap<(String, String, String), u64> {
             r["scene"].as_str(),
             r["number"].as_str(),
             r["core"].as_str(),
-            r["instructions"].as_u64(),
+            r[field].as_u64(),
         ) {
             m.insert((s.to_string(), n.to_string(), c.to_string()), i);
         }
@@ -478,6 +483,30 @@ fn shadows(mcu: &BTreeMap<(String, String, String), u64>) -> String {
                 Bench::ShadowMap,
             ),
             (
+                Bench::ShadowMap32,
+                "shadow map, 32 × 32",
+                Some(Bench::ShadowNone),
+                Bench::ShadowMap32,
+            ),
+            (
+                Bench::ShadowMap128,
+                "shadow map, 128 × 128",
+                Some(Bench::ShadowNone),
+                Bench::ShadowMap128,
+            ),
+            (
+                Bench::ShadowMapPcf,
+                "shadow map, 64 × 64, PCF 2 × 2",
+                Some(Bench::ShadowNone),
+                Bench::ShadowMapPcf,
+            ),
+            (
+                Bench::ShadowMapPcf3,
+                "shadow map, 64 × 64, PCF 3 × 3",
+                Some(Bench::ShadowNone),
+                Bench::ShadowMapPcf3,
+            ),
+            (
                 Bench::Wireframe,
                 "wireframe, hidden lines removed",
                 Some(Bench::ShadowNone),
@@ -485,30 +514,47 @@ fn shadows(mcu: &BTreeMap<(String, String, String), u64>) -> String {
             ),
         ],
     );
-    // Shadow maps: the light-view depth map's RAM against the renderer's budget.
-    let layers = scanline3d::Layers::<240, 1, 4, 64>::RAM_BYTES;
+    // Shadow maps: RAM and instructions per map size and filter.
+    let ram = mcu_field("renderer_ram_bytes");
     let budget = 16 * 1024;
     let _ = writeln!(
         md,
-        "\n### Shadow maps\n\nA shadow map (`FrameOptions::shadow_map`) is a depth image drawn from the light before the frame's first strip, through the renderer's own geometry stage and strip pass, and looked up at every drawn pixel of a receiver: the pixel's texel and light depth are exact at the ends of each 16-pixel segment (one normalized reciprocal) and stepped between, then one load and one compare per pixel. Its RAM at 16 bits a texel (`ShadowMap::<N>::RAM_BYTES` adds a 128-byte matrix and 192 bytes of blend tables), against a 16 KB part's budget (the torus frame's renderer) and the `Layers` the projected shadow of the `shadow` scene uses ({layers} bytes); a mapped frame also needs a pool entry (108 bytes) per receiver triangle on a row:\n"
+        "\n### Shadow maps\n\nA shadow map (`FrameOptions::shadow_map`) is a depth image drawn from the light before the frame's first strip, through the renderer's own geometry stage and strip pass, and looked up at every drawn pixel of a receiver: the pixel's texel and light depth are exact at the ends of each 16-pixel segment (one normalized reciprocal) and stepped between, then per pixel one load and one compare (nearest), or 4 or 9 of them with percentage-closer filtering (`ShadowFilter::Pcf2`, `Pcf3`: the shadow in five levels by the share of the taps that hide the pixel). Per map size and filter, on the shadow scene (fixed point, I16F16): the map's bytes (`ShadowMap::<N>::RAM_BYTES`: 16 bits a texel, the light's matrix and the blend tables of the five levels), the renderer's and the map's RAM on the device and the renderer instructions per frame from `scripts/mcu-bench` (empty when it has not been run), the M0's beside the frame without a shadow (`shadow_none`) and with shadow volumes (`shadow_volume`); `render --scene shadow --budget [--ram BYTES]` names the cheapest method that fits a RAM budget from the same figures:\n"
     );
     let _ = writeln!(
         md,
-        "| map | depth map bytes | × 16 KB budget | × the projected shadow's layers |"
+        "| scene | map | filter | map bytes | renderer + map RAM B | × 16 KB | M0 instr. | M4F instr. | M0 added to shadow_none | M0 × shadow_volume |"
     );
-    let _ = writeln!(md, "|---|---:|---:|---:|");
-    for n in [32usize, 64, 128, 256] {
-        let bytes = 2 * n * n;
+    let _ = writeln!(md, "|---|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    let maps: [(Bench, usize, usize, &str); 5] = [
+        (Bench::ShadowMap32, 32, scanline3d::shadow::ShadowMap::<32>::RAM_BYTES, "nearest"),
+        (Bench::ShadowMap, 64, scanline3d::shadow::ShadowMap::<64>::RAM_BYTES, "nearest"),
+        (Bench::ShadowMap128, 128, scanline3d::shadow::ShadowMap::<128>::RAM_BYTES, "nearest"),
+        (Bench::ShadowMapPcf, 64, scanline3d::shadow::ShadowMap::<64>::RAM_BYTES, "PCF 2 × 2"),
+        (Bench::ShadowMapPcf3, 64, scanline3d::shadow::ShadowMap::<64>::RAM_BYTES, "PCF 3 × 3"),
+    ];
+    let key = |b: Bench, core: &str| (b.name().to_string(), "I16F16".to_string(), core.to_string());
+    for (b, n, bytes, filter) in maps {
+        let device = ram.get(&key(b, "m0")).copied();
+        let (m0, m4f) = (mcu.get(&key(b, "m0")).copied(), mcu.get(&key(b, "m4f")).copied());
+        let none = mcu.get(&key(Bench::ShadowNone, "m0")).copied();
+        let volume = mcu.get(&key(Bench::ShadowVolume, "m0")).copied();
+        let opt = |v: Option<u64>| v.map_or(String::new(), |v| v.to_string());
         let _ = writeln!(
             md,
-            "| {n} × {n} | {bytes} | {:.2} | {:.1} |",
-            bytes as f64 / budget as f64,
-            bytes as f64 / layers as f64
+            "| `{}` | {n} × {n} | {filter} | {bytes} | {} | {} | {} | {} | {} | {} |",
+            b.name(),
+            opt(device),
+            device.map_or(String::new(), |d| format!("{:.2}", d as f64 / budget as f64)),
+            opt(m0),
+            opt(m4f),
+            m0.zip(none).map_or(String::new(), |(a, w)| format!("{:+}", a as i64 - w as i64)),
+            m0.zip(volume).map_or(String::new(), |(a, v)| format!("{:.2}", a as f64 / v as f64)),
         );
     }
     let _ = writeln!(
         md,
-        "\nA map is for parts with the RAM (the RP2040's 264 KB holds a 128 × 128 one), not for a 16 KB part, where projected shadows on planes and shadow volumes count in the strip's own lines instead. The map is fitted to where the casters' shadows can fall on the receivers, so its texels are spent there. Against an f64 ray cast of the same frame (`cargo test --test integration shadow_map -- --nocapture` prints the figures: the eye ray through each pixel centre, then a shadow ray to the light), the share of lit-facing pixels whose shadow differs at 32, 64 and 128 texels a side is 0.97 %, 0.31 % and 0.21 % for the directional light and 1.43 %, 0.66 % and 0.33 % for a point light, in f64, f32 and I16F16 alike (a quarter of the frame's pixels; the test fails above about 1.5 times these); the map itself matches the ray cast of its casters except at edge texels. The `shadow_map` row above is the 64 × 64 map's cost and error; its instructions per core are in `BENCHMARKS.md`."
+        "\nA map is for parts with the RAM (the RP2040's 264 KB holds a 128 × 128 one), not for a 16 KB part, where projected shadows on planes and shadow volumes count in the strip's own lines instead. The map is fitted to where the casters' shadows can fall on the receivers, so its texels are spent there. Against an f64 ray cast of the same frame (`cargo test --test integration shadow_map -- --nocapture` prints the figures: the eye ray through each pixel centre, then a shadow ray to the light), the share of lit-facing pixels whose shadow differs at 32, 64 and 128 texels a side is 0.97 %, 0.31 % and 0.21 % for the directional light and 1.43 %, 0.66 % and 0.33 % for a point light, in f64, f32 and I16F16 alike (a quarter of the frame's pixels; the test fails above about 1.5 times these); the map itself matches the ray cast of its casters except at edge texels. Percentage-closer filtering changes only pixels within 2 (2 × 2) or 3 (3 × 3) pixels of the nearest read's shadow edges (`pcf_softens_the_edges_only`)."
     );
     md
 }

@@ -585,6 +585,10 @@ pub(crate) struct Args {
     /// image is written)
     #[arg(long)]
     pub(crate) budget: bool,
+    /// With --scene shadow --budget: the RAM the renderer may take, bytes (an integer ≥ 1), to
+    /// name the cheapest shadow method that fits [default: 270336, the RP2040's 264 KB]
+    #[arg(long, value_name = "BYTES", value_parser = clap::value_parser!(u32).range(1..))]
+    pub(crate) ram: Option<u32>,
     /// Simplify the OBJ to at most this many triangles first, an integer ≥ 1 (meshoptimizer;
     /// as `bake --max-triangles`), e.g. to see a model too large for one renderer (drawn in
     /// passes here) as a device can hold it [default: no limit]

@@ -15,6 +15,7 @@ mod edges;
 mod output;
 mod rules;
 mod shadow;
+mod shadow_budget;
 mod tone;
 
 use std::path::Path;

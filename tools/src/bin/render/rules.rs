@@ -60,7 +60,6 @@ const UNUSED: &[Unused] = &[
             "--texture-mode",
             "--normals",
             "--strip",
-            "--budget",
             "--tone",
             "--exposure",
             "--light-intensity",
@@ -72,6 +71,31 @@ const UNUSED: &[Unused] = &[
               and materials, at 240x240), which takes --shadow, --shadow-plane, --alpha, \
               --outline, --edges, --edge-color, --crease-angle, --see-through, --shading \
               gouraud|wireframe, --frames, --spin, --number, --format, --dither and --out",
+    },
+    Unused {
+        flags: &["--ram"],
+        when: |a| !(shadow(a) && a.budget),
+        why: "applies to --scene shadow --budget only (the RAM its shadow methods must fit in)",
+    },
+    Unused {
+        flags: &[
+            "--shadow",
+            "--shadow-plane",
+            "--alpha",
+            "--outline",
+            "--edges",
+            "--edge-color",
+            "--crease-angle",
+            "--see-through",
+            "--shading",
+            "--frames",
+            "--spin",
+            "--format",
+            "--dither",
+        ],
+        when: |a| shadow(a) && a.budget,
+        why: "has no effect with --scene shadow --budget, which reports every shadow method of \
+              the benchmark scene as scripts/mcu-bench measured it",
     },
     Unused {
         flags: &["--size"],

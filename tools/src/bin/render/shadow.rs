@@ -26,6 +26,9 @@ pub fn plane(s: &str) -> Result<[f64; 4], String> {
 
 /// Renders the shadow scene with the command line's options to `args.out` (atomically).
 pub fn run(args: &Args) -> Result<(), (String, i32)> {
+    if args.budget {
+        return super::shadow_budget::report(args);
+    }
     // The flags this scene does not use are refused by `rules::check`.
     if args.outline.is_some() && args.edge_color.is_some() {
         return Err((
