@@ -283,7 +283,8 @@ pub mod shadow {
         Edges, Layering, Outline, PlanarShadow, ShadowLight, ShadowMethod, VolumeShadow,
     };
     pub use crate::raster::shadow_map::{
-        ShadowFilter, ShadowMap, ShadowMapping, DEFAULT_BIAS, MAP_MARGIN, MAX_MAP_FOV,
+        ShadowFilter, ShadowImage, ShadowMap, ShadowMapping, ShadowStore, DEFAULT_BIAS, MAP_MARGIN,
+        MAX_MAP_FOV,
     };
     pub use crate::raster::span_map::MAX_BIAS;
 }

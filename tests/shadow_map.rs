@@ -65,7 +65,7 @@ fn accuracy<S: Scalar, const N: usize>(light: ShadowLight<S>) -> MapAccuracy {
         let mut renderer = Renderer::<S, Rgb565, 128, 128, 1024, 1024, 64, 8>::new();
         let mut map = Box::new(ShadowMap::<N>::new());
         renderer
-            .shadow_map_pass(&scene, &mapping, &mut map)
+            .shadow_map_pass(&scene, &mapping, &mut *map)
             .unwrap();
         let depth: Vec<u16> = map.depth().iter().flatten().copied().collect();
         let tris = world_triangles(objects, &[1, 2]);
@@ -208,7 +208,7 @@ fn lookup_against_raycast<S: Scalar, const N: usize>(
         renderer.render(&scene, &mut lit).unwrap();
         let mut shadowed = Frame::new(240, 240, Rgb565::new(0, 0, 0));
         renderer
-            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *map))
             .unwrap()
             .draw_to(&mut shadowed)
             .unwrap();
@@ -399,7 +399,7 @@ fn frames_filtered<C: scanline3d::TargetColor>(
         renderer.render(&scene, &mut lit).unwrap();
         let mut shadowed = Frame::new(240, 240, fill);
         renderer
-            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *map))
             .unwrap()
             .draw_to(&mut shadowed)
             .unwrap();
@@ -455,7 +455,12 @@ fn pcf_softens_the_edges_only() {
     use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
     let (lit, nearest) = frames_filtered(Rgb888::BLACK, ShadowFilter::Nearest);
     let ch = |c: Rgb888| [c.r(), c.g(), c.b()];
-    let shadowed: Vec<bool> = lit.px.iter().zip(&nearest.px).map(|(a, b)| a != b).collect();
+    let shadowed: Vec<bool> = lit
+        .px
+        .iter()
+        .zip(&nearest.px)
+        .map(|(a, b)| a != b)
+        .collect();
     // Chebyshev distance of each pixel to the nearest read's shadow edge (a shadowed pixel
     // next to a lit one, on the same surface or not).
     let (w, h) = (240usize, 240usize);
@@ -465,12 +470,14 @@ fn pcf_softens_the_edges_only() {
         for x in 0..w {
             let i = y * w + x;
             let edge = shadowed[i]
-                && [(0i32, 1i32), (1, 0), (0, -1), (-1, 0)].iter().any(|&(dx, dy)| {
-                    let (nx, ny) = (x as i32 + dx, y as i32 + dy);
-                    (0..w as i32).contains(&nx)
-                        && (0..h as i32).contains(&ny)
-                        && !shadowed[ny as usize * w + nx as usize]
-                });
+                && [(0i32, 1i32), (1, 0), (0, -1), (-1, 0)]
+                    .iter()
+                    .any(|&(dx, dy)| {
+                        let (nx, ny) = (x as i32 + dx, y as i32 + dy);
+                        (0..w as i32).contains(&nx)
+                            && (0..h as i32).contains(&ny)
+                            && !shadowed[ny as usize * w + nx as usize]
+                    });
             if edge {
                 dist[i] = 0;
                 queue.push_back(i);
@@ -493,7 +500,10 @@ fn pcf_softens_the_edges_only() {
         }
     }
     let mut soft = [0usize; 2];
-    for (k, filter) in [ShadowFilter::Pcf2, ShadowFilter::Pcf3].into_iter().enumerate() {
+    for (k, filter) in [ShadowFilter::Pcf2, ShadowFilter::Pcf3]
+        .into_iter()
+        .enumerate()
+    {
         let (lit2, filtered) = frames_filtered(Rgb888::BLACK, filter);
         assert!(lit2.px == lit.px);
         let (mut differs, mut far, mut intermediate, mut out_of_range) = (0, 0, 0, 0);
@@ -526,7 +536,10 @@ fn pcf_softens_the_edges_only() {
         assert_eq!(out_of_range, 0, "{filter:?}");
         assert!(differs > 300, "{filter:?}: {differs} pixels soft");
         assert_eq!(far, 0, "{filter:?}: {far} of {differs} beyond 6 pixels");
-        assert!(intermediate * 2 > differs, "{filter:?}: {intermediate} of {differs}");
+        assert!(
+            intermediate * 2 > differs,
+            "{filter:?}: {intermediate} of {differs}"
+        );
         soft[k] = intermediate;
     }
     assert!(soft[1] > soft[0], "3 × 3 {} <= 2 × 2 {}", soft[1], soft[0]);
@@ -604,13 +617,22 @@ fn image_shadows_the_ground_as_the_depth_map() {
     // bias lets a texel's edge through.
     assert!(differ(&image_ground, &map_ground) * 100 <= count(&map_ground));
     // Every receiver but the casters: the ground alone, exactly.
-    assert!(image_all == image_ground, "{}", differ(&image_all, &image_ground));
+    assert!(
+        image_all == image_ground,
+        "{}",
+        differ(&image_all, &image_ground)
+    );
     // The depth map shadows the models too (the torus its inner ring, the torus the cube).
     assert!(count(&map_all) > count(&map_ground) + 200);
     // Pre-blurred: only pixels near the hard image's edges change, to levels between.
     let blurred = image_or_map::<64>(true, ShadowFilter::Pcf3, &[]);
     let hard = image_or_map::<64>(true, ShadowFilter::Nearest, &[]);
-    let changed = blurred.px.iter().zip(&hard.px).filter(|(a, b)| a != b).count();
+    let changed = blurred
+        .px
+        .iter()
+        .zip(&hard.px)
+        .filter(|(a, b)| a != b)
+        .count();
     let between = (0..240 * 240)
         .filter(|&i| {
             let c = |p: Rgb888| [p.r(), p.g(), p.b()];
@@ -618,8 +640,13 @@ fn image_shadows_the_ground_as_the_depth_map() {
             b != l && b != h && (0..3).all(|k| b[k] <= l[k])
         })
         .count();
-    println!("image 64 pre-blurred 3 × 3: {changed} pixels changed, {between} between lit and shadowed");
-    assert!(changed > 200 && between * 2 > changed, "{changed} {between}");
+    println!(
+        "image 64 pre-blurred 3 × 3: {changed} pixels changed, {between} between lit and shadowed"
+    );
+    assert!(
+        changed > 200 && between * 2 > changed,
+        "{changed} {between}"
+    );
 }
 
 /// A cube over an icosphere: the map shadows the curved receiver, which the planar method
@@ -654,7 +681,7 @@ fn cube_shadows_a_sphere() {
     let mut map = Box::new(ShadowMap::<64>::new());
     let mut shadowed = Frame::new(240, 240, Rgb565::new(0, 0, 0));
     renderer
-        .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+        .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *map))
         .unwrap()
         .draw_to(&mut shadowed)
         .unwrap();
@@ -703,7 +730,7 @@ fn mapped_frame_errors() {
         // No pool.
         let mut r = Box::new(Renderer::<f32, Rgb565, 240, 240, 1024, 1024, 64, 8>::new());
         let e = r
-            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *map))
             .err();
         assert!(
             matches!(
@@ -719,14 +746,14 @@ fn mapped_frame_errors() {
         // No depth lines.
         let mut r = Box::new(Renderer::<f32, Rgb565, 240, 240, 1024, 1024, 64, 8, 0, 0, 0>::new());
         let e = r
-            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *map))
             .err();
         assert_eq!(e, Some(Error::NoDepthLines));
         let mut r = Box::new(Renderer::<f32, Rgb565, 240, 240, 1024, 1024, 64, 8, 0, 64>::new());
         // A map larger than the renderer.
         let mut big = Box::new(ShadowMap::<256>::new());
         let e = r
-            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut big))
+            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *big))
             .err();
         assert_eq!(
             e,
@@ -744,13 +771,13 @@ fn mapped_frame_errors() {
             ..scene
         };
         let e = r
-            .prepare(&scene2, FrameOptions::new().shadow_map(&mapping, &mut map))
+            .prepare(&scene2, FrameOptions::new().shadow_map(&mapping, &mut *map))
             .err();
         assert_eq!(e, Some(Error::Layers(LayerError::MapShading { object: 0 })));
         // An index that is not an object.
         let bad = ShadowMapping::new(light, &[1, 7], &[]);
         let e = r
-            .prepare(&scene, FrameOptions::new().shadow_map(&bad, &mut map))
+            .prepare(&scene, FrameOptions::new().shadow_map(&bad, &mut *map))
             .err();
         assert_eq!(
             e,
@@ -758,7 +785,7 @@ fn mapped_frame_errors() {
         );
         // After the errors, the frame is drawn.
         let mut f = scanline3d_support::host::Frame::new(240, 240, Rgb565::new(0, 0, 0));
-        r.prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut map))
+        r.prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *map))
             .unwrap()
             .draw_to(&mut f)
             .unwrap();

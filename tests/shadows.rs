@@ -309,6 +309,7 @@ fn shadow_benchmark_scenes_match_their_golden_images() {
             Bench::Wireframe,
             Bench::ShadowMap,
             Bench::ShadowMapPcf,
+            Bench::ShadowImageBlur,
         ] {
             common::compare::check_bench_golden::<S>(b, ty);
         }

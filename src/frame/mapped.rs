@@ -3,7 +3,7 @@
 //! nearer the light.
 
 use super::*;
-use crate::raster::shadow_map::{ShadowMap, ShadowMapping};
+use crate::raster::shadow_map::{ShadowMapping, ShadowStore};
 use crate::raster::span_map::MapView;
 
 impl<P, O> FrameOptions<P, Plain, O> {
@@ -26,11 +26,11 @@ impl<P, O> FrameOptions<P, Plain, O> {
     /// [`crate::errors::LayerError::Blending`] for a target colour that cannot blend (a
     /// [`crate::color::TriangleId`] target records the triangles, none darkened), and the
     /// errors of [`Renderer::shadow_map_pass`].
-    pub fn shadow_map<'l, 's, S, const N: usize>(
+    pub fn shadow_map<'l, 's, S, M: ShadowStore>(
         self,
         mapping: &'l ShadowMapping<'s, S>,
-        map: &'l mut ShadowMap<N>,
-    ) -> FrameOptions<P, Mapped<'l, 's, S, N>, O> {
+        map: &'l mut M,
+    ) -> FrameOptions<P, Mapped<'l, 's, S, M>, O> {
         FrameOptions {
             probe: self.probe,
             kind: Mapped { mapping, map },
@@ -41,25 +41,25 @@ impl<P, O> FrameOptions<P, Plain, O> {
 
 /// A mapped frame's options ([`FrameOptions::shadow_map`]).
 #[derive(Debug)]
-pub struct Mapped<'l, 's, S, const N: usize> {
+pub struct Mapped<'l, 's, S, M> {
     mapping: &'l ShadowMapping<'s, S>,
-    map: &'l mut ShadowMap<N>,
+    map: &'l mut M,
 }
 
 /// A mapped frame's map, which its strips read (what [`Mapped`] becomes once the frame is
 /// prepared).
 #[derive(Debug)]
-pub struct MappedStrips<'l, const N: usize> {
-    map: &'l ShadowMap<N>,
+pub struct MappedStrips<'l, M> {
+    map: &'l M,
 }
 
-impl<S, const N: usize> sealed::Sealed for Mapped<'_, '_, S, N> {}
-impl<const N: usize> sealed::Sealed for MappedStrips<'_, N> {}
+impl<S, M> sealed::Sealed for Mapped<'_, '_, S, M> {}
+impl<M> sealed::Sealed for MappedStrips<'_, M> {}
 
-impl<'l, S, const W: usize, const LINES: usize, const N: usize> FrameKind<S, W, LINES>
-    for Mapped<'l, '_, S, N>
+impl<'l, S, const W: usize, const LINES: usize, M: ShadowStore> FrameKind<S, W, LINES>
+    for Mapped<'l, '_, S, M>
 {
-    type Strips = MappedStrips<'l, N>;
+    type Strips = MappedStrips<'l, M>;
     #[inline(always)]
     fn geometry<
         C: TargetColor,
@@ -87,8 +87,8 @@ impl<'l, S, const W: usize, const LINES: usize, const N: usize> FrameKind<S, W, 
     }
 }
 
-impl<const W: usize, const LINES: usize, const N: usize> StripSource<W, LINES>
-    for MappedStrips<'_, N>
+impl<const W: usize, const LINES: usize, M: ShadowStore> StripSource<W, LINES>
+    for MappedStrips<'_, M>
 {
     const INLINE_LOOP: bool = false;
     #[inline(always)]
@@ -110,10 +110,7 @@ impl<const W: usize, const LINES: usize, const N: usize> StripSource<W, LINES>
         limit: usize,
         probe: &mut P,
     ) -> Option<(usize, usize)> {
-        let view = MapView {
-            look: &self.map.look,
-            depth: self.map.depth.as_flattened(),
-        };
+        let view = self.map.view();
         renderer
             .ras
             .draw_strip_with::<S, H, VERTS, TRIS, XV, XA, P, true, MapView<'_>>(

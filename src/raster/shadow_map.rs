@@ -363,6 +363,35 @@ pub struct ShadowMap<const N: usize> {
     /// caster (step 1/65535 of the depth range: linear in distance for a directional light,
     /// `z/w` for a point light, as a frame's depth lines).
     pub(crate) depth: [[u16; N]; N],
+    /// The light's matrix and the frame's lookup.
+    pub(crate) setup: MapSetup,
+}
+
+/// A light-view image without depth of `N × N` texels, owned by the caller (the seeds' first
+/// kind of shadow map): how much of each texel the casters cover as the light sees them, in
+/// five levels. Drawn as a [`ShadowMap`] is ([`crate::Renderer::shadow_map_pass`]), and read
+/// through [`crate::FrameOptions::shadow_map`] the same way, but with one byte a texel (`N²`
+/// bytes: half a depth map's) and no depth compare per pixel, the cheapest read. Without
+/// depth, a caster would shadow itself wherever the light sees it, so the casters receive
+/// nothing: the image shadows the other receivers (the ground, a curved receiver below the
+/// casters), wherever a caster covers them from the light.
+///
+/// Its soft edges are computed once per map rather than per pixel: with
+/// [`ShadowFilter::Pcf2`] or [`ShadowFilter::Pcf3`] the pass blurs the image with a 3 × 3 box
+/// (each texel the share of its 3 × 3 neighbourhood covered, in the five levels).
+#[derive(Clone, Debug)]
+pub struct ShadowImage<const N: usize> {
+    /// Row `r`, column `c`: the cover at texel centre `(c + ½, r + ½)` (row 0 at the top of the
+    /// light's view), u8 in 0..=4 (0 = no caster, 4 = covered, 1..=3 the blurred edges' quarter
+    /// steps).
+    pub(crate) cover: [[u8; N]; N],
+    /// The light's matrix and the frame's lookup.
+    pub(crate) setup: MapSetup,
+}
+
+/// What a [`ShadowMap`] and a [`ShadowImage`] hold besides their texels.
+#[derive(Clone, Debug)]
+pub(crate) struct MapSetup {
     /// World → map, homogeneous: `(x, y, d, w)` with texel coordinates `x/w`, `y/w` (0..N,
     /// texel `c` from `c` to `c + 1`) and depth `d/w` (0..=65535), in f64 from the camera the
     /// map was drawn with (its number type's values). Zero before the first pass.
@@ -373,8 +402,111 @@ pub struct ShadowMap<const N: usize> {
     pub(crate) look: MapLookup,
 }
 
+/// The storage a shadow map pass draws into and a mapped frame reads: a [`ShadowMap`] (depth)
+/// or a [`ShadowImage`] (cover, no depth). Sealed: these two only.
+pub trait ShadowStore: sealed::Store {}
+impl<const N: usize> ShadowStore for ShadowMap<N> {}
+impl<const N: usize> ShadowStore for ShadowImage<N> {}
+
+// The sealed trait's methods name the crate's own types: no one outside can call or implement
+// them (the module is not public), which the `private_interfaces` lint cannot see.
+#[allow(private_interfaces)]
+pub(crate) mod sealed {
+    use super::*;
+    use crate::raster::span_map::MapView;
+    /// What the pass and the frame do with a [`super::ShadowStore`].
+    pub trait Store {
+        /// The side, in texels.
+        const SIDE: usize;
+        /// Whether the texels are depths (else cover: the casters receive nothing).
+        const DEPTH: bool;
+        /// The matrix and the lookup.
+        fn setup(&mut self) -> &mut MapSetup;
+        /// Stores row `y` of the pass's depth lines (`SIDE` depths).
+        fn put_row(&mut self, y: usize, depth: &[u16]);
+        /// After the pass's last row, with the mapping's filter.
+        fn finish(&mut self, filter: ShadowFilter);
+        /// What the spans read.
+        fn view(&self) -> MapView<'_>;
+    }
+}
+
+#[allow(private_interfaces)]
+impl<const N: usize> sealed::Store for ShadowMap<N> {
+    const SIDE: usize = N;
+    const DEPTH: bool = true;
+    fn setup(&mut self) -> &mut MapSetup {
+        &mut self.setup
+    }
+    fn put_row(&mut self, y: usize, depth: &[u16]) {
+        self.depth[y].copy_from_slice(&depth[..N]);
+    }
+    fn finish(&mut self, _: ShadowFilter) {}
+    fn view(&self) -> crate::raster::span_map::MapView<'_> {
+        crate::raster::span_map::MapView {
+            look: &self.setup.look,
+            depth: self.depth.as_flattened(),
+            cover: &[],
+        }
+    }
+}
+
+#[allow(private_interfaces)]
+impl<const N: usize> sealed::Store for ShadowImage<N> {
+    const SIDE: usize = N;
+    const DEPTH: bool = false;
+    fn setup(&mut self) -> &mut MapSetup {
+        &mut self.setup
+    }
+    fn put_row(&mut self, y: usize, depth: &[u16]) {
+        for (c, &d) in self.cover[y].iter_mut().zip(&depth[..N]) {
+            *c = if d == u16::MAX { 0 } else { 4 };
+        }
+    }
+    fn finish(&mut self, filter: ShadowFilter) {
+        if filter != ShadowFilter::Nearest {
+            blur3(&mut self.cover);
+        }
+    }
+    fn view(&self) -> crate::raster::span_map::MapView<'_> {
+        crate::raster::span_map::MapView {
+            look: &self.setup.look,
+            depth: &[],
+            cover: self.cover.as_flattened(),
+        }
+    }
+}
+
+/// Blurs a cover image of levels 0 and 4 in place with a 3 × 3 box: each texel becomes its
+/// neighbourhood's covered count (0..=9, outside the image uncovered) rounded to the five
+/// levels (`round(4·count/9)`). Two row copies of at most 256 bytes on the stack.
+fn blur3<const N: usize>(cover: &mut [[u8; N]; N]) {
+    let covered = |row: &[u8], x: usize| -> usize {
+        let lo = x.saturating_sub(1);
+        let hi = (x + 1).min(N - 1);
+        row[lo..=hi].iter().filter(|&&c| c == 4).count()
+    };
+    let mut above = [0u8; 256];
+    let mut here = [0u8; 256];
+    for y in 0..N {
+        here[..N].copy_from_slice(&cover[y]);
+        for x in 0..N {
+            let mut count = covered(&here[..N], x);
+            if y > 0 {
+                count += covered(&above[..N], x);
+            }
+            if y + 1 < N {
+                count += covered(&cover[y + 1], x);
+            }
+            cover[y][x] = crate::raster::shadow_span::LEVEL9[count];
+        }
+        above[..N].copy_from_slice(&here[..N]);
+    }
+}
+
 impl<const N: usize> ShadowMap<N> {
-    /// The map's bytes (`size_of::<Self>()`: the texels and the light's matrix).
+    /// The map's bytes (`size_of::<Self>()`: the texels, the light's matrix and the blend
+    /// tables).
     pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
     const CHECK: () = assert!(
         N.is_power_of_two() && N >= 8 && N <= 256,
@@ -388,9 +520,7 @@ impl<const N: usize> ShadowMap<N> {
         let () = Self::CHECK;
         ShadowMap {
             depth: [[u16::MAX; N]; N],
-            to_map: [[0.0; 4]; 4],
-            drawn: false,
-            look: MapLookup::EMPTY,
+            setup: MapSetup::EMPTY,
         }
     }
 
@@ -405,14 +535,65 @@ impl<const N: usize> ShadowMap<N> {
     /// first pass.
     #[must_use]
     pub fn world_to_map(&self) -> Option<[[f64; 4]; 4]> {
+        self.setup.world_to_map()
+    }
+}
+
+impl<const N: usize> ShadowImage<N> {
+    /// The image's bytes (`size_of::<Self>()`: the texels, the light's matrix and the blend
+    /// tables).
+    pub const RAM_BYTES: usize = core::mem::size_of::<Self>();
+    const CHECK: () = assert!(
+        N.is_power_of_two() && N >= 8 && N <= 256,
+        "a shadow image's side N must be a power of two from 8 to 256"
+    );
+
+    /// An empty image (no caster), as a `const fn` for a `static`.
+    #[must_use]
+    pub const fn new() -> Self {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::CHECK;
+        ShadowImage {
+            cover: [[0; N]; N],
+            setup: MapSetup::EMPTY,
+        }
+    }
+
+    /// The texels' cover levels (0..=4), row by row (see the type's docs).
+    #[must_use]
+    pub fn cover(&self) -> &[[u8; N]; N] {
+        &self.cover
+    }
+
+    /// The world → map matrix of the last pass (as [`ShadowMap::world_to_map`]).
+    #[must_use]
+    pub fn world_to_map(&self) -> Option<[[f64; 4]; 4]> {
+        self.setup.world_to_map()
+    }
+}
+
+impl<const N: usize> Default for ShadowImage<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl MapSetup {
+    pub(crate) const EMPTY: MapSetup = MapSetup {
+        to_map: [[0.0; 4]; 4],
+        drawn: false,
+        look: MapLookup::EMPTY,
+    };
+
+    fn world_to_map(&self) -> Option<[[f64; 4]; 4]> {
         self.drawn.then_some(self.to_map)
     }
 
-    /// Records the camera the map was drawn with (see [`ShadowMap::world_to_map`]): its view
-    /// and projection (aspect 1) in the number type, then the viewport's map to texels and
-    /// depth steps.
-    pub(crate) fn set_camera<S: Scalar>(&mut self, camera: &Camera<S>) {
-        let h = N as f64 / 2.0;
+    /// Records the camera a map of `n` texels a side was drawn with (see
+    /// [`ShadowMap::world_to_map`]): its view and projection (aspect 1) in the number type,
+    /// then the viewport's map to texels and depth steps.
+    pub(crate) fn set_camera<S: Scalar>(&mut self, camera: &Camera<S>, n: usize) {
+        let h = n as f64 / 2.0;
         self.to_map = viewport_rows(clip_f64(camera, S::ONE), [h, h, 65535.0]);
         self.drawn = true;
     }
@@ -424,6 +605,8 @@ impl<const N: usize> ShadowMap<N> {
     /// camera).
     pub(crate) fn prepare_lookup<S: Scalar, C: crate::scene::color::TargetColor>(
         &mut self,
+        n: usize,
+        depth: bool,
         camera: &Camera<S>,
         (vw, vh): (usize, usize),
         mapping: &ShadowMapping<'_, S>,
@@ -457,7 +640,8 @@ impl<const N: usize> ShadowMap<N> {
         let sigma = libm::floor(libm::log2((1u64 << 60) as f64 / largest));
         let scale = libm::pow(2.0, sigma);
         self.look.m = m.map(|r| r.map(|v| libm::round(v * scale) as i64));
-        self.look.log2n = N.trailing_zeros() as u8;
+        self.look.log2n = n.trailing_zeros() as u8;
+        self.look.image = !depth;
         self.look.receivers_end = receivers_end;
         self.look.bias = mapping.bias;
         self.look.filter = mapping.filter;

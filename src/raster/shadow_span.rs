@@ -20,8 +20,8 @@ use crate::kernel::div_segment;
 use crate::kernel::records::SUBPIXELS;
 use crate::kernel::wide::{bitlen64, mul_wide, recip_norm};
 use crate::raster::layer_rows::blend;
-use crate::raster::span::{by_depth_test, passes};
 use crate::raster::shadow_map::ShadowFilter;
+use crate::raster::span::{by_depth_test, passes};
 use crate::raster::span_map::{MapLookup, MapView, MAX_BIAS};
 use crate::raster::textured::set_planes;
 use crate::raster::*;
@@ -198,6 +198,9 @@ pub(crate) fn span<C: TargetColor>(
         light,
         flat: flat.then(|| rec.flat_channels()),
     };
+    if map.look.image {
+        return by_depth_test!(test, T => s.fill::<C, T, IMAGE>(zs, cs));
+    }
     match map.look.filter {
         ShadowFilter::Nearest => by_depth_test!(test, T => s.fill::<C, T, NEAREST>(zs, cs)),
         ShadowFilter::Pcf2 => by_depth_test!(test, T => s.fill::<C, T, PCF2>(zs, cs)),
@@ -209,9 +212,11 @@ pub(crate) fn span<C: TargetColor>(
 const NEAREST: u8 = 0;
 const PCF2: u8 = 1;
 const PCF3: u8 = 2;
+/// An image's cover level (no depth).
+const IMAGE: u8 = 3;
 
 /// A 3 × 3 read's count of hiding texels (0..=9) to its level (0..=4): `round(4·count/9)`.
-const LEVEL9: [u8; 10] = [0, 0, 1, 1, 2, 2, 3, 3, 4, 4];
+pub(crate) const LEVEL9: [u8; 10] = [0, 0, 1, 1, 2, 2, 3, 3, 4, 4];
 
 struct ShadowSpan<'a> {
     e: &'a ActiveExtra,
@@ -266,6 +271,7 @@ impl ShadowSpan<'_> {
     fn fill<C: TargetColor, const T: u8, const F: u8>(&self, zs: &mut [u16], cs: &mut [C]) -> u32 {
         let look = self.map.look;
         let texels = self.map.depth;
+        let cover = self.map.cover;
         let log2n = look.log2n as u32;
         let small = C::CHANNEL_MAX.iter().all(|&m| m <= 63);
         let (sc, _) = look.shadow;
@@ -321,6 +327,14 @@ impl ShadowSpan<'_> {
                     };
                     let level = match F {
                         NEAREST => hides(u >> 16, v >> 16) * 4,
+                        IMAGE => {
+                            let (iu, iv) = (u >> 16, v >> 16);
+                            if ((iu | iv) as u32) >> log2n == 0 {
+                                cover[((iv as u32) << log2n | iu as u32) as usize] as usize
+                            } else {
+                                0
+                            }
+                        }
                         PCF2 => {
                             let (iu, iv) = ((u - (1 << 15)) >> 16, (v - (1 << 15)) >> 16);
                             hides(iu, iv)

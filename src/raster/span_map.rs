@@ -36,7 +36,10 @@ impl SpanMap for NoMap {
 #[derive(Copy, Clone, Debug)]
 pub(crate) struct MapView<'m> {
     pub(crate) look: &'m MapLookup,
+    /// A depth map's texels (empty for an image).
     pub(crate) depth: &'m [u16],
+    /// An image's texels, cover levels 0..=4 (empty for a depth map).
+    pub(crate) cover: &'m [u8],
 }
 
 impl SpanMap for MapView<'_> {
@@ -86,6 +89,8 @@ pub(crate) struct MapLookup {
     pub(crate) alphas: [u8; 5],
     /// How the spans read the map.
     pub(crate) filter: ShadowFilter,
+    /// The map is an image (cover levels, no depth: [`MapView::cover`]).
+    pub(crate) image: bool,
 }
 
 impl MapLookup {
@@ -98,5 +103,6 @@ impl MapLookup {
         shadow: ([0; 3], 0),
         alphas: [0; 5],
         filter: ShadowFilter::Nearest,
+        image: false,
     };
 }

@@ -4,7 +4,7 @@
 
 use crate::error::LayerError;
 use crate::num::scalar::Scalar;
-use crate::raster::shadow_map::{ShadowMap, ShadowMapping};
+use crate::raster::shadow_map::{ShadowMapping, ShadowStore};
 use crate::renderer::*;
 use crate::scene::color::TargetColor;
 use crate::scene::shade::Material;
@@ -42,25 +42,26 @@ impl<
     /// [`ShadowMapping::light_camera`]; and a frame's [`Error::Shortfall`] (under
     /// [`OverflowPolicy::Error`]) for the casters as the light sees them. The map is left
     /// as it was on any error.
-    pub fn shadow_map_pass<const L: usize, const N: usize>(
+    pub fn shadow_map_pass<const L: usize, M: ShadowStore>(
         &mut self,
         scene: &Scene<'_, S, L>,
         mapping: &ShadowMapping<'_, S>,
-        map: &mut ShadowMap<N>,
+        map: &mut M,
     ) -> Result<Stats, Error<core::convert::Infallible>> {
+        let n = M::SIDE;
         if ZL == 0 {
             return Err(Error::NoDepthLines);
         }
-        if N > W || N > H {
+        if n > W || n > H {
             return Err(Error::Layers(LayerError::MapLargerThanViewport {
-                size: N,
+                size: n,
                 width: W,
                 height: H,
             }));
         }
-        let camera = mapping.light_camera(scene, N)?;
+        let camera = mapping.light_camera(scene, n)?;
         let want = self.want_viewport;
-        self.want_viewport = (N as u16, N as u16);
+        self.want_viewport = (n as u16, n as u16);
         let result = self.map_geometry(scene, mapping, &camera);
         self.want_viewport = want;
         if let Err(e) = result {
@@ -68,11 +69,12 @@ impl<
             return Err(e);
         }
         while let Some((y0, n)) = self.draw_strip::<NoProbe, true>(None, LINES, &mut NoProbe) {
-            for (row, line) in map.depth[y0..y0 + n].iter_mut().zip(&self.ras.depth) {
-                row.copy_from_slice(&line[..N]);
+            for (y, line) in (y0..y0 + n).zip(&self.ras.depth) {
+                map.put_row(y, line);
             }
         }
-        map.set_camera(&camera);
+        map.finish(mapping.filter);
+        map.setup().set_camera(&camera, M::SIDE);
         let stats = self.ras.stats;
         self.take_viewport();
         Ok(stats)
@@ -82,11 +84,11 @@ impl<
     /// frame's geometry stage with the receivers' objects first (their vertices' end is how
     /// the strip pass tells their triangles), then the map's lookup for this frame's camera
     /// and viewport.
-    pub(crate) fn geometry_mapped<P: Probe, const L: usize, const N: usize>(
+    pub(crate) fn geometry_mapped<P: Probe, const L: usize, M: ShadowStore>(
         &mut self,
         scene: &Scene<'_, S, L>,
         mapping: &ShadowMapping<'_, S>,
-        map: &mut ShadowMap<N>,
+        map: &mut M,
         probe: &mut P,
     ) -> Result<Stats, Error<core::convert::Infallible>> {
         if ZL == 0 {
@@ -107,7 +109,9 @@ impl<
         {
             return Err(Error::Layers(LayerError::NoSuchObject { index: i }));
         }
-        let receives = |i: usize| mapping.receives(scene, i);
+        // (An image has no depth: its casters would shadow themselves, and receive nothing.)
+        let receives =
+            |i: usize| mapping.receives(scene, i) && (M::DEPTH || !mapping.casters.contains(&i));
         if let Some(i) = (0..n).find(|&i| scene.objects[i].material.needs_attribute_stores()) {
             return Err(Error::Layers(LayerError::MapShading { object: i }));
         }
@@ -145,7 +149,14 @@ impl<
                 .frame_end(scene, &c, &mut f, ACTIVE, self.ras.overflow, Self::CAPACITY)?;
         self.frame_ready(scene, stats);
         let viewport = (self.geo.vw, self.geo.vh);
-        if !map.prepare_lookup::<S, C>(&scene.camera, viewport, mapping, end) {
+        if !map.setup().prepare_lookup::<S, C>(
+            M::SIDE,
+            M::DEPTH,
+            &scene.camera,
+            viewport,
+            mapping,
+            end,
+        ) {
             self.ras.next_row = self.geo.vh;
             return Err(Error::Layers(LayerError::Shadow));
         }

@@ -328,7 +328,9 @@ where
         | Bench::ShadowMap32
         | Bench::ShadowMap128
         | Bench::ShadowMapPcf
-        | Bench::ShadowMapPcf3 => render_shadow_scene::<S, C, D, P>(
+        | Bench::ShadowMapPcf3
+        | Bench::ShadowImage
+        | Bench::ShadowImageBlur => render_shadow_scene::<S, C, D, P>(
             &ShadowScene::bench(bench, spin_deg, dither),
             target,
             probe,

@@ -429,6 +429,11 @@ pub enum Bench {
     ShadowMapPcf,
     /// [`Bench::ShadowMap`] read through 3 × 3 percentage-closer filtering.
     ShadowMapPcf3,
+    /// [`Bench::ShadowNone`] with a 64 × 64 light-view image without depth
+    /// ([`scanline3d::shadow::ShadowImage`]): the casters shadow the ground only.
+    ShadowImage,
+    /// [`Bench::ShadowImage`] pre-blurred (3 × 3): soft edges.
+    ShadowImageBlur,
 }
 
 impl Bench {
@@ -443,7 +448,7 @@ impl Bench {
     }
 
     /// Every benchmark scene.
-    pub const ALL: [Bench; 38] = [
+    pub const ALL: [Bench; 40] = [
         Bench::Cube,
         Bench::Torus,
         Bench::Icosphere,
@@ -482,6 +487,8 @@ impl Bench {
         Bench::ShadowMap128,
         Bench::ShadowMapPcf,
         Bench::ShadowMapPcf3,
+        Bench::ShadowImage,
+        Bench::ShadowImageBlur,
     ];
 
     /// Its name in reports.
@@ -526,6 +533,8 @@ impl Bench {
             Bench::ShadowMap128 => "shadow_map_128",
             Bench::ShadowMapPcf => "shadow_map_pcf",
             Bench::ShadowMapPcf3 => "shadow_map_pcf3",
+            Bench::ShadowImage => "shadow_image",
+            Bench::ShadowImageBlur => "shadow_image_blur",
         }
     }
 }

@@ -6,7 +6,7 @@
 //! hidden lines removed (`Wireframe`).
 
 use crate::demo_assets::{deg, look, persp, Bench, BenchError, BenchFrame};
-use scanline3d::shadow::{ShadowFilter, ShadowMap, ShadowMapping};
+use scanline3d::shadow::{ShadowFilter, ShadowImage, ShadowMap, ShadowMapping, ShadowStore};
 use scanline3d::Mat4;
 use scanline3d::Scalar;
 use scanline3d::Shape;
@@ -90,8 +90,12 @@ pub struct ShadowScene {
     /// A shadow map of the torus and the cube instead of a planar shadow or volumes, this many
     /// texels a side (32, 64 or 128): every model receives.
     pub map: Option<usize>,
-    /// How the map is read (nearest or percentage-closer filtering).
+    /// How the map is read (nearest or percentage-closer filtering; an image is pre-blurred
+    /// by either filter).
     pub map_filter: ShadowFilter,
+    /// The map is a light-view image without depth ([`ShadowImage`]) rather than a depth map:
+    /// the ground alone receives.
+    pub image: bool,
 }
 
 /// Which edges [`ShadowScene::outline`] draws ([`Edges`]).
@@ -140,16 +144,21 @@ impl ShadowScene {
             spin_deg,
             dither,
             map: match bench {
-                Bench::ShadowMap | Bench::ShadowMapPcf | Bench::ShadowMapPcf3 => Some(64),
+                Bench::ShadowMap
+                | Bench::ShadowMapPcf
+                | Bench::ShadowMapPcf3
+                | Bench::ShadowImage
+                | Bench::ShadowImageBlur => Some(64),
                 Bench::ShadowMap32 => Some(32),
                 Bench::ShadowMap128 => Some(128),
                 _ => None,
             },
             map_filter: match bench {
                 Bench::ShadowMapPcf => ShadowFilter::Pcf2,
-                Bench::ShadowMapPcf3 => ShadowFilter::Pcf3,
+                Bench::ShadowMapPcf3 | Bench::ShadowImageBlur => ShadowFilter::Pcf3,
                 _ => ShadowFilter::Nearest,
             },
+            image: matches!(bench, Bench::ShadowImage | Bench::ShadowImageBlur),
         }
     }
 }
@@ -301,10 +310,27 @@ where
         const T: usize = SHADOW_CAPACITY.1;
         const A: usize = SHADOW_CAPACITY.2;
         let (s, d) = (&scene, o.dither);
-        return match size {
-            32 => draw_mapped::<S, C, D, P, V, T, A, 32>(s, &mapping, d, target, probe),
-            64 => draw_mapped::<S, C, D, P, V, T, A, 64>(s, &mapping, d, target, probe),
-            128 => draw_mapped::<S, C, D, P, V, T, A, 128>(s, &mapping, d, target, probe),
+        return match (size, o.image) {
+            (32, false) => {
+                draw_mapped::<S, C, D, P, V, T, A, ShadowMap<32>>(s, &mapping, d, target, probe)
+            }
+            (64, false) => {
+                draw_mapped::<S, C, D, P, V, T, A, ShadowMap<64>>(s, &mapping, d, target, probe)
+            }
+            (128, false) => {
+                draw_mapped::<S, C, D, P, V, T, A, ShadowMap<128>>(s, &mapping, d, target, probe)
+            }
+            #[cfg(feature = "host")]
+            (32, true) => {
+                draw_mapped::<S, C, D, P, V, T, A, ShadowImage<32>>(s, &mapping, d, target, probe)
+            }
+            (64, true) => {
+                draw_mapped::<S, C, D, P, V, T, A, ShadowImage<64>>(s, &mapping, d, target, probe)
+            }
+            #[cfg(feature = "host")]
+            (128, true) => {
+                draw_mapped::<S, C, D, P, V, T, A, ShadowImage<128>>(s, &mapping, d, target, probe)
+            }
             _ => Err(BenchError::Scene),
         };
     }
@@ -419,11 +445,11 @@ where
     }
 }
 
-/// Draws `scene` with a shadow map of `N` texels a side from `mapping`, on a renderer with a
-/// vertex store of `V`, a triangle store of `T`, an active list of `A` and as many pool entries
-/// (each receiver's triangle takes one while active). [`BenchFrame::renderer_ram_bytes`]
-/// counts the map too.
-fn draw_mapped<S, C, D, P, const V: usize, const T: usize, const A: usize, const N: usize>(
+/// Draws `scene` with a shadow map or image `M` from `mapping`, on a renderer with a vertex
+/// store of `V`, a triangle store of `T`, an active list of `A` and as many pool entries (each
+/// receiver's triangle takes one while active). [`BenchFrame::renderer_ram_bytes`] counts the
+/// map too.
+fn draw_mapped<S, C, D, P, const V: usize, const T: usize, const A: usize, M>(
     scene: &Scene<'_, S, 1>,
     mapping: &ShadowMapping<'_, S>,
     dither: bool,
@@ -435,31 +461,34 @@ where
     C: scanline3d::TargetColor,
     D: embedded_graphics_core::draw_target::DrawTarget<Color = C>,
     P: scanline3d::probe::Probe,
+    M: ShadowStore + Default,
 {
     #[cfg(feature = "host")]
     let (mut r, mut map) = (
         std::boxed::Box::new(Renderer::<S, C, 240, 240, V, T, A, 1, 0, A>::new()),
-        std::boxed::Box::new(ShadowMap::<N>::new()),
+        std::boxed::Box::new(M::default()),
     );
     #[cfg(not(feature = "host"))]
     let (mut r, mut map) = (
         Renderer::<S, C, 240, 240, V, T, A, 1, 0, A>::new(),
-        ShadowMap::<N>::new(),
+        M::default(),
     );
+    // (A `Box` on the host, the value on a device's stack.)
+    let map: &mut M = &mut map;
     r.set_dither(dither);
     let stats = r
         .render_with(
             scene,
             FrameOptions::new()
                 .probe(&mut *probe)
-                .shadow_map(mapping, &mut map),
+                .shadow_map(mapping, map),
             target,
         )
         .map_err(BenchError::Render)?;
     Ok(BenchFrame {
         stats,
         renderer_ram_bytes: core::mem::size_of::<Renderer<S, C, 240, 240, V, T, A, 1, 0, A>>()
-            + ShadowMap::<N>::RAM_BYTES,
+            + core::mem::size_of::<M>(),
     })
 }
 

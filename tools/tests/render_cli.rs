@@ -81,7 +81,6 @@ fn shadow_scene_refuses_the_model_flags_it_ignored() {
         &["--specular", "0.8"],
         &["--normals", "face-average"],
         &["--strip", "4"],
-        &["--budget"],
         &["--exposure", "0.5"],
     ] {
         let args = [&["--scene", "shadow"][..], flag].concat();
@@ -105,11 +104,32 @@ fn shadow_scene_refuses_the_model_flags_it_ignored() {
     );
     refused(
         &["--scene", "shadow", "--shadow", "map,48"],
-        &["map[,SIZE]", "32, 64 or 128"],
+        &["map[,SIZE[,FILTER]]", "32, 64 or 128"],
     );
+    for bad in [
+        "map,64,pcf4",
+        "map,64,pcf,1",
+        "image,64,pcf",
+        "image,16",
+        "maps",
+    ] {
+        refused(
+            &["--scene", "shadow", "--shadow", bad],
+            &["image[,SIZE[,blur]]", "pcf3"],
+        );
+    }
     refused(
         &["--scene", "shadow", "--shadow", "map", "--alpha", "100"],
-        &["--shadow map draws a plain frame"],
+        &["--shadow map or image draws a plain frame"],
+    );
+    // --ram is --scene shadow --budget's only; the scene's drawing flags are not taken there.
+    refused(
+        &["--scene", "shadow", "--ram", "1000"],
+        &["--ram", "--budget only"],
+    );
+    refused(
+        &["--scene", "shadow", "--budget", "--shadow", "map"],
+        &["--shadow", "every shadow method"],
     );
     // What the scene takes is applied: a different image from the default.
     let (code, stderr, base) = image(&["--scene", "shadow"], "shadow_base.png");
@@ -118,6 +138,10 @@ fn shadow_scene_refuses_the_model_flags_it_ignored() {
         &["--shadow", "blob"][..],
         &["--shadow", "map"],
         &["--shadow", "map,32"],
+        &["--shadow", "map,64,pcf"],
+        &["--shadow", "map,128,pcf3"],
+        &["--shadow", "image"],
+        &["--shadow", "image,32,blur"],
         &["--shadow-plane", "0.3,1,0,0.3"],
         &["--alpha", "150"],
         &["--shadow", "none", "--outline", "255,0,0"],
@@ -131,6 +155,34 @@ fn shadow_scene_refuses_the_model_flags_it_ignored() {
         assert_eq!(code, 0, "{all:?}: {stderr}");
         assert_ne!(png, base, "{all:?}: the same image as the default");
     }
+    // The soft and depth-less variants differ from the nearest map and from each other.
+    let map = |a: &str| image(&["--scene", "shadow", "--shadow", a], &format!("{a}.png")).2;
+    let variants = ["map", "map,64,pcf", "map,64,pcf3", "image", "image,64,blur"].map(map);
+    for i in 0..variants.len() {
+        for j in i + 1..variants.len() {
+            assert_ne!(variants[i], variants[j], "variants {i} and {j}");
+        }
+    }
+    // --budget: every method with its measured RAM and instructions, the cheapest that fits.
+    let (code, stdout, stderr) = run(&["--scene", "shadow", "--budget"]);
+    assert_eq!(code, 0, "{stderr}");
+    for s in [
+        "shadow_map_pcf3",
+        "shadow_image_blur",
+        "cheapest that fits: --shadow ",
+        "270336",
+    ] {
+        assert!(stdout.contains(s), "{stdout} lacks {s:?}");
+    }
+    // Nothing fits in 1000 bytes: exit 1, naming the smallest method.
+    let (code, _, stderr) = run(&["--scene", "shadow", "--budget", "--ram", "1000"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains("no shadow method fits in 1000 bytes: the smallest"),
+        "{stderr}"
+    );
+    let (code, _, stderr) = run(&["--scene", "shadow", "--budget", "--number", "f64"]);
+    assert_eq!(code, 2, "{stderr}");
     // --color is the lines' colour of the wireframe; --edge-color replaces it.
     let wire = ["--scene", "shadow", "--shading", "wireframe"];
     let (_, _, plain) = image(&wire, "shadow_wire.png");

@@ -507,6 +507,18 @@ fn shadows(mcu: &BTreeMap<(String, String, String), u64>) -> String {
                 Bench::ShadowMapPcf3,
             ),
             (
+                Bench::ShadowImage,
+                "light-view image, 64 × 64",
+                Some(Bench::ShadowNone),
+                Bench::ShadowImage,
+            ),
+            (
+                Bench::ShadowImageBlur,
+                "light-view image, 64 × 64, pre-blurred",
+                Some(Bench::ShadowNone),
+                Bench::ShadowImageBlur,
+            ),
+            (
                 Bench::Wireframe,
                 "wireframe, hidden lines removed",
                 Some(Bench::ShadowNone),
@@ -526,17 +538,57 @@ fn shadows(mcu: &BTreeMap<(String, String, String), u64>) -> String {
         "| scene | map | filter | map bytes | renderer + map RAM B | × 16 KB | M0 instr. | M4F instr. | M0 added to shadow_none | M0 × shadow_volume |"
     );
     let _ = writeln!(md, "|---|---|---|---:|---:|---:|---:|---:|---:|---:|");
-    let maps: [(Bench, usize, usize, &str); 5] = [
-        (Bench::ShadowMap32, 32, scanline3d::shadow::ShadowMap::<32>::RAM_BYTES, "nearest"),
-        (Bench::ShadowMap, 64, scanline3d::shadow::ShadowMap::<64>::RAM_BYTES, "nearest"),
-        (Bench::ShadowMap128, 128, scanline3d::shadow::ShadowMap::<128>::RAM_BYTES, "nearest"),
-        (Bench::ShadowMapPcf, 64, scanline3d::shadow::ShadowMap::<64>::RAM_BYTES, "PCF 2 × 2"),
-        (Bench::ShadowMapPcf3, 64, scanline3d::shadow::ShadowMap::<64>::RAM_BYTES, "PCF 3 × 3"),
+    let maps: [(Bench, usize, usize, &str); 7] = [
+        (
+            Bench::ShadowMap32,
+            32,
+            scanline3d::shadow::ShadowMap::<32>::RAM_BYTES,
+            "nearest",
+        ),
+        (
+            Bench::ShadowMap,
+            64,
+            scanline3d::shadow::ShadowMap::<64>::RAM_BYTES,
+            "nearest",
+        ),
+        (
+            Bench::ShadowMap128,
+            128,
+            scanline3d::shadow::ShadowMap::<128>::RAM_BYTES,
+            "nearest",
+        ),
+        (
+            Bench::ShadowMapPcf,
+            64,
+            scanline3d::shadow::ShadowMap::<64>::RAM_BYTES,
+            "PCF 2 × 2",
+        ),
+        (
+            Bench::ShadowMapPcf3,
+            64,
+            scanline3d::shadow::ShadowMap::<64>::RAM_BYTES,
+            "PCF 3 × 3",
+        ),
+        (
+            Bench::ShadowImage,
+            64,
+            scanline3d::shadow::ShadowImage::<64>::RAM_BYTES,
+            "image, nearest",
+        ),
+        (
+            Bench::ShadowImageBlur,
+            64,
+            scanline3d::shadow::ShadowImage::<64>::RAM_BYTES,
+            "image, pre-blurred 3 × 3",
+        ),
     ];
     let key = |b: Bench, core: &str| (b.name().to_string(), "I16F16".to_string(), core.to_string());
     for (b, n, bytes, filter) in maps {
         let device = ram.get(&key(b, "m0")).copied();
-        let (m0, m4f) = (mcu.get(&key(b, "m0")).copied(), mcu.get(&key(b, "m4f")).copied());
+        let (m0, m4f) = (
+            mcu.get(&key(b, "m0")).copied(),
+            mcu.get(&key(b, "m4f")).copied(),
+        );
         let none = mcu.get(&key(Bench::ShadowNone, "m0")).copied();
         let volume = mcu.get(&key(Bench::ShadowVolume, "m0")).copied();
         let opt = |v: Option<u64>| v.map_or(String::new(), |v| v.to_string());
@@ -545,11 +597,18 @@ fn shadows(mcu: &BTreeMap<(String, String, String), u64>) -> String {
             "| `{}` | {n} × {n} | {filter} | {bytes} | {} | {} | {} | {} | {} | {} |",
             b.name(),
             opt(device),
-            device.map_or(String::new(), |d| format!("{:.2}", d as f64 / budget as f64)),
+            device.map_or(String::new(), |d| format!(
+                "{:.2}",
+                d as f64 / budget as f64
+            )),
             opt(m0),
             opt(m4f),
-            m0.zip(none).map_or(String::new(), |(a, w)| format!("{:+}", a as i64 - w as i64)),
-            m0.zip(volume).map_or(String::new(), |(a, v)| format!("{:.2}", a as f64 / v as f64)),
+            m0.zip(none)
+                .map_or(String::new(), |(a, w)| format!("{:+}", a as i64 - w as i64)),
+            m0.zip(volume).map_or(String::new(), |(a, v)| format!(
+                "{:.2}",
+                a as f64 / v as f64
+            )),
         );
     }
     let _ = writeln!(

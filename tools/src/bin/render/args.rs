@@ -52,15 +52,19 @@ pub(crate) enum ShadowArg {
     /// A shadow map of the models, this many texels a side, read as the filter says: on the
     /// ground, on each other and on themselves
     Map(usize, ShadowFilter),
+    /// A light-view image without depth, this many texels a side, pre-blurred or not: on the
+    /// ground only (the models cast and receive nothing)
+    Image(usize, bool),
 }
 
-/// `--shadow`: none, projected, blob, volume, or map[,SIZE[,FILTER]] (SIZE 32, 64 or 128, default
-/// 64; FILTER nearest, pcf or pcf3, default nearest).
+/// `--shadow`: none, projected, blob, volume, map[,SIZE[,FILTER]] or image[,SIZE[,blur]] (SIZE
+/// 32, 64 or 128, default 64; FILTER nearest, pcf or pcf3, default nearest).
 fn shadow_arg(s: &str) -> Result<ShadowArg, String> {
     let bad = || {
         format!(
-            "{s:?}: expected none, projected, blob, volume, or map[,SIZE[,FILTER]] with SIZE \
-             32, 64 or 128 and FILTER nearest, pcf (2 × 2) or pcf3 (3 × 3)"
+            "{s:?}: expected none, projected, blob, volume, map[,SIZE[,FILTER]] or \
+             image[,SIZE[,blur]] with SIZE 32, 64 or 128 and FILTER nearest, pcf (2 × 2) or pcf3 \
+             (3 × 3)"
         )
     };
     let mut parts = s.split(',');
@@ -69,13 +73,24 @@ fn shadow_arg(s: &str) -> Result<ShadowArg, String> {
         Some("projected") => ShadowArg::Projected,
         Some("blob") => ShadowArg::Blob,
         Some("volume") => ShadowArg::Volume,
-        Some("map") => {
+        Some(kind @ ("map" | "image")) => {
             let size = match parts.next() {
                 None | Some("64") => 64,
                 Some("32") => 32,
                 Some("128") => 128,
                 Some(_) => return Err(bad()),
             };
+            if kind == "image" {
+                let blur = match parts.next() {
+                    None => false,
+                    Some("blur") => true,
+                    Some(_) => return Err(bad()),
+                };
+                return match parts.next() {
+                    None => Ok(ShadowArg::Image(size, blur)),
+                    Some(_) => Err(bad()),
+                };
+            }
             let filter = match parts.next() {
                 None | Some("nearest") => ShadowFilter::Nearest,
                 Some("pcf") => ShadowFilter::Pcf2,
@@ -511,8 +526,9 @@ pub(crate) struct Args {
     /// the plane, stencilled), blob (a soft disc under each model), volume (shadow volumes: on
     /// the ground, on each other and on themselves) or map[,SIZE[,FILTER]] (a shadow map of
     /// SIZE 32, 64 or 128 texels a side, default 64: the same receivers as volumes; FILTER
-    /// nearest, pcf for 2×2 or pcf3 for 3×3 percentage-closer soft edges, default nearest)
-    /// [default: projected; none with --shading wireframe]
+    /// nearest, pcf for 2×2 or pcf3 for 3×3 percentage-closer soft edges, default nearest) or
+    /// image[,SIZE[,blur]] (a light-view image without depth: the ground only, half a map's
+    /// RAM; blur: pre-blurred 3×3) [default: projected; none with --shading wireframe]
     #[arg(long, value_name = "METHOD", value_parser = shadow_arg)]
     pub(crate) shadow: Option<ShadowArg>,
     /// The plane `--scene shadow`'s shadow falls on, a·x + b·y + c·z + d = 0 (world units;

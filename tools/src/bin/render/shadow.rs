@@ -46,7 +46,7 @@ pub fn run(args: &Args) -> Result<(), (String, i32)> {
         });
     let o = ShadowScene {
         shadow: match shadow {
-            ShadowArg::None | ShadowArg::Volume | ShadowArg::Map(..) => None,
+            ShadowArg::None | ShadowArg::Volume | ShadowArg::Map(..) | ShadowArg::Image(..) => None,
             ShadowArg::Projected => Some(ShadowMethod::Projected),
             ShadowArg::Blob => Some(ShadowMethod::Blob),
         },
@@ -69,18 +69,20 @@ pub fn run(args: &Args) -> Result<(), (String, i32)> {
         spin_deg: 0.0,
         dither: args.dither == OnOff::On,
         map: match shadow {
-            ShadowArg::Map(size, _) => Some(size),
+            ShadowArg::Map(size, _) | ShadowArg::Image(size, _) => Some(size),
             _ => None,
         },
         map_filter: match shadow {
             ShadowArg::Map(_, filter) => filter,
+            ShadowArg::Image(_, true) => ShadowFilter::Pcf3,
             _ => ShadowFilter::Nearest,
         },
+        image: matches!(shadow, ShadowArg::Image(..)),
     };
     if o.map.is_some() && (o.outline.is_some() || o.alpha < 255 || o.wireframe) {
         return Err((
-            "--shadow map draws a plain frame: it takes no --outline, --edges, --alpha below 255 \
-             or --shading wireframe"
+            "--shadow map or image draws a plain frame: it takes no --outline, --edges, --alpha \
+             below 255 or --shading wireframe"
                 .into(),
             2,
         ));
@@ -130,6 +132,7 @@ fn frames<S: Scalar, C: TargetColor + Into<Rgb888>>(
                 "shadow scene ({}, {}): {} triangles drawn of {}, {} fragments, {} pixels written, renderer and layers RAM {} bytes",
                 S::NAME,
                 match o.shadow {
+                    None if o.map.is_some() && o.image => "shadow image",
                     None if o.map.is_some() => "shadow map",
                     None if o.volume => "shadow volumes",
                     None => "no shadow",

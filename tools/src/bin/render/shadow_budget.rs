@@ -19,16 +19,25 @@ enum Reach {
     Nothing,
     /// The ground plane only (a disc or the models' projection on it).
     Plane,
+    /// Any receiver that casts nothing (here the ground), curved ones too: no self-shadowing.
+    NonCasters,
     /// Every model, curved ones included, and each model itself.
     Everything,
 }
 
 /// The shadow scene's methods: the benchmark scene, how `--shadow` names it, what it shadows,
 /// whether its edges are soft.
-const METHODS: [(&str, &str, Reach, bool); 9] = [
+const METHODS: [(&str, &str, Reach, bool); 11] = [
     ("shadow_none", "none", Reach::Nothing, false),
     ("shadow_blob", "blob", Reach::Plane, true),
     ("shadow", "projected", Reach::Plane, false),
+    ("shadow_image", "image,64", Reach::NonCasters, false),
+    (
+        "shadow_image_blur",
+        "image,64,blur",
+        Reach::NonCasters,
+        true,
+    ),
     ("shadow_volume", "volume", Reach::Everything, false),
     ("shadow_map_32", "map,32", Reach::Everything, false),
     ("shadow_map", "map,64", Reach::Everything, false),
@@ -80,7 +89,12 @@ fn figures(text: &str, scene: &str, number: &str, core: &str) -> Option<(u64, us
 
 /// Prints the report; an error when the measurements are missing or no method fits.
 pub fn report(args: &Args) -> Result<(), (String, i32)> {
-    report_from(BENCHMARKS, args.number, args.ram.map_or(RP2040_RAM, |r| r as usize)).map(|text| {
+    report_from(
+        BENCHMARKS,
+        args.number,
+        args.ram.map_or(RP2040_RAM, |r| r as usize),
+    )
+    .map(|text| {
         print!("{text}");
     })
 }
@@ -147,6 +161,7 @@ fn report_from(text: &str, number: NumberArg, ram: usize) -> Result<String, (Str
             match r.reach {
                 Reach::Nothing => "nothing",
                 Reach::Plane => "the ground plane only",
+                Reach::NonCasters => "the receivers that cast nothing (here the ground)",
                 Reach::Everything => "every model, curved ones and each itself",
             },
             if r.soft { ", soft edges" } else { "" }
@@ -170,7 +185,12 @@ fn report_from(text: &str, number: NumberArg, ram: usize) -> Result<String, (Str
             .iter()
             .filter(|r| r.reach > Reach::Nothing)
             .min_by_key(|r| r.ram)
-            .map(|r| format!("the smallest, --shadow {} ({}), needs {} B", r.flag, r.scene, r.ram))
+            .map(|r| {
+                format!(
+                    "the smallest, --shadow {} ({}), needs {} B",
+                    r.flag, r.scene, r.ram
+                )
+            })
             .unwrap_or_default();
         return Err((
             format!("{out}no shadow method fits in {ram} bytes: {smallest}"),
@@ -211,6 +231,8 @@ mod tests {
 | shadow_blob | I16F16 | m0 | 300 | 1500 | yes |
 | shadow | I16F16 | m0 | 200 | 3000 | yes |
 | shadow_volume | I16F16 | m0 | 800 | 9000 | yes |
+| shadow_image | I16F16 | m0 | 700 | 3500 | yes |
+| shadow_image_blur | I16F16 | m0 | 750 | 3500 | yes |
 | shadow_map_32 | I16F16 | m0 | 900 | 4000 | yes |
 | shadow_map | I16F16 | m0 | 1000 | 6000 | yes |
 | shadow_map_128 | I16F16 | m0 | 1500 | 20000 | yes |
@@ -225,20 +247,36 @@ mod tests {
         assert!(r.contains("cheapest that fits: --shadow projected"), "{r}");
         assert!(r.contains("every model and itself: --shadow volume"), "{r}");
         assert!(r.contains("with soft edges: --shadow blob"), "{r}");
-        assert!(r.contains("soft edges on every model: --shadow map,64,pcf "), "{r}");
+        assert!(r.contains("image,64 "), "{r}");
+        assert!(
+            r.contains("soft edges on every model: --shadow map,64,pcf "),
+            "{r}"
+        );
         // The volumes' layers do not fit in 8 KB: the 32-texel map is the cheapest that does.
         let r = report_from(TABLE, NumberArg::Fixed, 8_000).unwrap();
-        assert!(r.contains("every model and itself: --shadow map,32 "), "{r}");
+        assert!(
+            r.contains("every model and itself: --shadow map,32 "),
+            "{r}"
+        );
         // 2 KB: the projected shadow does not fit, the blob does.
         let r = report_from(TABLE, NumberArg::Fixed, 2_000).unwrap();
         assert!(r.contains("cheapest that fits: --shadow blob"), "{r}");
-        assert!(r.contains("every model and itself: none fits in 2000 bytes"), "{r}");
+        assert!(
+            r.contains("every model and itself: none fits in 2000 bytes"),
+            "{r}"
+        );
         // Nothing fits: an error naming the smallest.
         let e = report_from(TABLE, NumberArg::Fixed, 1_200).unwrap_err();
-        assert!(e.0.contains("the smallest, --shadow blob (shadow_blob), needs 1500 B"), "{e:?}");
+        assert!(
+            e.0.contains("the smallest, --shadow blob (shadow_blob), needs 1500 B"),
+            "{e:?}"
+        );
         // No f32 rows, no f64 on a device.
         assert!(report_from(TABLE, NumberArg::F32, 100_000).is_err());
-        assert_eq!(report_from(TABLE, NumberArg::F64, 100_000).unwrap_err().1, 2);
+        assert_eq!(
+            report_from(TABLE, NumberArg::F64, 100_000).unwrap_err().1,
+            2
+        );
     }
 
     /// The committed benchmark table has every method's row.
