@@ -145,13 +145,13 @@ fn report_from(text: &str, number: NumberArg, ram: usize) -> Result<String, (Str
     );
     let _ = writeln!(
         out,
-        "{:<16} {:<14} {:>8} {:>12} {:>12}  {:<4} shadows",
+        "{:<18} {:<14} {:>8} {:>12} {:>12}  {:<4} shadows",
         "scene", "--shadow", "RAM B", "M0 instr.", "M4F instr.", "fits"
     );
     for r in &rows {
         let _ = writeln!(
             out,
-            "{:<16} {:<14} {:>8} {:>12} {:>12}  {:<4} {}{}",
+            "{:<18} {:<14} {:>8} {:>12} {:>12}  {:<4} {}{}",
             r.scene,
             r.flag,
             r.ram,
