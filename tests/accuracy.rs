@@ -66,7 +66,10 @@ fn check<S: Scalar>() {
                 m.differing,
                 m.pixels
             );
-        } else if b == Bench::ShadowVolume || b.name().starts_with("shadow_map") {
+        } else if b == Bench::ShadowVolume
+            || b.name().starts_with("shadow_map")
+            || b.name().starts_with("shadow_image")
+        {
             // (A shadow map's texel is a step the same way: where a receiver's light depth
             // lies within a rounding of the map's, or a pixel's texel within a rounding of a
             // texel's edge, two number types' maps and light planes may disagree; I16F16

@@ -619,17 +619,17 @@ impl MapSetup {
         // World → screen (homogeneous): x = (x_c/w + 1)·8·vw subpixels, y = (1 − y_c/w)·8·vh,
         // d = z_c/w·65535·256.
         let (sx, sy) = (8.0 * vw as f64, 8.0 * vh as f64);
-        let screen = viewport_rows(clip_f64(camera, aspect), [sx, sy, 65535.0 * 256.0]);
+        let screen = viewport_rows(clip_f64(camera, aspect), [sx, sy, 65535.0 * 4096.0]);
         let Some(inv) = invert4(screen) else {
             return false;
         };
         let mut m = Mat4 { m: self.to_map }.mul(&Mat4 { m: inv }).m;
         // W > 0 in front of the light: checked at the screen's centre, halfway in depth.
-        let mid = [sx, sy, 65535.0 * 128.0, 1.0];
+        let mid = [sx, sy, 65535.0 * 2048.0, 1.0];
         if (0..4).map(|j| m[3][j] * mid[j]).sum::<f64>() < 0.0 {
             m = m.map(|r| r.map(|v| -v));
         }
-        const RANGE: [f64; 4] = [32768.0, 32768.0, 16777216.0, 1.0];
+        const RANGE: [f64; 4] = [32768.0, 32768.0, 268435456.0, 1.0];
         let largest = m
             .iter()
             .map(|r| (0..4).map(|j| r[j].abs() * RANGE[j]).sum::<f64>())

@@ -6,10 +6,12 @@
 //! screen → map matrix ([`MapLookup::m`]) to `(X, Y, Z, W)`, homogeneous light-view
 //! coordinates that are affine in the screen point, so `X`, `Y` and `Z` are screen-space
 //! planes over the triangle (its pool entry's three planes, as a textured triangle's) and `W`
-//! follows from a pixel's own position and depth. A span finds the texel `(X/W, Y/W)` and the
-//! light depth `Z/W` exactly at the ends of each segment of [`SEGMENT`] pixels (one
-//! normalized reciprocal, no division) and steps them linearly between, as textured spans
-//! step their texture coordinates. Per pixel that passes the depth test: three additions,
+//! follows from a pixel's own position and depth. The four are affine along a row (the depth
+//! is): a span evaluates them at its first pixel (ten 64-bit products) and reaches each
+//! segment's end by additions. It finds the texel `(X/W, Y/W)` and the light depth `Z/W`
+//! exactly at the ends of each segment of [`SEGMENT`] pixels (one normalized reciprocal, no
+//! division) and steps them linearly between, as textured spans step their texture
+//! coordinates. Per pixel that passes the depth test: three additions,
 //! the texel's index (shifts and an OR), one bound test, one load, one compare, and for a
 //! shadowed pixel the shadow blend's table lookups (products on a target wider than 6 bits
 //! per channel, as every shadow method blends).
@@ -73,6 +75,18 @@ fn ratio(num: i64, (m, e): (i32, u32), frac: i32) -> i32 {
     q.clamp(i32::MIN as i64, i32::MAX as i64) as i32
 }
 
+/// `g·n` for `0 <= n < 16` by additions (no 64-bit product: a library call on a Cortex-M0).
+#[inline]
+fn times(g: i64, n: i32) -> i64 {
+    let mut r = 0i64;
+    for b in 0..4 {
+        if n & (1 << b) != 0 {
+            r = r.wrapping_add(g.wrapping_shl(b));
+        }
+    }
+    r
+}
+
 /// Row `row` of [`MapLookup::m`] at screen point `s`: exact (each product is below 2⁶⁰ by the
 /// matrix's scale, the sum below 2⁶²).
 #[inline]
@@ -106,7 +120,7 @@ pub(crate) fn attach_shadow(
     let [i0, i1, i2] = t.indices();
     let p = [&verts[i0], &verts[i1], &verts[i2]];
     let l = p.map(|v| {
-        let d = ((v.z as i64) << 8) | v.zf as i64;
+        let d = ((v.z as i64) << 12) | ((v.zf as i64) << 4);
         light_point(&look.m, [v.x as i64, v.y as i64, d, 1])
     });
     if l.iter().any(|l| l[3] <= 0) {
@@ -131,13 +145,17 @@ pub(crate) fn attach_shadow(
     if det == 0 || screen == 0 || (det > 0) != (screen > 0) {
         return Attach::Plain;
     }
-    // Light depth change per texel (Q16.14 per texel): (Q14·Q16 << 16) / Q32.
-    let gu = ((d(1, 2) * d(2, 1) - d(2, 2) * d(1, 1)) << 16) / det;
-    let gv = ((d(1, 0) * d(2, 2) - d(2, 0) * d(1, 2)) << 16) / det;
-    let slope = (gu.unsigned_abs() + gv.unsigned_abs()).min(1 << 40) as i128;
-    let [b0, b1] = look.bias.map(|b| b as i128);
-    let reach = look.filter.reach() as i128;
-    let bias = ((b0 << Z_FRAC) + ((slope * b1 * reach) >> 8)).min((MAX_BIAS as i128) << Z_FRAC);
+    // Light depth change per texel, |∂z/∂u| + |∂z/∂v| (Q16.14 per texel): the two numerators
+    // over the one determinant, (Q14·Q16 << 16) / Q32, in one 64-bit division after both are
+    // cut to the numerator's 47 leading bits.
+    let sum = (d(1, 2) * d(2, 1) - d(2, 2) * d(1, 1)).unsigned_abs()
+        + (d(1, 0) * d(2, 2) - d(2, 0) * d(1, 2)).unsigned_abs();
+    let cut = (128 - sum.leading_zeros()).saturating_sub(47);
+    let (num, den) = ((sum >> cut) as u64, (det.unsigned_abs() >> cut) as u64);
+    let slope = (num << 16).checked_div(den).unwrap_or(1 << 40).min(1 << 40);
+    let [b0, b1] = look.bias.map(|b| b as u64);
+    let reach = look.filter.reach() as u64;
+    let bias = ((b0 << Z_FRAC) + ((slope * b1 * reach) >> 8)).min((MAX_BIAS as u64) << Z_FRAC);
     // The planes of X, Y, Z, cut to 30 bits by a shift common to the three.
     let big = l
         .iter()
@@ -233,36 +251,56 @@ struct ShadowSpan<'a> {
 }
 
 impl ShadowSpan<'_> {
-    /// Texel coordinates (Q16.16) and light depth less the bias (Q16.14) at the centre of
-    /// pixel `x` of the row, whose eye depth is `z` (16.12); a point behind the light's plane
-    /// gets a texel outside the map (lit).
+    /// The light-space values at the centre of the span's first pixel, whose eye depth is `z`
+    /// (16.12), and their change per pixel along the row, `gz` being the depth's: the
+    /// triangle's X, Y and Z planes and the matrix's W, all affine along a row (the depth is),
+    /// so that a segment's end is reached by additions. Exact: 64-bit products, ten per span.
     #[inline]
-    fn light_at(&self, x: i32, z: i32) -> [i32; 3] {
+    fn light_start(&self, z: i32, gz: i32) -> ([i64; 4], [i64; 4]) {
         let e = self.e;
+        let (dx, dy) = (
+            (self.x0 - e.px0 as i32) as i64,
+            (self.row - e.py0 as i32) as i64,
+        );
+        let w = &self.map.look.m[3];
         let s = [
-            (x as i64) * SUBPIXELS as i64 + SUBPIXELS as i64 / 2,
+            (self.x0 as i64) * SUBPIXELS as i64 + SUBPIXELS as i64 / 2,
             (self.row as i64) * SUBPIXELS as i64 + SUBPIXELS as i64 / 2,
-            (z >> (DEPTH_FRAC_BITS - 8)) as i64,
+            z as i64,
             1,
         ];
-        let w = light_row(&self.map.look.m[3], s);
-        if w <= 0 {
+        let plane = |k: usize| {
+            e.val[k]
+                .wrapping_add(e.gx[k].wrapping_mul(dx))
+                .wrapping_add(e.gy[k].wrapping_mul(dy))
+        };
+        (
+            [plane(0), plane(1), plane(2), light_row(w, s)],
+            [
+                e.gx[0],
+                e.gx[1],
+                e.gx[2],
+                w[0] * SUBPIXELS as i64 + w[2] * gz as i64,
+            ],
+        )
+    }
+
+    /// Texel coordinates (Q16.16) and light depth less the bias (Q16.14) from the light-space
+    /// values `p` ([`ShadowSpan::light_start`]); a point behind the light's plane gets a texel
+    /// outside the map (lit).
+    #[inline]
+    fn light_of(&self, p: [i64; 4]) -> [i32; 3] {
+        let e = self.e;
+        if p[3] <= 0 {
             return [-1 << 16, -1 << 16, 0];
         }
-        let (dx, dy) = ((x - e.px0 as i32) as i64, (self.row - e.py0 as i32) as i64);
-        let (val, gx, gy) = (e.val, e.gx, e.gy);
-        let plane = |k: usize| {
-            val[k]
-                .wrapping_add(gx[k].wrapping_mul(dx))
-                .wrapping_add(gy[k].wrapping_mul(dy))
-        };
-        let r = recip(w);
+        let r = recip(p[3]);
         // A plane is X·2^(16 − f) (its 16 fraction bits over the values cut by f bits).
         let f = e.f as i32;
         [
-            ratio(plane(0), r, f),
-            ratio(plane(1), r, f),
-            ratio(plane(2), r, f - 2).saturating_sub(e.flat[0]),
+            ratio(p[0], r, f),
+            ratio(p[1], r, f),
+            ratio(p[2], r, f - 2).saturating_sub(e.flat[0]),
         ]
     }
 
@@ -299,10 +337,19 @@ impl ShadowSpan<'_> {
         let gl = self.light.map(|c| c[1]);
         let mut written = 0;
         let mut i = 0;
-        let mut at = self.light_at(self.x0, z);
+        let (mut p, g) = self.light_start(z, gz);
+        let whole = g.map(|g| g.wrapping_mul(SEGMENT as i64));
+        let mut at = self.light_of(p);
         while i < n {
             let len = SEGMENT.min(n - i);
-            let end = self.light_at(self.x0 + i + len, z.wrapping_add(gz.wrapping_mul(len)));
+            for k in 0..4 {
+                p[k] = p[k].wrapping_add(if len == SEGMENT {
+                    whole[k]
+                } else {
+                    times(g[k], len)
+                });
+            }
+            let end = self.light_of(p);
             let step: [i32; 3] = core::array::from_fn(|k| {
                 let d = end[k].wrapping_sub(at[k]);
                 if len == SEGMENT {

@@ -68,10 +68,10 @@ pub const MAX_BIAS: i32 = 4096;
 #[derive(Clone, Debug)]
 pub(crate) struct MapLookup {
     /// Screen → map, homogeneous: `(X, Y, Z, W)`, row `r` = `Σ_j m[r][j]·s_j` for a screen
-    /// point `s = (x, y, d, 1)` (x and y in subpixels, the depth `d` in 2⁻⁸ steps, unsigned
-    /// 16.8); texel `X/W`, `Y/W`, map depth `Z/W`. Every row is scaled by the same `2^σ`, the
-    /// largest with each row's sum at most 2⁶⁰ over the screen's range (|x|, |y| < 2¹⁵,
-    /// d < 2²⁴), and signed so that `W > 0` in front of the light.
+    /// point `s = (x, y, d, 1)` (x and y in subpixels, the depth `d` in 2⁻¹² steps, unsigned
+    /// 16.12 as the spans step it); texel `X/W`, `Y/W`, map depth `Z/W`. Every row is scaled
+    /// by the same `2^σ`, the largest with each row's sum at most 2⁶⁰ over the screen's range
+    /// (|x|, |y| < 2¹⁵, d < 2²⁸), and signed so that `W > 0` in front of the light.
     pub(crate) m: [[i64; 4]; 4],
     /// log2 of the map's side.
     pub(crate) log2n: u8,
