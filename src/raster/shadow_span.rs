@@ -216,13 +216,23 @@ pub(crate) fn span<C: TargetColor>(
         light,
         flat: flat.then(|| rec.flat_channels()),
     };
+    // A flat triangle's loop steps no colour (on a Cortex-M0, three fewer registers).
+    macro_rules! read {
+        ($f:expr) => {
+            if flat {
+                by_depth_test!(test, T => s.fill::<C, T, $f, true>(zs, cs))
+            } else {
+                by_depth_test!(test, T => s.fill::<C, T, $f, false>(zs, cs))
+            }
+        };
+    }
     if map.look.image {
-        return by_depth_test!(test, T => s.fill::<C, T, IMAGE>(zs, cs));
+        return read!(IMAGE);
     }
     match map.look.filter {
-        ShadowFilter::Nearest => by_depth_test!(test, T => s.fill::<C, T, NEAREST>(zs, cs)),
-        ShadowFilter::Pcf2 => by_depth_test!(test, T => s.fill::<C, T, PCF2>(zs, cs)),
-        ShadowFilter::Pcf3 => by_depth_test!(test, T => s.fill::<C, T, PCF3>(zs, cs)),
+        ShadowFilter::Nearest => read!(NEAREST),
+        ShadowFilter::Pcf2 => read!(PCF2),
+        ShadowFilter::Pcf3 => read!(PCF3),
     }
 }
 
@@ -285,6 +295,21 @@ impl ShadowSpan<'_> {
         )
     }
 
+    /// The light-space values `walk.0` moved `len` pixels along the row (`walk.1` per pixel),
+    /// and their texel and light depth ([`ShadowSpan::light_of`]).
+    #[inline(never)]
+    fn advance(&self, walk: &mut ([i64; 4], [i64; 4]), len: i32) -> [i32; 3] {
+        let (p, g) = walk;
+        for k in 0..4 {
+            p[k] = p[k].wrapping_add(if len == SEGMENT {
+                g[k].wrapping_mul(SEGMENT as i64)
+            } else {
+                times(g[k], len)
+            });
+        }
+        self.light_of(*p)
+    }
+
     /// Texel coordinates (Q16.16) and light depth less the bias (Q16.14) from the light-space
     /// values `p` ([`ShadowSpan::light_start`]); a point behind the light's plane gets a texel
     /// outside the map (lit).
@@ -306,7 +331,11 @@ impl ShadowSpan<'_> {
 
     /// Tests and writes the span's pixels, reading the map as `F` says ([`NEAREST`], [`PCF2`]
     /// or [`PCF3`]); returns how many it wrote.
-    fn fill<C: TargetColor, const T: u8, const F: u8>(&self, zs: &mut [u16], cs: &mut [C]) -> u32 {
+    fn fill<C: TargetColor, const T: u8, const F: u8, const FL: bool>(
+        &self,
+        zs: &mut [u16],
+        cs: &mut [C],
+    ) -> u32 {
         let look = self.map.look;
         let texels = self.map.depth;
         let cover = self.map.cover;
@@ -323,33 +352,27 @@ impl ShadowSpan<'_> {
                 }
             })
         };
-        // A flat triangle's colour at each level.
-        let flat = self.flat.map(|ch| {
-            let mut at = [C::from_channels(ch); 5];
-            for (level, c) in at.iter_mut().enumerate().skip(1) {
+        // A flat triangle's colour at each level (`FL`).
+        let ch = self.flat.unwrap_or([0; 3]);
+        let mut flat = [C::from_channels(ch); 5];
+        if FL {
+            for (level, c) in flat.iter_mut().enumerate().skip(1) {
                 *c = C::from_channels(dark(ch, level));
             }
-            at
-        });
+        }
         let n = zs.len().min(cs.len()) as i32;
         let [mut z, gz] = self.z;
         let mut l = self.light.map(|c| c[0]);
         let gl = self.light.map(|c| c[1]);
         let mut written = 0;
         let mut i = 0;
-        let (mut p, g) = self.light_start(z, gz);
-        let whole = g.map(|g| g.wrapping_mul(SEGMENT as i64));
-        let mut at = self.light_of(p);
+        // (In memory, advanced out of line: held in registers, the eight 64-bit values would
+        // crowd the pixel loop's.)
+        let mut walk = self.light_start(z, gz);
+        let mut at = self.light_of(walk.0);
         while i < n {
             let len = SEGMENT.min(n - i);
-            for k in 0..4 {
-                p[k] = p[k].wrapping_add(if len == SEGMENT {
-                    whole[k]
-                } else {
-                    times(g[k], len)
-                });
-            }
-            let end = self.light_of(p);
+            let end = self.advance(&mut walk, len);
             let step: [i32; 3] = core::array::from_fn(|k| {
                 let d = end[k].wrapping_sub(at[k]);
                 if len == SEGMENT {
@@ -400,19 +423,20 @@ impl ShadowSpan<'_> {
                             LEVEL9[count] as usize
                         }
                     };
-                    cs[k] = match &flat {
-                        Some(at) => at[level],
-                        None => {
-                            let ch = l.map(|c| (c >> COLOR_FRAC_BITS) as u8);
-                            C::from_channels(if level == 0 { ch } else { dark(ch, level) })
-                        }
+                    cs[k] = if FL {
+                        flat[level]
+                    } else {
+                        let ch = l.map(|c| (c >> COLOR_FRAC_BITS) as u8);
+                        C::from_channels(if level == 0 { ch } else { dark(ch, level) })
                     };
                     zs[k] = z16;
                     written += 1;
                 }
                 z = z.wrapping_add(gz);
-                for c in 0..3 {
-                    l[c] = l[c].wrapping_add(gl[c]);
+                if !FL {
+                    for c in 0..3 {
+                        l[c] = l[c].wrapping_add(gl[c]);
+                    }
                 }
                 u = u.wrapping_add(step[0]);
                 v = v.wrapping_add(step[1]);
