@@ -365,6 +365,22 @@ fn lookup_against_raycast_i16f16() {
     check_lookup::<Q>();
 }
 
+/// The models in I16F16 seen by the benchmark's camera under its light, and that light as a
+/// shadow map's.
+fn lit_models<R>(f: impl FnOnce(&Scene<'_, Q, 1>, ShadowLight<Q>) -> R) -> R {
+    with_models::<Q, _>(|objects| {
+        let scene = Scene::new(
+            objects,
+            camera(),
+            [Light::white(SHADOW_LIGHT.map(Q::from_f64))],
+        );
+        f(
+            &scene,
+            ShadowLight::Directional(SHADOW_LIGHT.map(Q::from_f64)),
+        )
+    })
+}
+
 /// The models drawn plainly and with a 64-texel map into a `C` target; the two frames.
 fn frames_in<C: scanline3d::TargetColor>(
     fill: C,
@@ -385,21 +401,15 @@ fn frames_filtered<C: scanline3d::TargetColor>(
     scanline3d_support::host::Frame<C>,
 ) {
     use scanline3d_support::host::Frame;
-    with_models::<Q, _>(|objects| {
-        let scene = Scene::new(
-            objects,
-            camera(),
-            [Light::white(SHADOW_LIGHT.map(Q::from_f64))],
-        );
-        let light = ShadowLight::Directional(SHADOW_LIGHT.map(Q::from_f64));
+    lit_models(|scene, light| {
         let mapping = ShadowMapping::new(light, &[1, 2], &[]).with_filter(filter);
         let mut renderer = Box::new(Renderer::<Q, C, 240, 240, 2048, 1024, 64, 8, 0, 64>::new());
         let mut map = Box::new(ShadowMap::<64>::new());
         let mut lit = Frame::new(240, 240, fill);
-        renderer.render(&scene, &mut lit).unwrap();
+        renderer.render(scene, &mut lit).unwrap();
         let mut shadowed = Frame::new(240, 240, fill);
         renderer
-            .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *map))
+            .prepare(scene, FrameOptions::new().shadow_map(&mapping, &mut *map))
             .unwrap()
             .draw_to(&mut shadowed)
             .unwrap();
@@ -556,13 +566,7 @@ fn image_or_map<const N: usize>(
     use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
     use scanline3d::shadow::ShadowImage;
     use scanline3d_support::host::Frame;
-    with_models::<Q, _>(|objects| {
-        let scene = Scene::new(
-            objects,
-            camera(),
-            [Light::white(SHADOW_LIGHT.map(Q::from_f64))],
-        );
-        let light = ShadowLight::Directional(SHADOW_LIGHT.map(Q::from_f64));
+    lit_models(|scene, light| {
         let mapping = ShadowMapping::new(light, &[1, 2], receivers).with_filter(filter);
         let mut renderer =
             Box::new(Renderer::<Q, Rgb888, 240, 240, 2048, 1024, 64, 8, 0, 64>::new());
@@ -570,13 +574,13 @@ fn image_or_map<const N: usize>(
         let frame = if image {
             let mut m = Box::new(ShadowImage::<N>::new());
             renderer
-                .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *m))
+                .prepare(scene, FrameOptions::new().shadow_map(&mapping, &mut *m))
                 .unwrap()
                 .draw_to(&mut f)
         } else {
             let mut m = Box::new(ShadowMap::<N>::new());
             renderer
-                .prepare(&scene, FrameOptions::new().shadow_map(&mapping, &mut *m))
+                .prepare(scene, FrameOptions::new().shadow_map(&mapping, &mut *m))
                 .unwrap()
                 .draw_to(&mut f)
         };

@@ -12,6 +12,7 @@ use crate::num::math::{add, cross, dot, length, scale, sub, Mat4};
 use crate::num::scalar::Scalar;
 use crate::raster::shadow::{object_sphere, ShadowLight};
 use crate::raster::span_map::MapLookup;
+pub use crate::raster::span_map::ShadowFilter;
 use crate::scene::camera::{Camera, Projection, MAX_DEPTH_RATIO};
 use crate::scene::Scene;
 
@@ -60,37 +61,6 @@ pub struct ShadowMapping<'a, S> {
     /// How a pixel reads the map: one texel, or the share of 2 × 2 or 3 × 3 texels that hide
     /// it from the light (soft edges). Default [`ShadowFilter::Nearest`].
     pub filter: ShadowFilter,
-}
-
-/// How a receiver's pixel reads a [`ShadowMap`] ([`ShadowMapping::filter`]).
-///
-/// The filtered kinds are percentage-closer filtering: each of the texels around the pixel's
-/// point in the map is compared with the pixel's light depth, and the pixel is darkened by the
-/// share that hide it, in five levels (none, ¼, ½, ¾, all of the shadow's opacity). Their
-/// bias's slope term grows with the taps' reach (×2 for 2 × 2, ×3 for 3 × 3), since a tap
-/// one texel away reads the surface one texel's depth change away.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub enum ShadowFilter {
-    /// The texel under the pixel: in shadow or not (hard edges; 1 load and compare a pixel).
-    #[default]
-    Nearest,
-    /// The 2 × 2 texels around the pixel's point (their centres within one texel of it):
-    /// 4 loads and compares, levels 0..=4 by the count.
-    Pcf2,
-    /// The 3 × 3 texels around the pixel's texel: 9 loads and compares, the count 0..=9
-    /// rounded to the nearest of the five levels.
-    Pcf3,
-}
-
-impl ShadowFilter {
-    /// The bias's slope factor: the taps' reach in half texels (1, 2, 3).
-    pub(crate) const fn reach(self) -> i64 {
-        match self {
-            ShadowFilter::Nearest => 1,
-            ShadowFilter::Pcf2 => 2,
-            ShadowFilter::Pcf3 => 3,
-        }
-    }
 }
 
 /// [`ShadowMapping::bias`]'s default: 64 depth steps, plus 1.5 times a receiver's depth change
@@ -498,7 +468,7 @@ fn blur3<const N: usize>(cover: &mut [[u8; N]; N]) {
             if y + 1 < N {
                 count += covered(&cover[y + 1], x);
             }
-            cover[y][x] = crate::raster::shadow_span::LEVEL9[count];
+            cover[y][x] = crate::raster::span_map::LEVEL9[count];
         }
         above[..N].copy_from_slice(&here[..N]);
     }

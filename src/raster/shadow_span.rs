@@ -22,9 +22,8 @@ use crate::kernel::div_segment;
 use crate::kernel::records::SUBPIXELS;
 use crate::kernel::wide::{bitlen64, mul_wide, recip_norm};
 use crate::raster::layer_rows::blend;
-use crate::raster::shadow_map::ShadowFilter;
 use crate::raster::span::{by_depth_test, passes};
-use crate::raster::span_map::{MapLookup, MapView, MAX_BIAS};
+use crate::raster::span_map::{MapLookup, MapView, ShadowFilter, LEVEL9, MAX_BIAS};
 use crate::raster::textured::set_planes;
 use crate::raster::*;
 use crate::scene::color::TargetColor;
@@ -242,9 +241,6 @@ const PCF2: u8 = 1;
 const PCF3: u8 = 2;
 /// An image's cover level (no depth).
 const IMAGE: u8 = 3;
-
-/// A 3 × 3 read's count of hiding texels (0..=9) to its level (0..=4): `round(4·count/9)`.
-pub(crate) const LEVEL9: [u8; 10] = [0, 0, 1, 1, 2, 2, 3, 3, 4, 4];
 
 struct ShadowSpan<'a> {
     e: &'a ActiveExtra,

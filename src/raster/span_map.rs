@@ -8,7 +8,6 @@
 //! [`draw_row`]: crate::raster::kind::draw_row
 
 use crate::kernel::records::TriRecord;
-use crate::raster::shadow_map::ShadowFilter;
 
 /// What a strip pass knows of a shadow map: nothing ([`NoMap`]) or the map of a mapped frame
 /// ([`MapView`]).
@@ -106,3 +105,38 @@ impl MapLookup {
         image: false,
     };
 }
+
+/// How a receiver's pixel reads a [`crate::shadow::ShadowMap`]
+/// ([`crate::shadow::ShadowMapping::filter`]).
+///
+/// The filtered kinds are percentage-closer filtering: each of the texels around the pixel's
+/// point in the map is compared with the pixel's light depth, and the pixel is darkened by the
+/// share that hide it, in five levels (none, ¼, ½, ¾, all of the shadow's opacity). Their
+/// bias's slope term grows with the taps' reach (×2 for 2 × 2, ×3 for 3 × 3), since a tap
+/// one texel away reads the surface one texel's depth change away.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum ShadowFilter {
+    /// The texel under the pixel: in shadow or not (hard edges; 1 load and compare a pixel).
+    #[default]
+    Nearest,
+    /// The 2 × 2 texels around the pixel's point (their centres within one texel of it):
+    /// 4 loads and compares, levels 0..=4 by the count.
+    Pcf2,
+    /// The 3 × 3 texels around the pixel's texel: 9 loads and compares, the count 0..=9
+    /// rounded to the nearest of the five levels.
+    Pcf3,
+}
+
+impl ShadowFilter {
+    /// The bias's slope factor: the taps' reach in half texels (1, 2, 3).
+    pub(crate) const fn reach(self) -> i64 {
+        match self {
+            ShadowFilter::Nearest => 1,
+            ShadowFilter::Pcf2 => 2,
+            ShadowFilter::Pcf3 => 3,
+        }
+    }
+}
+
+/// A 3 × 3 read's count of hiding texels (0..=9) to its level (0..=4): `round(4·count/9)`.
+pub(crate) const LEVEL9: [u8; 10] = [0, 0, 1, 1, 2, 2, 3, 3, 4, 4];
